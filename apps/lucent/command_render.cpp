@@ -1,0 +1,151 @@
+// command_render.cpp: `lucent render [SCENE]`: headless render to PNG (and EXR) with per-step GPU timings.
+#include <algorithm>
+#include <filesystem>
+#include <map>
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "lucent/lucent.h"
+#include "progress_bar.h"
+
+namespace lucent::cli {
+namespace {
+
+struct RenderOptions {
+  std::string scene_path;
+  std::string png;
+  std::string exr;
+  std::optional<int> frames;
+  std::optional<unsigned> seed;
+  std::vector<std::string> sets;
+  bool quiet = false;
+};
+
+// The framebuffer an embedding application would own; here an RGBA8 renderbuffer.
+class ApplicationFramebuffer {
+ public:
+  ApplicationFramebuffer(int width, int height) {
+    glCreateRenderbuffers(1, &color_);
+    glNamedRenderbufferStorage(color_, GL_RGBA8, width, height);
+    glCreateFramebuffers(1, &framebuffer_);
+    glNamedFramebufferRenderbuffer(framebuffer_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  }
+  ~ApplicationFramebuffer() {
+    glDeleteFramebuffers(1, &framebuffer_);
+    glDeleteRenderbuffers(1, &color_);
+  }
+  GLuint id() const { return framebuffer_; }
+
+ private:
+  GLuint framebuffer_ = 0, color_ = 0;
+};
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  std::size_t mid = values.size() / 2;
+  return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
+void print_timings(const std::vector<FrameTimings>& frames, const std::string& device) {
+  std::map<std::string, std::vector<double>> per_pass;
+  std::vector<std::string> order;
+  std::vector<double> step1, step2, step3, total, rate;
+  for (const FrameTimings& t : frames) {
+    for (const StepTiming& s : t.passes) {
+      if (!per_pass.count(s.name)) order.push_back(s.name);
+      per_pass[s.name].push_back(s.ms);
+    }
+    step1.push_back(t.light_gbuffer_ms), step2.push_back(t.radiosity_maps_ms), step3.push_back(t.combine_ms);
+    total.push_back(t.total_ms);
+    if (t.radiosity_maps_ms > 0) rate.push_back(static_cast<double>(t.bssrdf_samples) / (t.radiosity_maps_ms * 1e-3));
+  }
+  fmt::print("GPU time per frame, median of {} frame(s), on {}:\n", frames.size(), device);
+  fmt::print("  1. light G-buffer      {:10.3f} ms\n", median(step1));
+  fmt::print("  2. radiosity maps      {:10.3f} ms\n", median(step2));
+  fmt::print("  3. combine             {:10.3f} ms\n", median(step3));
+  fmt::print("  total                  {:10.3f} ms\n", median(total));
+  fmt::print("  passes:");
+  for (const std::string& name : order) fmt::print(" {} {:.3f}", name, median(per_pass[name]));
+  fmt::print(" (ms)\n  BSSRDF samples: {} per frame, {:.3g} per second in step 2\n", frames.back().bssrdf_samples,
+             median(rate));
+}
+
+std::string default_png_path(const std::string& scene_path) {
+  std::string stem = scene_path.empty() ? "default" : std::filesystem::path(scene_path).stem().string();
+  return (std::filesystem::path("out") / (stem + ".png")).string();
+}
+
+void ensure_parent_directory(const std::string& path) {
+  auto parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
+void warn_if_black(const ImageRGBA32F& image) {
+  float peak = 0.0f;
+  for (std::size_t i = 0; i < image.pixels.size(); i += 4)
+    peak = std::max({peak, image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]});
+  if (!(peak > 0.0f)) fmt::print(stderr, "lucent: warning: the image is black (no light reaches the camera)\n");
+}
+
+void run(const RenderOptions& o) {
+  std::vector<std::string> overrides = o.sets;
+  if (o.frames) overrides.push_back(fmt::format("render.frames={}", *o.frames));
+  if (o.seed) overrides.push_back(fmt::format("render.seed={}", *o.seed));
+  Scene scene = o.scene_path.empty() ? default_scene(overrides) : load_scene(o.scene_path, overrides);
+  std::string png = o.png.empty() ? default_png_path(o.scene_path) : o.png;
+
+  auto context = create_headless_context();
+  Renderer renderer(scene);
+  int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
+  ApplicationFramebuffer target(width, height);
+  ProgressBar progress("rendering", frames);
+  std::vector<FrameTimings> timings;
+  for (int f = 0; f < frames; ++f) {
+    renderer.render(scene.camera, {target.id(), width, height});
+    timings.push_back(renderer.timings());
+    progress.update(f + 1);
+  }
+  progress.finish();
+
+  ImageRGBA32F radiance = renderer.read_radiance();
+  warn_if_black(radiance);
+  ensure_parent_directory(png);
+  write_png(png, renderer.read_display());
+  if (!o.exr.empty()) {
+    ensure_parent_directory(o.exr);
+    write_exr(o.exr, radiance);
+  }
+  if (!o.quiet) {
+    fmt::print("{}: {}x{}, {} frame(s) accumulated -> {}{}\n", scene.source, width, height,
+               renderer.accumulated_frames(), png, o.exr.empty() ? "" : " and " + o.exr);
+    print_timings(timings, renderer.device());
+  }
+}
+
+std::string render_help_footer() {
+  std::string text = "\nScene parameters (scene file keys; override any with --set path=value):\n";
+  for (const ParamSection& section : scene_param_sections())
+    text += fmt::format("\n [{}]\n{}", section.name, describe(section, 3));
+  return text;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand("render", "render a scene headless to PNG (and EXR)");
+  cmd->add_option("scene", options->scene_path, "scene file (JSON); the built-in default scene when omitted");
+  cmd->add_option("-o,--output", options->png, "tone-mapped PNG (default: out/<scene>.png)");
+  cmd->add_option("--exr", options->exr, "also write linear radiance as EXR");
+  cmd->add_option("--frames", options->frames, "frames to accumulate (render.frames)");
+  cmd->add_option("--seed", options->seed, "random seed (render.seed)");
+  cmd->add_option("--set", options->sets, "override a scene value, e.g. --set method.K=8 --set render.width=320");
+  cmd->add_flag("-q,--quiet", options->quiet, "print nothing but errors");
+  cmd->footer(render_help_footer());
+  cmd->callback([options] { run(*options); });
+}
+
+}  // namespace lucent::cli

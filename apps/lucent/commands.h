@@ -1,0 +1,11 @@
+// commands.h: the subcommands of the `lucent` tool.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace lucent::cli {
+
+void add_render_command(CLI::App& app);
+void add_bssrdf_command(CLI::App& app);
+void add_materials_command(CLI::App& app);
+
+}  // namespace lucent::cli

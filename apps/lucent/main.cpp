@@ -1,0 +1,25 @@
+// main.cpp: `lucent`: render scenes, evaluate BSSRDF models at a point, list material presets.
+#include <iostream>
+
+#include "commands.h"
+#include "lucent/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"lucent: real-time translucent materials with physically based subsurface scattering"};
+  app.require_subcommand(1);
+  lucent::cli::add_render_command(app);
+  lucent::cli::add_bssrdf_command(app);
+  lucent::cli::add_materials_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const lucent::Error& e) {
+    std::cerr << "lucent: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "lucent: internal error: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,32 @@
+// context.h: the OpenGL 4.5 core context lucent renders with: headless EGL or a GLFW window, behind one
+// small interface. Rendering code never sees a window.
+#pragma once
+#include <memory>
+#include <string>
+
+struct GLFWwindow;
+
+namespace lucent {
+
+class GLContext {
+ public:
+  virtual ~GLContext() = default;
+  virtual void make_current() = 0;
+  // "NVIDIA H100 ..., 4.5.0 NVIDIA 550" / "llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6"
+  virtual std::string description() const = 0;
+};
+
+// A context with no window: EGL on the surfaceless platform (Mesa, including llvmpipe), falling back to the
+// EGL device platform (NVIDIA). Throws lucent::Error with one line when no display, no OpenGL 4.5 core
+// context or a required limit is missing.
+std::unique_ptr<GLContext> create_headless_context();
+
+class WindowContext : public GLContext {
+ public:
+  virtual GLFWwindow* window() = 0;
+  virtual void swap_buffers() = 0;
+};
+// A GLFW window with an OpenGL 4.5 core context. Throws lucent::Error when GLFW or the context fails.
+std::unique_ptr<WindowContext> create_window_context(int width, int height, const std::string& title);
+
+}  // namespace lucent

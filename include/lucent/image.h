@@ -1,0 +1,33 @@
+// image.h: images in memory and their files (PNG through stb, EXR through OpenEXR).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lucent {
+
+// Linear RGBA, 32-bit float, row-major with the top row first.
+struct ImageRGBA32F {
+  int width = 0;
+  int height = 0;
+  std::vector<float> pixels;  // 4 floats per pixel
+  float* at(int x, int y) { return &pixels[4 * (static_cast<std::size_t>(y) * width + x)]; }
+  const float* at(int x, int y) const { return &pixels[4 * (static_cast<std::size_t>(y) * width + x)]; }
+};
+
+// Display-referred RGBA, 8 bits per channel (sRGB encoded), row-major with the top row first.
+struct ImageRGBA8 {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> pixels;  // 4 bytes per pixel
+  std::uint8_t* at(int x, int y) { return &pixels[4 * (static_cast<std::size_t>(y) * width + x)]; }
+  const std::uint8_t* at(int x, int y) const { return &pixels[4 * (static_cast<std::size_t>(y) * width + x)]; }
+};
+
+// Each throws lucent::Error naming the path when the file cannot be written or read.
+void write_png(const std::string& path, const ImageRGBA8& image);
+void write_exr(const std::string& path, const ImageRGBA32F& image);  // RGBA, 32-bit float channels
+ImageRGBA8 read_png(const std::string& path);
+ImageRGBA32F read_exr(const std::string& path);
+
+}  // namespace lucent

@@ -1,0 +1,10 @@
+// lucent.h: the public API in one include.
+#pragma once
+#include "lucent/context.h"
+#include "lucent/error.h"
+#include "lucent/image.h"
+#include "lucent/material.h"
+#include "lucent/mesh.h"
+#include "lucent/params.h"
+#include "lucent/renderer.h"
+#include "lucent/scene.h"

@@ -1,0 +1,55 @@
+// material.h: translucent materials in physical units and the measured presets compiled into the library.
+#pragma once
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+namespace lucent {
+
+// Diffusion model used as S_d (shared C++/GLSL code in src/bssrdf/).
+enum class BssrdfModel { StandardDipole = 0, DirectionalDipole = 1 };
+std::string_view to_string(BssrdfModel model);
+std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional"
+
+// A homogeneous translucent material. Coefficients in mm^-1; the scene's scale_mm maps them to scene units.
+struct Material {
+  std::string name = "custom";
+  glm::vec3 sigma_a{0.0f};  // absorption coefficient per RGB band [mm^-1]
+  glm::vec3 sigma_s{0.0f};  // scattering coefficient, unreduced [mm^-1]
+  glm::vec3 g{0.0f};        // Henyey-Greenstein mean cosine per band [-1, 1]
+  float eta = 1.3f;         // relative refractive index n_material / n_outside
+  BssrdfModel model = BssrdfModel::DirectionalDipole;
+
+  glm::vec3 sigma_s_prime() const { return sigma_s * (1.0f - g); }  // [mm^-1]
+  glm::vec3 sigma_t() const { return sigma_a + sigma_s; }          // [mm^-1]
+  glm::vec3 sigma_tr() const;  // effective transport coefficient sqrt(3 sigma_a sigma_t') [mm^-1]
+};
+
+// One measured material. Jensen et al. 2001 entries are reduced coefficients (sigma_s holds sigma_s', g = 0);
+// Narasimhan et al. 2006 entries are unreduced with a per-band g.
+struct MaterialPreset {
+  const char* name;
+  glm::vec3 sigma_a;  // [mm^-1]
+  glm::vec3 sigma_s;  // [mm^-1] (reduced where `reduced`)
+  glm::vec3 g;
+  float eta;
+  bool reduced;
+  const char* source;  // publication
+  const char* note;    // choice made where published tables disagree ("" if none)
+};
+
+std::span<const MaterialPreset> material_presets();
+// Case-insensitive; spaces, '_', '-' and '&' are ignored ("white_grapefruit_juice" finds
+// "White Grapefruit Juice"). nullptr when unknown.
+const MaterialPreset* find_material_preset(std::string_view name);
+Material material_from_preset(const MaterialPreset& preset);
+
+// Throws lucent::Error("<where>: <field> ...") naming the offending field and the allowed range when a
+// coefficient is NaN, infinite or negative, g is outside (-1, 1), eta outside [1, 3], or sigma_a or sigma_s'
+// is zero in a band (the diffusion models need both positive).
+void validate_material(const Material& material, const std::string& where);
+
+}  // namespace lucent

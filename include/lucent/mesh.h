@@ -1,0 +1,36 @@
+// mesh.h: triangle meshes: loaded from files through assimp or built procedurally.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace lucent {
+
+// An indexed triangle mesh with per-vertex unit normals, counter-clockwise front faces, normals pointing out.
+struct TriangleMesh {
+  std::vector<glm::vec3> positions;  // object space [scene units]
+  std::vector<glm::vec3> normals;    // unit length, one per position
+  std::vector<std::uint32_t> indices;  // three per triangle
+};
+
+// Loads every mesh of a file (OBJ, PLY, glTF 2.0, STL, 3DS and the other formats assimp reads) into one mesh,
+// with node transforms applied. Smooth normals are generated where the file has none. Throws lucent::Error
+// naming the file when it is missing, unreadable, or holds no triangles.
+TriangleMesh load_mesh(const std::string& path);
+
+// Procedural shapes centred at the origin.
+TriangleMesh make_sphere(float radius, int rings, int segments);
+TriangleMesh make_torus(float major_radius, float minor_radius, int rings, int segments);
+TriangleMesh make_box(glm::vec3 size);    // full edge lengths
+TriangleMesh make_plane(glm::vec2 size);  // in the xz plane, normal +y
+
+// Throws lucent::Error("<what>: ...") when the mesh has no triangles, an index out of range, a NaN or
+// infinite coordinate, or zero total area.
+void validate_mesh(const TriangleMesh& mesh, const std::string& what);
+
+// Total surface area [scene units^2].
+float surface_area(const TriangleMesh& mesh);
+
+}  // namespace lucent

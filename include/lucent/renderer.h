@@ -1,0 +1,69 @@
+// renderer.h: renders a scene with one of lucent's methods into the application's own framebuffer.
+//
+//   auto context = lucent::create_headless_context();        // or the application's own GL 4.5 context
+//   lucent::Renderer renderer(lucent::load_scene("bunny.json"));
+//   renderer.render(camera, {fbo, width, height});          // progressive while only the camera moves
+//   renderer.timings();                                     // per-step GPU milliseconds
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lucent/image.h"
+#include "lucent/scene.h"
+
+namespace lucent {
+
+// Where a frame goes: a framebuffer object of the application (0 = the default framebuffer).
+struct RenderTarget {
+  unsigned framebuffer = 0;
+  int width = 0;
+  int height = 0;
+};
+
+struct StepTiming {
+  std::string name;  // a pass name; also the GL debug group name
+  double ms = 0.0;   // GPU time from timer queries
+};
+
+struct FrameTimings {
+  std::vector<StepTiming> passes;  // light_gbuffer, map_gbuffers, integrate, mipmaps, camera_gbuffer, ...
+  double light_gbuffer_ms = 0.0;   // step 1 of the method
+  double radiosity_maps_ms = 0.0;  // step 2 (map G-buffers, integration, mipmaps)
+  double combine_ms = 0.0;         // step 3 (camera G-buffer, combine, tone map)
+  double total_ms = 0.0;
+  std::uint64_t bssrdf_samples = 0;  // light-space samples drawn this frame (each evaluates S_d once if lit)
+};
+
+class Renderer {
+ public:
+  // Needs a current OpenGL 4.5 core context. Compiles shaders and uploads the scene; throws lucent::Error.
+  explicit Renderer(Scene scene);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Renders one frame seen by `camera` into `target`, tone-mapped. Accumulates with previous frames unless
+  // something other than the camera changed since (see scene_changed()).
+  void render(const Camera& camera, const RenderTarget& target);
+
+  // The scene, for changes: call scene_changed() after editing lights, materials, geometry or parameters.
+  Scene& scene();
+  const Scene& scene() const;
+  void scene_changed();
+
+  int accumulated_frames() const;
+  const FrameTimings& timings() const;  // of the last frame
+  std::string device() const;           // GL renderer and version
+
+  // The last frame's linear radiance and tone-mapped image, top row first.
+  ImageRGBA32F read_radiance() const;
+  ImageRGBA8 read_display() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lucent

@@ -1,0 +1,75 @@
+// scene.h: a scene in memory and how to load one. Scene files are JSON (see docs/scene-format.md).
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "lucent/material.h"
+#include "lucent/mesh.h"
+#include "lucent/params.h"
+
+namespace lucent {
+
+struct Camera {
+  glm::vec3 eye{0.0f, 0.0f, 5.0f};     // [scene units]
+  glm::vec3 target{0.0f};              // [scene units]
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_deg = 40.0f;             // vertical field of view [degrees]
+  glm::mat4 view_from_world() const;
+  glm::mat4 clip_from_view(float aspect, float z_near, float z_far) const;
+};
+
+struct DirectionalLight {
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit direction the light travels (world)
+  glm::vec3 radiance{1.0f};                // RGB radiance-times-solid-angle, i.e. irradiance on a surface facing it
+};
+
+struct SceneObject {
+  std::string name;
+  TriangleMesh mesh;                  // object space
+  glm::mat4 world_from_object{1.0f};
+  std::optional<Material> material;   // translucent when set
+  glm::vec3 albedo{0.8f};             // diffuse reflectance of an opaque object
+  bool translucent() const { return material.has_value(); }
+};
+
+enum class ToneMapOperator { Linear = 0, Reinhard = 1, Aces = 2 };
+
+struct RenderSettings {
+  int width = 640;
+  int height = 480;
+  int frames = 1;               // frames accumulated by `lucent render`
+  unsigned seed = 1;
+  float exposure = 0.0f;        // [stops]
+  ToneMapOperator tonemap = ToneMapOperator::Aces;
+  glm::vec3 background{0.0f};   // radiance behind the scene
+};
+
+struct Scene {
+  std::string source = "<built-in default>";  // file the scene came from, for messages
+  float scale_mm = 1.0f;                        // millimetres per scene unit
+  Camera camera;
+  std::vector<DirectionalLight> lights;
+  std::vector<SceneObject> objects;
+  std::string method = "radiosity-maps";
+  ParamValues method_params;                    // declared by the method (see `lucent render --help`)
+  RenderSettings render;
+};
+
+// Loads a scene file. `overrides` are "key.path=value" strings (value as JSON, or a bare string) applied to
+// the JSON before validation, e.g. "method.K=8", "render.width=320", "objects.0.material.preset=Potato".
+// Throws lucent::Error naming the file and the JSON path of the offending key.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+// Same, from JSON text; `source` names it in messages, relative mesh paths resolve against `base_dir`.
+Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir,
+                  const std::vector<std::string>& overrides = {});
+// The built-in default scene (procedural, needs no file).
+const char* default_scene_json();
+Scene default_scene(const std::vector<std::string>& overrides = {});
+
+// The declarations the parser checks, per section, for help and docs.
+std::vector<ParamSection> scene_param_sections();
+
+}  // namespace lucent

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package that lucent's build, tests and examples need.
+# Idempotent: packages already present are skipped; run as root (or through sudo).
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git
+  # OpenGL 4.5 through EGL (surfaceless) and GLFW; Mesa llvmpipe for machines without a GPU
+  libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev
+  # maths, scenes, images, command line, tests
+  libglm-dev libassimp-dev libopenexr-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev
+  libgtest-dev libgmock-dev
+  # CPU ground truth (reference renderers)
+  libembree-dev libtbb-dev
+  # viewer
+  libimgui-dev xvfb xauth
+  # example assets: the Stanford bunny at /usr/share/glmark2/models/bunny.obj
+  glmark2-data
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

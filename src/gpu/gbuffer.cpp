@@ -1,0 +1,71 @@
+// gbuffer.cpp: G-buffer textures and framebuffer.
+#include "gpu/gbuffer.h"
+
+#include <fmt/format.h>
+
+#include "gpu/gl_debug.h"
+#include "lucent/error.h"
+
+namespace lucent::gpu {
+namespace {
+
+GLuint make_texture(int size_x, int size_y, int layers, GLenum format, const std::string& label) {
+  GLuint texture = 0;
+  glCreateTextures(layers == 0 ? GL_TEXTURE_2D : GL_TEXTURE_2D_ARRAY, 1, &texture);
+  if (layers == 0)
+    glTextureStorage2D(texture, 1, format, size_x, size_y);
+  else
+    glTextureStorage3D(texture, 1, format, size_x, size_y, layers);
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  label_object(GL_TEXTURE, texture, label);
+  return texture;
+}
+
+}  // namespace
+
+GBuffer::GBuffer(int size_x, int size_y, int layers, const std::string& name)
+    : size_x_(size_x), size_y_(size_y), layers_(layers) {
+  position_ = make_texture(size_x, size_y, layers, GL_RGBA32F, name + " position");
+  normal_ = make_texture(size_x, size_y, layers, GL_RGBA16F, name + " normal");
+  depth_ = make_texture(size_x, size_y, layers, GL_DEPTH_COMPONENT32F, name + " depth");
+  glCreateFramebuffers(1, &framebuffer_);
+  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, position_, 0);
+  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT1, normal_, 0);
+  glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
+  const GLenum draw_buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer_, 2, draw_buffers);
+  label_object(GL_FRAMEBUFFER, framebuffer_, name);
+  GLenum status = glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw Error(fmt::format("{}: framebuffer incomplete (status 0x{:x})", name, status));
+}
+
+GBuffer::~GBuffer() {
+  glDeleteFramebuffers(1, &framebuffer_);
+  GLuint textures[] = {position_, normal_, depth_};
+  glDeleteTextures(3, textures);
+}
+
+void GBuffer::begin_pass() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glViewport(0, 0, size_x_, size_y_);
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const float one = 1.0f;
+  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+}
+
+void GBuffer::bind_textures(GLuint position_unit, GLuint normal_unit, GLuint depth_unit) const {
+  glBindTextureUnit(position_unit, position_);
+  glBindTextureUnit(normal_unit, normal_);
+  glBindTextureUnit(depth_unit, depth_);
+}
+
+}  // namespace lucent::gpu

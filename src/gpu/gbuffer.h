@@ -1,0 +1,32 @@
+// gbuffer.h: a geometry buffer (world position + object id, world normal, depth) as 2D textures or as 2D array
+// textures for layered rendering, with its framebuffer.
+#pragma once
+#include <string>
+
+#include <epoxy/gl.h>
+
+namespace lucent::gpu {
+
+class GBuffer {
+ public:
+  // layers == 0: plain 2D textures; layers >= 1: 2D array textures with that many layers.
+  GBuffer(int size_x, int size_y, int layers, const std::string& name);
+  ~GBuffer();
+  GBuffer(const GBuffer&) = delete;
+  GBuffer& operator=(const GBuffer&) = delete;
+
+  // Binds the framebuffer, sets the viewport and clears (position w = 0 marks empty texels, depth = 1).
+  void begin_pass() const;
+  void bind_textures(GLuint position_unit, GLuint normal_unit, GLuint depth_unit) const;
+
+  int size_x() const { return size_x_; }
+  int size_y() const { return size_y_; }
+  int layers() const { return layers_; }
+  GLuint position() const { return position_; }
+
+ private:
+  int size_x_, size_y_, layers_;
+  GLuint framebuffer_ = 0, position_ = 0, normal_ = 0, depth_ = 0;
+};
+
+}  // namespace lucent::gpu

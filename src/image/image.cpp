@@ -1,0 +1,140 @@
+// image.cpp: image files. PNG (8-bit RGBA) through stb_image / stb_image_write, EXR (RGBA, 32-bit float
+// channels, so values round-trip exactly) through OpenEXR 3. Failures throw lucent::Error naming the path.
+#include "lucent/image.h"
+
+#include <cstddef>
+#include <exception>
+#include <memory>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+
+#include "lucent/error.h"
+
+// stb is compiled here and only here, with internal linkage so it cannot clash with another copy in the program.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace lucent {
+namespace {
+
+constexpr int kChannels = 4;  // RGBA
+constexpr const char* kChannelNames[kChannels] = {"R", "G", "B", "A"};
+
+// Number of floats or bytes in an RGBA image of the given size.
+std::size_t value_count(int width, int height) {
+  return std::size_t{kChannels} * static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+}
+
+// Throws std::invalid_argument unless the image is non-empty and holds exactly width * height RGBA pixels.
+template <class Image>
+void check_pixel_count(const Image& image) {
+  if (image.width <= 0 || image.height <= 0) {
+    throw std::invalid_argument(fmt::format("image is {}x{}", image.width, image.height));
+  }
+  const std::size_t expected = value_count(image.width, image.height);
+  if (image.pixels.size() != expected) {
+    throw std::invalid_argument(fmt::format("image is {}x{} but holds {} values (expected {})", image.width,
+                                            image.height, image.pixels.size(), expected));
+  }
+}
+
+// One FLOAT slice per RGBA channel over interleaved pixels covering `window`; missing channels read as `fill`.
+Imf::FrameBuffer rgba_frame_buffer(const float* pixels, const Imath::Box2i& window, int width) {
+  const std::size_t x_stride = sizeof(float) * kChannels;
+  const std::size_t y_stride = x_stride * static_cast<std::size_t>(width);
+  Imf::FrameBuffer frame_buffer;
+  for (int c = 0; c < kChannels; ++c) {
+    const double fill = c == 3 ? 1.0 : 0.0;  // opaque when the file has no alpha
+    frame_buffer.insert(kChannelNames[c],
+                        Imf::Slice::Make(Imf::FLOAT, pixels + c, window, x_stride, y_stride, 1, 1, fill));
+  }
+  return frame_buffer;
+}
+
+void write_exr_pixels(const std::string& path, const ImageRGBA32F& image) {
+  check_pixel_count(image);
+  Imf::Header header(image.width, image.height);
+  for (const char* name : kChannelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  Imf::OutputFile file(path.c_str(), header);
+  file.setFrameBuffer(rgba_frame_buffer(image.pixels.data(), header.dataWindow(), image.width));
+  file.writePixels(image.height);
+}
+
+ImageRGBA32F read_exr_pixels(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imf::ChannelList& channels = file.header().channels();
+  if (!channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B")) {
+    throw std::runtime_error("no R, G or B channel");
+  }
+  const Imath::Box2i window = file.header().dataWindow();
+  ImageRGBA32F image;
+  image.width = window.max.x - window.min.x + 1;
+  image.height = window.max.y - window.min.y + 1;
+  image.pixels.resize(value_count(image.width, image.height));
+  file.setFrameBuffer(rgba_frame_buffer(image.pixels.data(), window, image.width));
+  file.readPixels(window.min.y, window.max.y);
+  return image;
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const ImageRGBA8& image) {
+  try {
+    check_pixel_count(image);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("{}: cannot write PNG: {}", path, e.what()));
+  }
+  const int stride = kChannels * image.width;
+  if (stbi_write_png(path.c_str(), image.width, image.height, kChannels, image.pixels.data(), stride) == 0) {
+    throw Error(fmt::format("{}: cannot write PNG", path));
+  }
+}
+
+ImageRGBA8 read_png(const std::string& path) {
+  int width = 0, height = 0, channels_in_file = 0;
+  const std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
+      stbi_load(path.c_str(), &width, &height, &channels_in_file, kChannels), &stbi_image_free);
+  if (!data) throw Error(fmt::format("{}: cannot read PNG: {}", path, stbi_failure_reason()));
+  ImageRGBA8 image;
+  image.width = width;
+  image.height = height;
+  image.pixels.assign(data.get(), data.get() + value_count(width, height));
+  return image;
+}
+
+void write_exr(const std::string& path, const ImageRGBA32F& image) {
+  try {
+    write_exr_pixels(path, image);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("{}: cannot write EXR: {}", path, e.what()));
+  }
+}
+
+ImageRGBA32F read_exr(const std::string& path) {
+  try {
+    return read_exr_pixels(path);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("{}: cannot read EXR: {}", path, e.what()));
+  }
+}
+
+}  // namespace lucent

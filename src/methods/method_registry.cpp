@@ -1,0 +1,22 @@
+// method_registry.cpp: the rendering methods lucent knows, by name.
+#include "methods/method.h"
+#include "methods/radiosity_maps/radiosity_maps.h"
+
+namespace lucent::methods {
+
+std::span<const MethodInfo> method_registry() {
+  static const MethodInfo methods[] = {
+      {"radiosity-maps",
+       "directional subsurface scattering cached in scattered-radiosity maps (Dal Corso et al. 2015)",
+       radiosity_maps_params(), create_radiosity_maps},
+  };
+  return methods;
+}
+
+const MethodInfo* find_method(std::string_view name) {
+  for (const MethodInfo& info : method_registry())
+    if (info.name == name) return &info;
+  return nullptr;
+}
+
+}  // namespace lucent::methods

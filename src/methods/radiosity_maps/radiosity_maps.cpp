@@ -1,0 +1,242 @@
+// radiosity_maps.cpp: the three passes of the scattered-radiosity-maps method (see radiosity_maps.h).
+#include "methods/radiosity_maps/radiosity_maps.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gpu/gl_debug.h"
+#include "gpu/shader_program.h"
+#include "lucent/error.h"
+
+namespace lucent::methods {
+namespace {
+
+using shader::FrameGPU;
+using shader::ViewGPU;
+
+// Defaults follow Dal Corso et al. 2015, Section 5 (512x512 maps and light map, K = 16) and the issue's
+// benchmark configuration (N = 32 per band).
+constexpr ParamDecl kParams[] = {
+    {"K", ParamType::Int, "16", "maps", 1, LUCENT_MAX_MAPS, "", "number of scattered-radiosity maps (views)"},
+    {"N", ParamType::Int, "32", "samples", 1, 4096, "", "samples per colour band per map texel per frame"},
+    {"map_size", ParamType::Int, "512", "texels", 8, 4096, "", "resolution of each scattered-radiosity map"},
+    {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer"},
+    {"eps_bias", ParamType::Float, "2.0", "map texels", 0, 64, "", "visibility depth bias of Algorithm 1"},
+    {"eps_comb", ParamType::Float, "1.0", "map texels", 0, 64, "", "offset of x_o along -n_o (Algorithm 1)"},
+    {"visibility_taps", ParamType::Int, "3", "taps/axis", 1, 7, "", "multi-sampled visibility: taps per axis"},
+    {"filter_lod", ParamType::Float, "0.0", "mip level", 0, 4, "", "mip level read from the maps (noise filter)"},
+    {"progressive", ParamType::Bool, "true", "", 0, 1, "", "accumulate maps over frames while only the camera moves"},
+    {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights"},
+    {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection"},
+    {"view", ParamType::Enum, "\"shaded\"", "", 0, 0, "shaded|coverage", "debug view: coverage shows unmapped areas in magenta"},
+};
+
+float radical_inverse(int index, int base) {
+  float inv_base = 1.0f / static_cast<float>(base), fraction = inv_base, result = 0.0f;
+  for (int i = index; i > 0; i /= base, fraction *= inv_base) result += static_cast<float>(i % base) * fraction;
+  return result;
+}
+
+glm::vec3 any_perpendicular_up(glm::vec3 d) {
+  return std::abs(d.y) > 0.99f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+// Orthographic view looking along -toward_eye at a sphere (center, half_width); depth spans [0, depth_range].
+glm::mat4 orthographic_view(glm::vec3 center, glm::vec3 toward_eye, float half_width, float eye_distance,
+                            float depth_range) {
+  glm::vec3 eye = center + toward_eye * eye_distance;
+  glm::mat4 view = glm::lookAt(eye, center, any_perpendicular_up(toward_eye));
+  return glm::ortho(-half_width, half_width, -half_width, half_width, 0.0f, depth_range) * view;
+}
+
+GLuint make_radiosity_texture(int size, int layers) {
+  GLuint texture = 0;
+  int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<float>(size))));
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+  glTextureStorage3D(texture, levels, GL_RGBA32F, size, size, layers);
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gpu::label_object(GL_TEXTURE, texture, "scattered radiosity maps");
+  return texture;
+}
+
+class RadiosityMaps final : public Method {
+ public:
+  RadiosityMaps(const Scene& scene, const render::SceneGpu& scene_gpu)
+      : params_(scene.method_params),
+        K_(params_.integer("K")),
+        map_size_(params_.integer("map_size")),
+        light_map_size_(params_.integer("light_map_size")),
+        light_count_(static_cast<int>(scene.lights.size())),
+        light_gbuffer_(light_map_size_, light_map_size_, std::max(1, light_count_), "light G-buffer"),
+        map_gbuffer_(map_size_, map_size_, K_, "radiosity-map G-buffer"),
+        gbuffer_program_(gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "gbuffer/layered_views.geom",
+                                                      "gbuffer/gbuffer.frag")),
+        integrate_program_(gpu::ShaderProgram::compute("radiosity_maps/integrate.comp")),
+        combine_program_(gpu::ShaderProgram::compute("radiosity_maps/combine.comp")) {
+    if (light_count_ > LUCENT_MAX_LIGHTS)
+      throw Error(fmt_lights_error(scene.source, light_count_));
+    radiosity_ = make_radiosity_texture(map_size_, K_);
+    glCreateBuffers(1, &counter_buffer_);
+    glNamedBufferStorage(counter_buffer_, sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gpu::label_object(GL_BUFFER, counter_buffer_, "covered texel counter");
+    build_views(scene, scene_gpu);
+  }
+
+  ~RadiosityMaps() override {
+    glDeleteTextures(1, &radiosity_);
+    glDeleteBuffers(1, &counter_buffer_);
+  }
+
+  void prepare_frame(FrameGPU& frame, bool restart) override {
+    restart = restart || !params_.boolean("progressive");
+    accumulated_ = restart ? 1 : accumulated_ + 1;
+    frame.counts = glm::ivec4(light_count_, K_, params_.integer("N"), params_.integer("visibility_taps"));
+    frame.sizes.x = map_size_;
+    frame.sizes.y = light_map_size_;
+    frame.seeds.z = restart ? 1u : 0u;
+    frame.biases = glm::vec4(params_.number("eps_bias"), params_.number("eps_comb"), params_.number("filter_lod"),
+                             params_.number("roughness"));
+    frame.options.y = params_.text("view") == "coverage" ? LUCENT_VIEW_COVERAGE : LUCENT_VIEW_SHADED;
+    frame.options.z = params_.boolean("specular") ? 1.0f : 0.0f;
+    std::copy(lights_.begin(), lights_.end(), frame.lights);
+    std::copy(maps_.begin(), maps_.end(), frame.maps);
+  }
+
+  void render(const FrameContext& context) override {
+    render_light_gbuffer(context);
+    render_map_gbuffers(context);
+    integrate(context);
+    generate_mipmaps(context);
+    combine(context);
+  }
+
+  int accumulated_frames() const override { return accumulated_; }
+  std::uint64_t bssrdf_samples_last_frame() const override {
+    std::uint32_t covered = 0;
+    glGetNamedBufferSubData(counter_buffer_, 0, sizeof(covered), &covered);
+    return static_cast<std::uint64_t>(covered) * 3u * static_cast<std::uint64_t>(params_.integer("N")) *
+           static_cast<std::uint64_t>(light_count_);
+  }
+
+ private:
+  static std::string fmt_lights_error(const std::string& source, int count) {
+    return source + ": " + std::to_string(count) + " directional lights; radiosity-maps supports at most " +
+           std::to_string(LUCENT_MAX_LIGHTS);
+  }
+
+  void build_views(const Scene& scene, const render::SceneGpu& scene_gpu) {
+    render::BoundingSphere object = scene_gpu.translucent_bounds();
+    render::BoundingSphere all = scene_gpu.scene_bounds();
+    float half_width = 1.02f * object.radius + 1e-6f;
+    // Step 1 views: cover the translucent objects; depth covers the whole scene so occluders cast shadows.
+    float eye_distance = glm::length(all.center - object.center) + all.radius + half_width;
+    for (const DirectionalLight& light : scene.lights) {
+      ViewGPU view;
+      view.clip_from_world =
+          orthographic_view(object.center, -light.direction, half_width, eye_distance, 2.0f * eye_distance);
+      view.direction = glm::vec4(light.direction, 2.0f * half_width);
+      view.radiance = glm::vec4(light.radiance, 2.0f * eye_distance);
+      lights_.push_back(view);
+    }
+    // Step 2 views: K directions from a Halton sequence on the bounding sphere, looking at its centre.
+    for (glm::vec3 d : halton_sphere_directions(K_)) {
+      ViewGPU view;
+      view.clip_from_world = orthographic_view(object.center, d, half_width, half_width, 2.0f * half_width);
+      view.direction = glm::vec4(d, 2.0f * half_width);
+      view.radiance = glm::vec4(0.0f, 0.0f, 0.0f, 2.0f * half_width);
+      maps_.push_back(view);
+    }
+  }
+
+  void render_light_gbuffer(const FrameContext& context) {
+    gpu::DebugGroup group("light_gbuffer");
+    context.timer.begin("light_gbuffer");
+    light_gbuffer_.begin_pass();
+    glUseProgram(gbuffer_program_.id());
+    glUniform1i(glGetUniformLocation(gbuffer_program_.id(), "u_view_set"), 0);
+    if (light_count_ > 0) context.scene_gpu.draw_all();
+    context.timer.end();
+  }
+
+  void render_map_gbuffers(const FrameContext& context) {
+    gpu::DebugGroup group("map_gbuffers");
+    context.timer.begin("map_gbuffers");
+    map_gbuffer_.begin_pass();
+    glUseProgram(gbuffer_program_.id());
+    glUniform1i(glGetUniformLocation(gbuffer_program_.id(), "u_view_set"), 1);
+    context.scene_gpu.draw_translucent();
+    context.timer.end();
+  }
+
+  void integrate(const FrameContext& context) {
+    gpu::DebugGroup group("integrate");
+    context.timer.begin("integrate");
+    const std::uint32_t zero = 0;
+    glNamedBufferSubData(counter_buffer_, 0, sizeof(zero), &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_COUNTERS, counter_buffer_);
+    map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
+    light_gbuffer_.bind_textures(LUCENT_TEX_LIGHT_POSITION, LUCENT_TEX_LIGHT_NORMAL, LUCENT_TEX_LIGHT_DEPTH);
+    glBindImageTexture(LUCENT_IMAGE_RADIOSITY, radiosity_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glUseProgram(integrate_program_.id());
+    auto groups = static_cast<GLuint>((map_size_ + 7) / 8);
+    glDispatchCompute(groups, groups, static_cast<GLuint>(K_));
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT);
+    context.timer.end();
+  }
+
+  void generate_mipmaps(const FrameContext& context) {
+    gpu::DebugGroup group("mipmaps");
+    context.timer.begin("mipmaps");
+    glGenerateTextureMipmap(radiosity_);
+    context.timer.end();
+  }
+
+  void combine(const FrameContext& context) {
+    gpu::DebugGroup group("combine");
+    context.timer.begin("combine");
+    map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
+    light_gbuffer_.bind_textures(LUCENT_TEX_LIGHT_POSITION, LUCENT_TEX_LIGHT_NORMAL, LUCENT_TEX_LIGHT_DEPTH);
+    glBindTextureUnit(LUCENT_TEX_RADIOSITY, radiosity_);
+    glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glUseProgram(combine_program_.id());
+    int width = context.camera_gbuffer.size_x(), height = context.camera_gbuffer.size_y();
+    glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    context.timer.end();
+  }
+
+  const ParamValues& params_;
+  int K_, map_size_, light_map_size_, light_count_;
+  int accumulated_ = 0;
+  gpu::GBuffer light_gbuffer_, map_gbuffer_;
+  gpu::ShaderProgram gbuffer_program_, integrate_program_, combine_program_;
+  GLuint radiosity_ = 0, counter_buffer_ = 0;
+  std::vector<ViewGPU> lights_, maps_;
+};
+
+}  // namespace
+
+std::span<const ParamDecl> radiosity_maps_params() { return kParams; }
+
+std::unique_ptr<Method> create_radiosity_maps(const Scene& scene, const render::SceneGpu& scene_gpu) {
+  return std::make_unique<RadiosityMaps>(scene, scene_gpu);
+}
+
+std::vector<glm::vec3> halton_sphere_directions(int count) {
+  std::vector<glm::vec3> directions;
+  for (int i = 1; i <= count; ++i) {
+    float z = 1.0f - 2.0f * radical_inverse(i, 2);
+    float phi = 2.0f * 3.14159265f * radical_inverse(i, 3);
+    float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    directions.emplace_back(s * std::cos(phi), s * std::sin(phi), z);
+  }
+  return directions;
+}
+
+}  // namespace lucent::methods

@@ -1,0 +1,118 @@
+// scene_gpu.cpp: uploads a scene: world-space vertices, indices, materials in scene units, objects.
+#include "render/scene_gpu.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "gpu/gl_debug.h"
+#include "shared/shader_io.h"
+
+namespace lucent::render {
+namespace {
+
+using shader::MaterialGPU;
+using shader::ObjectGPU;
+using shader::VertexGPU;
+
+BoundingSphere bounds_of(const std::vector<glm::vec3>& points) {
+  if (points.empty()) return {};
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  BoundingSphere sphere{0.5f * (lo + hi), 0.0f};
+  for (const glm::vec3& p : points) sphere.radius = std::max(sphere.radius, glm::length(p - sphere.center));
+  return sphere;
+}
+
+MaterialGPU to_gpu(const Material& m, float scale_mm) {
+  // Coefficients are in mm^-1; one scene unit is scale_mm millimetres.
+  MaterialGPU out;
+  out.sigma_a = glm::vec4(m.sigma_a * scale_mm, m.eta);
+  out.sigma_s = glm::vec4(m.sigma_s * scale_mm, static_cast<float>(static_cast<int>(m.model)));
+  out.g = glm::vec4(m.g, 0.0f);
+  return out;
+}
+
+template <typename T>
+GLuint make_buffer(const std::vector<T>& data, const char* label) {
+  GLuint buffer = 0;
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T)),
+                       data.empty() ? nullptr : data.data(), 0);
+  gpu::label_object(GL_BUFFER, buffer, label);
+  return buffer;
+}
+
+}  // namespace
+
+SceneGpu::SceneGpu(const Scene& scene) {
+  std::vector<std::size_t> order(scene.objects.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return scene.objects[i].translucent(); });
+
+  std::vector<VertexGPU> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<MaterialGPU> materials;
+  std::vector<ObjectGPU> objects(scene.objects.size());
+  std::vector<glm::vec3> all_points, translucent_points;
+  for (std::size_t i : order) {
+    const SceneObject& object = scene.objects[i];
+    glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(object.world_from_object)));
+    auto base = static_cast<std::uint32_t>(vertices.size());
+    for (std::size_t v = 0; v < object.mesh.positions.size(); ++v) {
+      glm::vec3 p = glm::vec3(object.world_from_object * glm::vec4(object.mesh.positions[v], 1.0f));
+      glm::vec3 n = glm::normalize(normal_matrix * object.mesh.normals[v]);
+      vertices.push_back({glm::vec4(p, static_cast<float>(i)), glm::vec4(n, 0.0f)});
+      all_points.push_back(p);
+      if (object.translucent()) translucent_points.push_back(p);
+    }
+    for (std::uint32_t index : object.mesh.indices) indices.push_back(base + index);
+    if (object.translucent()) {
+      translucent_index_count_ = static_cast<GLsizei>(indices.size());
+      objects[i].info = glm::ivec4(static_cast<int>(materials.size()), 0, 0, 0);
+      materials.push_back(to_gpu(*object.material, scene.scale_mm));
+    } else {
+      objects[i].info = glm::ivec4(-1, 0, 0, 0);
+    }
+    objects[i].albedo = glm::vec4(object.albedo, 1.0f);
+  }
+  index_count_ = static_cast<GLsizei>(indices.size());
+  scene_bounds_ = bounds_of(all_points);
+  translucent_bounds_ = translucent_points.empty() ? scene_bounds_ : bounds_of(translucent_points);
+
+  vertex_buffer_ = make_buffer(vertices, "scene vertices");
+  index_buffer_ = make_buffer(indices, "scene indices");
+  material_buffer_ = make_buffer(materials, "materials");
+  object_buffer_ = make_buffer(objects, "objects");
+  glCreateVertexArrays(1, &vao_);
+  glVertexArrayVertexBuffer(vao_, 0, vertex_buffer_, 0, sizeof(VertexGPU));
+  glVertexArrayElementBuffer(vao_, index_buffer_);
+  for (GLuint attribute = 0; attribute < 2; ++attribute) {
+    glEnableVertexArrayAttrib(vao_, attribute);
+    glVertexArrayAttribFormat(vao_, attribute, 4, GL_FLOAT, GL_FALSE, attribute * static_cast<GLuint>(sizeof(glm::vec4)));
+    glVertexArrayAttribBinding(vao_, attribute, 0);
+  }
+  gpu::label_object(GL_VERTEX_ARRAY, vao_, "scene");
+}
+
+SceneGpu::~SceneGpu() {
+  GLuint buffers[] = {vertex_buffer_, index_buffer_, material_buffer_, object_buffer_};
+  glDeleteBuffers(4, buffers);
+  glDeleteVertexArrays(1, &vao_);
+}
+
+void SceneGpu::bind_buffers() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_MATERIALS, material_buffer_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_OBJECTS, object_buffer_);
+}
+
+void SceneGpu::draw_all() const {
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+void SceneGpu::draw_translucent() const {
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, translucent_index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace lucent::render

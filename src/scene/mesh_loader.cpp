@@ -1,0 +1,123 @@
+// mesh_loader.cpp: reads triangle meshes from files through assimp, checks meshes before they are used and
+// measures their surface area.
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "lucent/error.h"
+#include "lucent/mesh.h"
+
+namespace lucent {
+namespace {
+
+glm::vec3 to_glm(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+bool is_finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Twice the area of triangle t, pointing along its front side (counter-clockwise).
+glm::vec3 area_vector(const TriangleMesh& mesh, std::size_t t) {
+  glm::vec3 p0 = mesh.positions[mesh.indices[3 * t]];
+  glm::vec3 p1 = mesh.positions[mesh.indices[3 * t + 1]];
+  glm::vec3 p2 = mesh.positions[mesh.indices[3 * t + 2]];
+  return glm::cross(p1 - p0, p2 - p0);
+}
+
+// Assimp's messages may span lines; lucent errors are one line.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+// Appends the triangles of one assimp mesh; faces that are not triangles (points, lines) are skipped.
+void append_mesh(const aiMesh& src, TriangleMesh& dst) {
+  const auto base = static_cast<std::uint32_t>(dst.positions.size());
+  for (unsigned i = 0; i < src.mNumVertices; ++i) {
+    dst.positions.push_back(to_glm(src.mVertices[i]));
+    dst.normals.push_back(src.mNormals ? to_glm(src.mNormals[i]) : glm::vec3(0.0f));
+  }
+  for (unsigned f = 0; f < src.mNumFaces; ++f) {
+    const aiFace& face = src.mFaces[f];
+    if (face.mNumIndices != 3) continue;
+    for (unsigned k = 0; k < 3; ++k) dst.indices.push_back(base + face.mIndices[k]);
+  }
+}
+
+// Normalizes the normals. A zero, NaN or infinite normal is replaced by the normal of the triangles that use
+// the vertex (their area-weighted mean; the face normal when one triangle uses it). A vertex no usable
+// triangle touches gets +z so that every normal stays unit length.
+void repair_normals(TriangleMesh& mesh) {
+  std::vector<bool> bad(mesh.normals.size());
+  for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+    float len = glm::length(mesh.normals[i]);
+    bad[i] = !(std::isfinite(len) && len > 0.0f);
+    mesh.normals[i] = bad[i] ? glm::vec3(0.0f) : mesh.normals[i] / len;
+  }
+  for (std::size_t t = 0; t < mesh.indices.size() / 3; ++t) {
+    glm::vec3 n = area_vector(mesh, t);
+    if (!is_finite(n)) continue;
+    for (std::size_t k = 0; k < 3; ++k)
+      if (bad[mesh.indices[3 * t + k]]) mesh.normals[mesh.indices[3 * t + k]] += n;
+  }
+  for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+    if (!bad[i]) continue;
+    float len = glm::length(mesh.normals[i]);
+    bool usable = std::isfinite(len) && len > 0.0f;
+    mesh.normals[i] = usable ? mesh.normals[i] / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
+
+  Assimp::Importer importer;
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                         aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices | aiProcess_SortByPType;
+  const aiScene* scene = importer.ReadFile(path, flags);
+  if (!scene) throw Error(path + ": cannot read mesh: " + one_line(importer.GetErrorString()));
+
+  TriangleMesh mesh;
+  // SortByPType leaves each mesh one primitive type. Point and line meshes are dropped here rather than by
+  // AI_CONFIG_PP_SBP_REMOVE, which fails a file of lines alone as "No meshes remaining".
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+    if (scene->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) append_mesh(*scene->mMeshes[m], mesh);
+  if (mesh.indices.empty()) throw Error(path + ": the file holds no triangles");
+  repair_normals(mesh);
+  return mesh;
+}
+
+void validate_mesh(const TriangleMesh& mesh, const std::string& what) {
+  if (mesh.indices.size() < 3) throw Error(what + ": mesh has no triangles");
+  if (mesh.indices.size() % 3 != 0)
+    throw Error(what + ": index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
+  if (mesh.normals.size() != mesh.positions.size())
+    throw Error(what + ": normals count differs from positions count");
+  for (std::uint32_t index : mesh.indices)
+    if (index >= mesh.positions.size())
+      throw Error(what + ": index " + std::to_string(index) + " out of range (" +
+                  std::to_string(mesh.positions.size()) + " vertices)");
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    if (!is_finite(mesh.positions[i]))
+      throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+  if (!(surface_area(mesh) > 0.0f)) throw Error(what + ": mesh has zero surface area (degenerate triangles)");
+}
+
+// Indices must be in range (validate_mesh checks them).
+float surface_area(const TriangleMesh& mesh) {
+  double area = 0.0;
+  for (std::size_t t = 0; t < mesh.indices.size() / 3; ++t)
+    area += 0.5 * static_cast<double>(glm::length(area_vector(mesh, t)));
+  return static_cast<float>(area);
+}
+
+}  // namespace lucent

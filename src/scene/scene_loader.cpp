@@ -1,0 +1,301 @@
+// scene_loader.cpp: JSON scene files -> Scene, validated against the parameter declarations.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "lucent/error.h"
+#include "lucent/scene.h"
+#include "methods/method.h"
+#include "params/param_json.h"
+
+namespace lucent {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kPositive = 1e-9;  // lower bound for "strictly positive" ranges
+
+constexpr ParamDecl kSceneParams[] = {
+    {"scale_mm", ParamType::Float, "1.0", "mm/unit", kPositive, 1e9, "", "millimetres per scene unit"},
+    {"comment", ParamType::String, "\"\"", "", 0, 0, "", "free text, ignored"},
+};
+constexpr ParamDecl kCameraParams[] = {
+    {"eye", ParamType::Vec3, "[0, 0, 5]", "units", -1e9, 1e9, "", "camera position"},
+    {"target", ParamType::Vec3, "[0, 0, 0]", "units", -1e9, 1e9, "", "point looked at"},
+    {"up", ParamType::Vec3, "[0, 1, 0]", "", -1, 1, "", "up direction"},
+    {"fov_y_deg", ParamType::Float, "40", "degrees", 1, 179, "", "vertical field of view"},
+};
+constexpr ParamDecl kLightParams[] = {
+    {"type", ParamType::Enum, "\"directional\"", "", 0, 0, "directional", "light type"},
+    {"direction", ParamType::Vec3, "", "", -1e9, 1e9, "", "direction the light travels (required)"},
+    {"radiance", ParamType::Vec3, "[1, 1, 1]", "W/m^2 (RGB)", 0, 1e9, "", "irradiance on a surface facing it"},
+};
+constexpr ParamDecl kObjectParams[] = {
+    {"name", ParamType::String, "\"\"", "", 0, 0, "", "name used in messages"},
+    {"shape", ParamType::Enum, "\"\"", "", 0, 0, "|sphere|torus|box|plane", "procedural shape (or give mesh)"},
+    {"mesh", ParamType::String, "\"\"", "", 0, 0, "", "mesh file (OBJ, PLY, glTF, STL, 3DS, ...), relative to the scene"},
+    {"radius", ParamType::Float, "1", "units", kPositive, 1e9, "", "sphere radius"},
+    {"major_radius", ParamType::Float, "1", "units", kPositive, 1e9, "", "torus: ring radius"},
+    {"minor_radius", ParamType::Float, "0.4", "units", kPositive, 1e9, "", "torus: tube radius"},
+    {"size", ParamType::Vec3, "[1, 1, 1]", "units", kPositive, 1e9, "", "box edge lengths"},
+    {"extent", ParamType::Vec2, "[10, 10]", "units", kPositive, 1e9, "", "plane size along x and z"},
+    {"segments", ParamType::Int, "64", "", 3, 4096, "", "tessellation of spheres and tori"},
+    {"translate", ParamType::Vec3, "[0, 0, 0]", "units", -1e9, 1e9, "", "translation"},
+    {"rotate_deg", ParamType::Vec3, "[0, 0, 0]", "degrees", -1e4, 1e4, "", "rotation about x, then y, then z"},
+    {"scale", ParamType::Float, "1", "", kPositive, 1e9, "", "uniform scale"},
+    {"albedo", ParamType::Vec3, "[0.8, 0.8, 0.8]", "", 0, 1, "", "diffuse albedo of an opaque object"},
+};
+constexpr ParamDecl kMaterialParams[] = {
+    {"preset", ParamType::String, "\"\"", "", 0, 0, "", "measured material name (lucent materials)"},
+    {"sigma_a", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "absorption coefficient"},
+    {"sigma_s", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "scattering coefficient (unreduced, with g)"},
+    {"sigma_s_prime", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "reduced scattering (instead of sigma_s, g)"},
+    {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
+    {"eta", ParamType::Float, "", "", -1e30, 1e30, "", "relative refractive index [1, 3] (default 1.3)"},
+    {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard", "diffusion model S_d"},
+};
+constexpr ParamDecl kRenderParams[] = {
+    {"width", ParamType::Int, "640", "pixels", 1, 16384, "", "image width"},
+    {"height", ParamType::Int, "480", "pixels", 1, 16384, "", "image height"},
+    {"frames", ParamType::Int, "1", "frames", 1, 1000000, "", "frames accumulated by lucent render"},
+    {"seed", ParamType::Int, "1", "", 0, 4294967295.0, "", "random seed"},
+    {"exposure", ParamType::Float, "0", "stops", -30, 30, "", "exposure before tone mapping"},
+    {"tonemap", ParamType::Enum, "\"aces\"", "", 0, 0, "aces|reinhard|linear", "tone-mapping operator"},
+    {"background", ParamType::Vec3, "[0, 0, 0]", "radiance", 0, 1e9, "", "radiance behind the scene"},
+};
+
+[[noreturn]] void fail(const JsonLocation& where, const std::string& problem) {
+  throw Error(fmt::format("{}: {}", where.str(), problem));
+}
+
+glm::vec3 unit(glm::vec3 v, const JsonLocation& where) {
+  float len = glm::length(v);
+  if (!(len > 1e-12f)) fail(where, "must be a non-zero vector");
+  return v / len;
+}
+
+Camera read_camera(const json& j, const JsonLocation& where) {
+  ParamValues v = read_params(j, {"camera", kCameraParams}, where);
+  Camera camera;
+  camera.eye = v.vec3("eye");
+  camera.target = v.vec3("target");
+  camera.up = unit(v.vec3("up"), where.child("up"));
+  camera.fov_y_deg = static_cast<float>(v.number("fov_y_deg"));
+  if (glm::length(camera.eye - camera.target) < 1e-9f) fail(where.child("target"), "equals eye");
+  return camera;
+}
+
+DirectionalLight read_light(const json& j, const JsonLocation& where) {
+  ParamValues v = read_params(j, {"light", kLightParams}, where);
+  if (!v.has("direction")) fail(where.child("direction"), "missing; the direction the light travels, e.g. [0, -1, 0]");
+  return {unit(v.vec3("direction"), where.child("direction")), v.vec3("radiance")};
+}
+
+json normalized_material(const json& j) {
+  json copy = j;
+  if (copy.contains("g") && copy["g"].is_number()) copy["g"] = json::array({copy["g"], copy["g"], copy["g"]});
+  return copy;
+}
+
+Material read_material(const json& raw, const JsonLocation& where) {
+  json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
+  ParamValues v = read_params(j, {"material", kMaterialParams}, where);
+  Material m;
+  const std::string& preset_name = v.text("preset");
+  bool explicit_coefficients = v.has("sigma_a") || v.has("sigma_s") || v.has("sigma_s_prime") || v.has("g");
+  if (!preset_name.empty()) {
+    if (explicit_coefficients) fail(where, "give either preset or coefficients, not both");
+    const MaterialPreset* preset = find_material_preset(preset_name);
+    if (!preset) fail(where.child("preset"), fmt::format("unknown material '{}' (see: lucent materials)", preset_name));
+    m = material_from_preset(*preset);
+  } else {
+    if (!v.has("sigma_a")) fail(where, "needs preset, or sigma_a with sigma_s (and g) or sigma_s_prime");
+    if (v.has("sigma_s") == v.has("sigma_s_prime")) fail(where, "give exactly one of sigma_s and sigma_s_prime");
+    if (v.has("sigma_s_prime") && v.has("g")) fail(where.child("g"), "not allowed with sigma_s_prime (reduced, g = 0)");
+    m.sigma_a = v.vec3("sigma_a");
+    m.sigma_s = v.has("sigma_s") ? v.vec3("sigma_s") : v.vec3("sigma_s_prime");
+    m.g = v.has("g") ? v.vec3("g") : glm::vec3(0.0f);
+  }
+  if (v.has("eta")) m.eta = static_cast<float>(v.number("eta"));
+  m.model = *parse_bssrdf_model(v.text("model"));
+  validate_material(m, where.str());
+  return m;
+}
+
+TriangleMesh read_geometry(const ParamValues& v, const JsonLocation& where, const std::string& base_dir) {
+  const std::string& shape = v.text("shape");
+  const std::string& mesh = v.text("mesh");
+  if (shape.empty() == mesh.empty()) fail(where, "give exactly one of shape and mesh");
+  int segments = v.integer("segments");
+  if (shape == "sphere") return make_sphere(static_cast<float>(v.number("radius")), segments / 2, segments);
+  if (shape == "torus")
+    return make_torus(static_cast<float>(v.number("major_radius")), static_cast<float>(v.number("minor_radius")),
+                      segments, segments / 2);
+  if (shape == "box") return make_box(v.vec3("size"));
+  if (shape == "plane") return make_plane(glm::vec2(v.vec3("extent")));
+  std::filesystem::path path = mesh;
+  if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+  try {
+    return load_mesh(path.lexically_normal().string());
+  } catch (const Error& e) {
+    fail(where.child("mesh"), e.what());
+  }
+}
+
+// Normals that point into a closed object would render it black: flip them and say so.
+void orient_normals_outward(TriangleMesh& mesh, const std::string& what) {
+  glm::vec3 centroid(0.0f);
+  for (const glm::vec3& p : mesh.positions) centroid += p;
+  centroid /= static_cast<float>(mesh.positions.size());
+  double outwardness = 0.0;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    outwardness += glm::dot(mesh.normals[i], mesh.positions[i] - centroid);
+  if (outwardness >= 0.0) return;
+  for (glm::vec3& n : mesh.normals) n = -n;
+  std::cerr << "lucent: warning: " << what << ": normals point inward; flipped\n";
+}
+
+glm::mat4 read_transform(const ParamValues& v) {
+  glm::vec3 r = glm::radians(v.vec3("rotate_deg"));
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), v.vec3("translate"));
+  m = glm::rotate(m, r.z, glm::vec3(0, 0, 1));
+  m = glm::rotate(m, r.y, glm::vec3(0, 1, 0));
+  m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
+  return glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
+}
+
+SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir) {
+  ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material"});
+  SceneObject object;
+  object.name = v.text("name").empty() ? where.pointer : v.text("name");
+  object.mesh = read_geometry(v, where, base_dir);
+  validate_mesh(object.mesh, where.str());
+  object.world_from_object = read_transform(v);
+  object.albedo = v.vec3("albedo");
+  if (j.contains("material")) {
+    if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
+    object.material = read_material(j.at("material"), where.child("material"));
+    orient_normals_outward(object.mesh, where.str());
+  }
+  return object;
+}
+
+ParamSection method_section(const std::string& name) {
+  const methods::MethodInfo* info = methods::find_method(name);
+  return {info ? info->name : "method", info ? info->params : std::span<const ParamDecl>{}};
+}
+
+void read_method(const json& j, const JsonLocation& where, Scene& scene) {
+  require_object(j, where);
+  scene.method = j.value("name", std::string("radiosity-maps"));
+  if (!methods::find_method(scene.method)) {
+    std::string known;
+    for (const auto& m : methods::method_registry()) known += (known.empty() ? "" : ", ") + std::string(m.name);
+    fail(where.child("name"), fmt::format("unknown method '{}'; known: {}", scene.method, known));
+  }
+  scene.method_params = read_params(j, method_section(scene.method), where, {"name"});
+}
+
+RenderSettings read_render(const json& j, const JsonLocation& where) {
+  ParamValues v = read_params(j, {"render", kRenderParams}, where);
+  RenderSettings r;
+  r.width = v.integer("width");
+  r.height = v.integer("height");
+  r.frames = v.integer("frames");
+  r.seed = static_cast<unsigned>(v.number("seed"));
+  r.exposure = static_cast<float>(v.number("exposure"));
+  const std::string& op = v.text("tonemap");
+  r.tonemap = op == "aces" ? ToneMapOperator::Aces : op == "reinhard" ? ToneMapOperator::Reinhard : ToneMapOperator::Linear;
+  r.background = v.vec3("background");
+  return r;
+}
+
+// "a.b.0.c=value": sets the JSON value at that path; value is JSON, or a bare string when not valid JSON.
+void apply_override(json& doc, const std::string& assignment) {
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw Error(fmt::format("--set '{}': expected key.path=value, e.g. method.K=8", assignment));
+  std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  json value = json::parse(text, nullptr, false);
+  if (value.is_discarded()) value = text;
+  json* node = &doc;
+  std::istringstream parts(path);
+  std::string part;
+  while (std::getline(parts, part, '.')) {
+    if (node->is_array()) {
+      std::size_t index = 0;
+      try {
+        index = std::stoul(part);
+      } catch (const std::exception&) {
+        throw Error(fmt::format("--set '{}': '{}' is not an array index", assignment, part));
+      }
+      if (index >= node->size()) throw Error(fmt::format("--set '{}': index {} out of range", assignment, index));
+      node = &(*node)[index];
+    } else {
+      if (node->is_null()) *node = json::object();
+      if (!node->is_object()) throw Error(fmt::format("--set '{}': '{}' is not inside an object", assignment, part));
+      node = &(*node)[part];
+    }
+  }
+  *node = value;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir,
+                  const std::vector<std::string>& overrides) {
+  json doc;
+  try {
+    doc = json::parse(json_text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    throw Error(fmt::format("{}: malformed JSON: {}", source, e.what()));
+  }
+  for (const std::string& assignment : overrides) apply_override(doc, assignment);
+  JsonLocation root{source, ""};
+  ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "objects", "method", "render"});
+  Scene scene;
+  scene.source = source;
+  scene.scale_mm = static_cast<float>(top.number("scale_mm"));
+  scene.camera = read_camera(doc.value("camera", json::object()), root.child("camera"));
+  const json lights = doc.value("lights", json::array());
+  if (!lights.is_array()) fail(root.child("lights"), "expected an array of lights");
+  for (std::size_t i = 0; i < lights.size(); ++i) scene.lights.push_back(read_light(lights[i], root.child("lights").child(i)));
+  const json objects = doc.value("objects", json::array());
+  if (!objects.is_array() || objects.empty()) fail(root.child("objects"), "expected a non-empty array of objects");
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir));
+  read_method(doc.value("method", json::object()), root.child("method"), scene);
+  scene.render = read_render(doc.value("render", json::object()), root.child("render"));
+  return scene;
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream file(path);
+  if (!file) throw Error(fmt::format("{}: cannot open scene file", path));
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string base_dir = std::filesystem::path(path).parent_path().string();
+  return parse_scene(text.str(), path, base_dir.empty() ? "." : base_dir, overrides);
+}
+
+std::vector<ParamSection> scene_param_sections() {
+  std::vector<ParamSection> sections = {{"scene", kSceneParams},       {"camera", kCameraParams},
+                                        {"lights[]", kLightParams},    {"objects[]", kObjectParams},
+                                        {"objects[].material", kMaterialParams}, {"render", kRenderParams}};
+  for (const auto& m : methods::method_registry()) sections.push_back({m.name, m.params});
+  return sections;
+}
+
+glm::mat4 Camera::view_from_world() const { return glm::lookAt(eye, target, up); }
+
+glm::mat4 Camera::clip_from_view(float aspect, float z_near, float z_far) const {
+  return glm::perspective(glm::radians(fov_y_deg), aspect, z_near, z_far);
+}
+
+}  // namespace lucent
