@@ -76,6 +76,18 @@ struct FrameGPU {
   ViewGPU maps[LUCENT_MAX_MAPS];
 };
 
+// One configuration of the GPU parity test (std430, 128 bytes): shaders/tests/bssrdf_parity.comp evaluates
+// the shared BSSRDF code for it and writes `result`; the C++ test evaluates the same code and compares.
+struct ParityCaseGPU {
+  vec4 x_i, w_i, n_i, x_o, n_o;  // xyz used [mm]
+  vec4 sigma_a;                  // xyz [mm^-1]; w: eta
+  vec4 sigma_s;                  // xyz [mm^-1]; w: model id
+  vec4 g;                        // xyz
+};
+struct ParityResultGPU {
+  vec4 S_d;  // rgb: S_d [mm^-2]; w: T12(w_i)
+};
+
 LUCENT_SHADER_END
 
 #if defined(__cplusplus)
@@ -84,6 +96,7 @@ static_assert(sizeof(lucent::shader::MaterialGPU) == 48);
 static_assert(sizeof(lucent::shader::ObjectGPU) == 32);
 static_assert(sizeof(lucent::shader::ViewGPU) == 96);
 static_assert(sizeof(lucent::shader::VertexGPU) == 32);
+static_assert(sizeof(lucent::shader::ParityCaseGPU) == 128);
 static_assert(offsetof(lucent::shader::FrameGPU, counts) == 96);
 static_assert(offsetof(lucent::shader::FrameGPU, lights) == 176);
 static_assert(offsetof(lucent::shader::FrameGPU, maps) == 176 + 96 * LUCENT_MAX_LIGHTS);

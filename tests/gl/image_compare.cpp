@@ -1,0 +1,61 @@
+// image_compare.cpp: see image_compare.h.
+#include "image_compare.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "lucent/context.h"
+
+namespace lucent::test {
+
+ImageDifference compare(const ImageRGBA8& actual, const ImageRGBA8& expected) {
+  ImageDifference d;
+  if (actual.width != expected.width || actual.height != expected.height) {
+    d.mean_abs = d.percentile_99 = 255.0;
+    d.max_abs = 255;
+    return d;
+  }
+  std::vector<int> per_pixel;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < actual.pixels.size(); i += 4) {
+    int worst = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      int diff = std::abs(int(actual.pixels[i + c]) - int(expected.pixels[i + c]));
+      sum += diff;
+      worst = std::max(worst, diff);
+    }
+    per_pixel.push_back(worst);
+    d.max_abs = std::max(d.max_abs, worst);
+  }
+  d.mean_abs = sum / (3.0 * static_cast<double>(per_pixel.size()));
+  std::sort(per_pixel.begin(), per_pixel.end());
+  d.percentile_99 = per_pixel[static_cast<std::size_t>(0.99 * static_cast<double>(per_pixel.size() - 1))];
+  return d;
+}
+
+ImageRGBA8 difference_image(const ImageRGBA8& actual, const ImageRGBA8& expected) {
+  ImageRGBA8 out = actual;
+  for (std::size_t i = 0; i < out.pixels.size(); i += 4) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      int diff = i < expected.pixels.size() ? std::abs(int(actual.pixels[i + c]) - int(expected.pixels[i + c])) : 255;
+      out.pixels[i + c] = static_cast<std::uint8_t>(std::min(255, 8 * diff));
+    }
+    out.pixels[i + 3] = 255;
+  }
+  return out;
+}
+
+std::string output_path(const std::string& name) {
+  std::filesystem::create_directories(LUCENT_TEST_OUT);
+  return (std::filesystem::path(LUCENT_TEST_OUT) / name).string();
+}
+
+void ensure_gl_context() {
+  static std::unique_ptr<GLContext> context = create_headless_context();
+  context->make_current();
+}
+
+}  // namespace lucent::test

@@ -1,0 +1,134 @@
+// test_cli.cpp: the `lucent` tool from outside: bad input gives one clear line and a non-zero exit; bssrdf
+// prints the model's values; render writes a non-black image; help is generated from the declarations.
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "image_compare.h"
+#include "lucent/image.h"
+
+namespace {
+
+struct Result {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& arguments, const std::string& environment = "") {
+  std::string command = environment + " " + LUCENT_CLI + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+  int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  std::string path = lucent::test::output_path(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* kSmall = "--set render.width=48 --set render.height=32 --set method.K=4 --set method.N=4 "
+                     "--set method.map_size=32 --set method.light_map_size=64";
+
+void expect_one_line_error(const Result& r, const std::string& expected_line) {
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.output, expected_line + "\n");
+}
+
+TEST(Cli, MissingMeshFile) {
+  std::string scene = write_file("missing_mesh.json", R"({"objects": [{"mesh": "no_such_mesh.obj", "material": "Marble"}]})");
+  std::string mesh = lucent::test::output_path("no_such_mesh.obj");
+  expect_one_line_error(run("render " + scene),
+                        "lucent: " + scene + ": /objects/0/mesh: " + mesh + ": no such file");
+}
+
+TEST(Cli, MalformedJson) {
+  std::string scene = write_file("malformed.json", R"({"objects": [ )");
+  Result r = run("render " + scene);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.output.rfind("lucent: " + scene + ": malformed JSON:", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1);
+}
+
+TEST(Cli, UnknownKey) {
+  std::string scene = write_file("unknown_key.json", R"({"objects": [{"shape": "sphere", "colour": [1, 0, 0]}]})");
+  expect_one_line_error(
+      run("render " + scene),
+      "lucent: " + scene + ": /objects/0/colour: unknown key; known keys: name, shape, mesh, radius, major_radius, "
+      "minor_radius, size, extent, segments, translate, rotate_deg, scale, albedo, material");
+}
+
+TEST(Cli, NegativeSigma) {
+  std::string scene = write_file("negative_sigma.json", R"({"objects": [{"shape": "sphere",
+    "material": {"sigma_a": [0.01, -0.1, 0.01], "sigma_s_prime": [1, 1, 1]}}]})");
+  expect_one_line_error(run("render " + scene), "lucent: " + scene +
+                                                    ": /objects/0/material: sigma_a[1] = -0.1 is negative; allowed "
+                                                    "range [0, inf) mm^-1");
+}
+
+TEST(Cli, ZeroMapSize) {
+  expect_one_line_error(run("render --set method.map_size=0"),
+                        "lucent: <built-in default scene>: /method/map_size: 0 is out of range; allowed range "
+                        "[8, 4096] texels");
+}
+
+TEST(Cli, NoGlContext) {
+  // An EGL vendor list with no vendor: glvnd finds no driver, as on a machine without Mesa or a GPU driver.
+  Result r = run(std::string("render ") + kSmall, "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.output.rfind("lucent: no OpenGL context: ", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(Cli, BssrdfPrintsPotatoReferenceValues) {
+  Result r = run("bssrdf --model directional --material Potato --xi 0,0,0 --ni 0,0,1 --wi 0,0,1 --xo 1,0,0 "
+                 "--no 0,0,1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto j = nlohmann::json::parse(r.output);
+  const double expected[3] = {9.567225e-03, 9.536976e-03, 6.863451e-03};  // shared/spec/bssrdf-models.md 1.7
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(j["S_d"][c].get<double>(), expected[c], 2e-4 * expected[c]);
+  EXPECT_NEAR(j["T12"].get<double>(), 0.982987, 1e-6);
+}
+
+TEST(Cli, BssrdfRejectsUnknownMaterial) {
+  expect_one_line_error(run("bssrdf --material Unobtainium"),
+                        "lucent: --material: unknown material 'Unobtainium' (see: lucent materials)");
+}
+
+TEST(Cli, RenderHelpListsDeclaredParameters) {
+  Result r = run("render --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* text : {"eps_bias", "map texels", "light_map_size", "scale_mm", "fov_y_deg", "sigma_s_prime"})
+    EXPECT_NE(r.output.find(text), std::string::npos) << text;
+}
+
+TEST(Cli, MaterialsListsPresets) {
+  Result r = run("materials");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.output.find("Marble"), std::string::npos);
+  EXPECT_NE(r.output.find("White Grapefruit Juice"), std::string::npos);
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 48);  // header + 47 presets
+}
+
+TEST(Cli, RenderWritesNonBlackImage) {
+  std::string png = lucent::test::output_path("cli_default.png");
+  Result r = run(std::string("render ") + kSmall + " --frames 2 -o " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2. radiosity maps"), std::string::npos);
+  lucent::ImageRGBA8 image = lucent::read_png(png);
+  ASSERT_EQ(image.width, 48);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < image.pixels.size(); i += 4) sum += image.pixels[i];
+  EXPECT_GT(sum / (48.0 * 32.0), 20.0);  // mean red above 20/255: lit objects, not black
+}
+
+}  // namespace
