@@ -1,5 +1,6 @@
 # Writes OUT: a C++ file with every file of FILES as a byte array, keyed by its path relative to
-# ROOT/shaders or ROOT/src (so "bssrdf/fresnel.h" and "radiosity_maps/integrate.comp").
+# ROOT/shaders or ROOT/src, else ROOT (so "bssrdf/fresnel.h", "radiosity_maps/integrate.comp",
+# "scenes/default.json").
 string(REPLACE "," ";" FILES "${FILES}")
 set(body "")
 set(table "")
@@ -10,10 +11,13 @@ foreach(path IN LISTS FILES)
   endif()
   file(RELATIVE_PATH rel_shaders "${ROOT}/shaders" "${path}")
   file(RELATIVE_PATH rel_src "${ROOT}/src" "${path}")
+  file(RELATIVE_PATH rel_root "${ROOT}" "${path}")
   if(NOT rel_shaders MATCHES "^\\.\\.")
     set(key "${rel_shaders}")
-  else()
+  elseif(NOT rel_src MATCHES "^\\.\\.")
     set(key "${rel_src}")
+  else()
+    set(key "${rel_root}")
   endif()
   file(READ "${path}" hex HEX)
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," hex "${hex}")

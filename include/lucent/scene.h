@@ -59,7 +59,7 @@ struct Scene {
 };
 
 // Loads a scene file. `overrides` are "key.path=value" strings (value as JSON, or a bare string) applied to
-// the JSON before validation, e.g. "method.K=8", "render.width=320", "objects.0.material.preset=Potato".
+// the JSON before validation, e.g. "method.K=8", "render.width=320", "objects.0.material=Potato".
 // Throws lucent::Error naming the file and the JSON path of the offending key.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 // Same, from JSON text; `source` names it in messages, relative mesh paths resolve against `base_dir`.

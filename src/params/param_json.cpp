@@ -15,6 +15,7 @@ namespace {
 }
 
 std::string allowed_range(const ParamDecl& p) {
+  if (p.min <= -1e29 && p.max >= 1e29) return "any finite number";
   std::string lo = p.min <= -1e29 ? "-inf" : fmt::format("{:g}", p.min);
   std::string hi = p.max >= 1e29 ? "inf" : fmt::format("{:g}", p.max);
   std::string unit = p.unit.empty() ? "" : " " + std::string(p.unit);

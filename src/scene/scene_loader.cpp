@@ -57,7 +57,7 @@ constexpr ParamDecl kMaterialParams[] = {
     {"sigma_s", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "scattering coefficient (unreduced, with g)"},
     {"sigma_s_prime", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "reduced scattering (instead of sigma_s, g)"},
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
-    {"eta", ParamType::Float, "", "", -1e30, 1e30, "", "relative refractive index [1, 3] (default 1.3)"},
+    {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard", "diffusion model S_d"},
 };
 constexpr ParamDecl kRenderParams[] = {
@@ -235,11 +235,13 @@ void apply_override(json& doc, const std::string& assignment) {
       } catch (const std::exception&) {
         throw Error(fmt::format("--set '{}': '{}' is not an array index", assignment, part));
       }
-      if (index >= node->size()) throw Error(fmt::format("--set '{}': index {} out of range", assignment, index));
+      if (index >= node->size())
+        throw Error(fmt::format("--set '{}': index {} out of range ({} elements)", assignment, index, node->size()));
       node = &(*node)[index];
     } else {
       if (node->is_null()) *node = json::object();
-      if (!node->is_object()) throw Error(fmt::format("--set '{}': '{}' is not inside an object", assignment, part));
+      if (!node->is_object())
+        throw Error(fmt::format("--set '{}': cannot set '{}' inside {} (not an object)", assignment, part, node->dump()));
       node = &(*node)[part];
     }
   }
@@ -254,7 +256,9 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   try {
     doc = json::parse(json_text, nullptr, true, /*ignore_comments=*/true);
   } catch (const json::parse_error& e) {
-    throw Error(fmt::format("{}: malformed JSON: {}", source, e.what()));
+    std::string what = e.what();
+    auto bracket = what.find("] ");  // drop nlohmann's "[json.exception.parse_error.101] " prefix
+    throw Error(fmt::format("{}: malformed JSON: {}", source, bracket == std::string::npos ? what : what.substr(bracket + 2)));
   }
   for (const std::string& assignment : overrides) apply_override(doc, assignment);
   JsonLocation root{source, ""};

@@ -1,0 +1,367 @@
+// test_scene_loader.cpp: scene files -> Scene: the built-in default scene, --set overrides, explicit material
+// coefficients, mesh objects, the scenes shipped in scenes/, and the exact one-line message of each bad input.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "lucent/error.h"
+#include "lucent/scene.h"
+
+namespace lucent {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kSource = "test.json";
+constexpr const char* kBaseDir = "/nonexistent/scene/dir";
+constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
+
+void expect_vec3_eq(const glm::vec3& actual, const glm::vec3& expected) {
+  for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(actual[i], expected[i]) << "component " << i;
+}
+
+// A small valid scene: one translucent sphere, one light. Tests break one thing in it at a time.
+json minimal_scene() {
+  return json{
+      {"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
+      {"objects", json::array({json{{"shape", "sphere"}, {"material", "Marble"}}})},
+  };
+}
+
+Scene parse(const json& doc, const std::vector<std::string>& overrides = {}) {
+  return parse_scene(doc.dump(), kSource, kBaseDir, overrides);
+}
+
+// The lucent::Error message parse_scene throws for `text`, or "" when it accepts it.
+std::string parse_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_scene(text, kSource, kBaseDir, overrides);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+std::string parse_error(const json& doc, const std::vector<std::string>& overrides = {}) {
+  return parse_error(doc.dump(), overrides);
+}
+
+// minimal_scene() with the first object's material replaced.
+std::string material_error(const json& material) {
+  json doc = minimal_scene();
+  doc["objects"][0]["material"] = material;
+  return parse_error(doc);
+}
+
+// A file under the system temporary folder, removed when the test ends.
+class TempFile {
+ public:
+  TempFile(const std::string& name, const std::string& text)
+      : path_(std::filesystem::temp_directory_path() / ("lucent_test_" + name)) {
+    std::ofstream(path_) << text;
+  }
+  ~TempFile() {
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  std::string path() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// ---- valid scenes -------------------------------------------------------------------------------
+
+TEST(SceneLoader, DefaultSceneParses) {
+  Scene scene = default_scene();
+  EXPECT_EQ(scene.source, "<built-in default scene>");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  int translucent = 0;
+  for (const SceneObject& object : scene.objects) translucent += object.translucent() ? 1 : 0;
+  EXPECT_EQ(translucent, 2);
+  ASSERT_TRUE(scene.objects[0].translucent());
+  EXPECT_EQ(scene.objects[0].name, "torus");
+  EXPECT_EQ(scene.objects[0].material->name, "Potato");
+  ASSERT_TRUE(scene.objects[1].translucent());
+  EXPECT_EQ(scene.objects[1].name, "sphere");
+  EXPECT_EQ(scene.objects[1].material->name, "Marble");
+  EXPECT_FALSE(scene.objects[2].translucent());
+  expect_vec3_eq(scene.objects[2].albedo, glm::vec3(0.55f, 0.55f, 0.58f));
+  EXPECT_FLOAT_EQ(scene.scale_mm, 10.0f);
+  EXPECT_EQ(scene.method, "radiosity-maps");
+  EXPECT_EQ(scene.method_params.integer("K"), 16);
+  EXPECT_EQ(scene.method_params.integer("N"), 32);
+  EXPECT_EQ(scene.render.width, 640);
+  EXPECT_EQ(scene.render.height, 400);
+  EXPECT_EQ(scene.render.frames, 8);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_NEAR(glm::length(scene.lights[0].direction), 1.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(scene.camera.fov_y_deg, 38.0f);
+}
+
+TEST(SceneLoader, DefaultSceneOverrides) {
+  Scene scene = default_scene({"method.K=8", "render.width=320", "objects.0.material=\"Skimmilk\""});
+  EXPECT_EQ(scene.method_params.integer("K"), 8);
+  EXPECT_EQ(scene.method_params.integer("N"), 32);
+  EXPECT_EQ(scene.render.width, 320);
+  EXPECT_EQ(scene.render.height, 400);
+  ASSERT_TRUE(scene.objects[0].translucent());
+  EXPECT_EQ(scene.objects[0].material->name, "Skimmilk");
+  EXPECT_EQ(scene.objects[1].material->name, "Marble");
+}
+
+TEST(SceneLoader, OverrideWithBareStringAndNestedKey) {
+  // A value that is not valid JSON is taken as a string; a missing object on the path is created; overrides
+  // apply in order.
+  Scene scene = parse(minimal_scene(), {"camera.fov_y_deg=50", "render.tonemap=linear",
+                                        "objects.0.material={\"preset\": \"Marble\"}",
+                                        "objects.0.material.preset=Ketchup"});
+  EXPECT_FLOAT_EQ(scene.camera.fov_y_deg, 50.0f);
+  EXPECT_EQ(scene.render.tonemap, ToneMapOperator::Linear);
+  EXPECT_EQ(scene.objects[0].material->name, "Ketchup");
+}
+
+TEST(SceneLoader, DefaultsFilledIn) {
+  Scene scene = parse(minimal_scene());
+  EXPECT_EQ(scene.source, kSource);
+  EXPECT_FLOAT_EQ(scene.scale_mm, 1.0f);
+  EXPECT_EQ(scene.method, "radiosity-maps");
+  EXPECT_EQ(scene.method_params.integer("K"), 16);
+  EXPECT_EQ(scene.method_params.integer("map_size"), 512);
+  EXPECT_EQ(scene.render.width, 640);
+  EXPECT_EQ(scene.render.height, 480);
+  EXPECT_EQ(scene.render.tonemap, ToneMapOperator::Aces);
+  EXPECT_EQ(scene.objects[0].name, "/objects/0");
+}
+
+TEST(SceneLoader, ExplicitCoefficientsWithScalarG) {
+  json doc = minimal_scene();
+  doc["objects"][0]["material"] = {
+      {"sigma_a", {0.01, 0.02, 0.03}}, {"sigma_s", {1.0, 2.0, 3.0}}, {"g", 0.5}, {"eta", 1.4}};
+  Scene scene = parse(doc);
+  ASSERT_TRUE(scene.objects[0].translucent());
+  const Material& m = *scene.objects[0].material;
+  EXPECT_EQ(m.name, "custom");
+  expect_vec3_eq(m.sigma_a, glm::vec3(0.01f, 0.02f, 0.03f));
+  expect_vec3_eq(m.sigma_s, glm::vec3(1.0f, 2.0f, 3.0f));
+  expect_vec3_eq(m.g, glm::vec3(0.5f));
+  EXPECT_FLOAT_EQ(m.eta, 1.4f);
+  EXPECT_EQ(m.model, BssrdfModel::DirectionalDipole);
+}
+
+TEST(SceneLoader, ExplicitReducedCoefficientsHaveGZero) {
+  json doc = minimal_scene();
+  doc["objects"][0]["material"] = {
+      {"sigma_a", {0.01, 0.02, 0.03}}, {"sigma_s_prime", {1.0, 2.0, 3.0}}, {"model", "standard"}};
+  Scene scene = parse(doc);
+  ASSERT_TRUE(scene.objects[0].translucent());
+  const Material& m = *scene.objects[0].material;
+  expect_vec3_eq(m.sigma_s, glm::vec3(1.0f, 2.0f, 3.0f));
+  expect_vec3_eq(m.g, glm::vec3(0.0f));
+  expect_vec3_eq(m.sigma_s_prime(), glm::vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_FLOAT_EQ(m.eta, 1.3f);
+  EXPECT_EQ(m.model, BssrdfModel::StandardDipole);
+}
+
+TEST(SceneLoader, MeshScene) {
+  if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << kBunny << " is not installed";
+  json doc = minimal_scene();
+  doc["objects"][0] = {{"name", "bunny"}, {"mesh", kBunny}, {"material", {{"preset", "Skin1"}}}};
+  TempFile file("mesh_scene.json", doc.dump(2));
+  Scene scene = load_scene(file.path());
+  EXPECT_EQ(scene.source, file.path());
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const SceneObject& bunny = scene.objects[0];
+  EXPECT_EQ(bunny.name, "bunny");
+  ASSERT_TRUE(bunny.translucent());
+  EXPECT_EQ(bunny.material->name, "Skin1");
+  EXPECT_GT(bunny.mesh.indices.size() / 3, 1000u);
+  EXPECT_EQ(bunny.mesh.indices.size() % 3, 0u);
+  EXPECT_EQ(bunny.mesh.normals.size(), bunny.mesh.positions.size());
+}
+
+TEST(SceneLoader, ShippedScenesLoad) {
+  const std::filesystem::path dir = LUCENT_SCENES_DIR;
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  if (std::filesystem::is_directory(dir, ec)) {
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      if (entry.is_regular_file() && entry.path().extension() == ".json") files.push_back(entry.path());
+  }
+  if (files.empty()) GTEST_SKIP() << "no scene files in " << dir;
+  std::sort(files.begin(), files.end());
+  for (const auto& path : files) {
+    SCOPED_TRACE(path.string());
+    try {
+      Scene scene = load_scene(path.string());
+      EXPECT_FALSE(scene.objects.empty());
+    } catch (const Error& error) {
+      ADD_FAILURE() << error.what();
+    }
+  }
+}
+
+TEST(SceneLoader, ParamSectionsForHelp) {
+  std::vector<ParamSection> sections = scene_param_sections();
+  auto find = [&](std::string_view name) -> const ParamSection* {
+    for (const ParamSection& s : sections)
+      if (s.name == name) return &s;
+    return nullptr;
+  };
+  EXPECT_NE(find("camera"), nullptr);
+  EXPECT_NE(find("render"), nullptr);
+  const ParamSection* method = find("radiosity-maps");
+  ASSERT_NE(method, nullptr);
+  std::string text = describe(*method);
+  EXPECT_NE(text.find("eps_bias"), std::string::npos) << text;
+  EXPECT_NE(text.find("map texels"), std::string::npos) << text;
+}
+
+// ---- bad inputs: exact messages -------------------------------------------------------------------
+
+TEST(SceneLoader, MalformedJson) {
+  std::string message = parse_error(std::string("{ \"objects\": [ }"));
+  EXPECT_EQ(message.rfind("test.json: malformed JSON:", 0), 0u) << message;
+  EXPECT_NE(message.find("line 1"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(SceneLoader, CommentsAreAllowed) {
+  std::string text = "// a comment\n" + minimal_scene().dump() + "\n/* trailing */";
+  EXPECT_EQ(parse_error(text), "");
+}
+
+TEST(SceneLoader, UnknownTopLevelKey) {
+  json doc = minimal_scene();
+  doc["objcets"] = json::array();
+  EXPECT_EQ(parse_error(doc),
+            "test.json: /objcets: unknown key; known keys: scale_mm, comment, camera, lights, objects, method, render");
+}
+
+TEST(SceneLoader, UnknownMethodKey) {
+  json doc = minimal_scene();
+  doc["method"] = {{"KK", 8}};
+  EXPECT_EQ(parse_error(doc),
+            "test.json: /method/KK: unknown key; known keys: K, N, map_size, light_map_size, eps_bias, eps_comb, "
+            "visibility_taps, filter_lod, progressive, specular, roughness, view, name");
+}
+
+TEST(SceneLoader, NegativeSigmaA) {
+  EXPECT_EQ(material_error({{"sigma_a", {-0.5, 0.1, 0.1}}, {"sigma_s", {1, 1, 1}}}),
+            "test.json: /objects/0/material: sigma_a[0] = -0.5 is negative; allowed range [0, inf) mm^-1");
+}
+
+TEST(SceneLoader, NanEta) {
+  EXPECT_EQ(material_error({{"preset", "Marble"}, {"eta", "nan"}}),
+            "test.json: /objects/0/material/eta: NaN is not allowed; allowed range [1, 3]");
+}
+
+TEST(SceneLoader, EtaOutOfRange) {
+  EXPECT_EQ(material_error({{"preset", "Marble"}, {"eta", 0.5}}),
+            "test.json: /objects/0/material/eta: 0.5 is out of range; allowed range [1, 3]");
+}
+
+TEST(SceneLoader, KZero) {
+  json doc = minimal_scene();
+  doc["method"] = {{"K", 0}};
+  EXPECT_EQ(parse_error(doc), "test.json: /method/K: 0 is out of range; allowed range [1, 64] maps");
+}
+
+TEST(SceneLoader, MapSizeZero) {
+  json doc = minimal_scene();
+  doc["method"] = {{"name", "radiosity-maps"}, {"map_size", 0}};
+  EXPECT_EQ(parse_error(doc), "test.json: /method/map_size: 0 is out of range; allowed range [8, 4096] texels");
+}
+
+TEST(SceneLoader, MissingMeshFile) {
+  json doc = minimal_scene();
+  doc["objects"][0] = {{"mesh", "meshes/missing.obj"}};
+  EXPECT_EQ(parse_error(doc),
+            "test.json: /objects/0/mesh: /nonexistent/scene/dir/meshes/missing.obj: no such file");
+}
+
+TEST(SceneLoader, UnknownPreset) {
+  EXPECT_EQ(material_error("Unobtainium"),
+            "test.json: /objects/0/material/preset: unknown material 'Unobtainium' (see: lucent materials)");
+}
+
+TEST(SceneLoader, PresetAndCoefficients) {
+  EXPECT_EQ(material_error({{"preset", "Marble"}, {"sigma_a", {0.1, 0.1, 0.1}}}),
+            "test.json: /objects/0/material: give either preset or coefficients, not both");
+}
+
+TEST(SceneLoader, SigmaSAndSigmaSPrime) {
+  EXPECT_EQ(material_error({{"sigma_a", {0.1, 0.1, 0.1}}, {"sigma_s", {1, 1, 1}}, {"sigma_s_prime", {1, 1, 1}}}),
+            "test.json: /objects/0/material: give exactly one of sigma_s and sigma_s_prime");
+}
+
+TEST(SceneLoader, ShapeAndMesh) {
+  json doc = minimal_scene();
+  doc["objects"][0]["mesh"] = "bunny.obj";
+  EXPECT_EQ(parse_error(doc), "test.json: /objects/0: give exactly one of shape and mesh");
+}
+
+TEST(SceneLoader, EmptyObjects) {
+  json doc = minimal_scene();
+  doc["objects"] = json::array();
+  EXPECT_EQ(parse_error(doc), "test.json: /objects: expected a non-empty array of objects");
+}
+
+TEST(SceneLoader, LightWithoutDirection) {
+  json doc = minimal_scene();
+  doc["lights"][0] = {{"radiance", {1, 1, 1}}};
+  EXPECT_EQ(parse_error(doc),
+            "test.json: /lights/0/direction: missing; the direction the light travels, e.g. [0, -1, 0]");
+}
+
+TEST(SceneLoader, LightZeroDirection) {
+  json doc = minimal_scene();
+  doc["lights"][0]["direction"] = {0, 0, 0};
+  EXPECT_EQ(parse_error(doc), "test.json: /lights/0/direction: must be a non-zero vector");
+}
+
+TEST(SceneLoader, UnknownMethod) {
+  json doc = minimal_scene();
+  doc["method"] = {{"name", "photon-beams"}};
+  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps");
+}
+
+TEST(SceneLoader, WrongType) {
+  json doc = minimal_scene();
+  doc["render"] = {{"width", "abc"}};
+  EXPECT_EQ(parse_error(doc), "test.json: /render/width: expected a number, got \"abc\"");
+}
+
+TEST(SceneLoader, OverrideBadIndex) {
+  EXPECT_EQ(parse_error(minimal_scene(), {"objects.9.shape=box"}), "--set 'objects.9.shape=box': index 9 out of range (1 elements)");
+}
+
+TEST(SceneLoader, OverrideIntoStringShorthand) {
+  // The default scene gives materials as preset-name strings, so a key below them cannot be set.
+  EXPECT_EQ(parse_error(minimal_scene(), {"objects.0.material.preset=Ketchup"}),
+            "--set 'objects.0.material.preset=Ketchup': cannot set 'preset' inside \"Marble\" (not an object)");
+}
+
+TEST(SceneLoader, OverrideWithoutEquals) {
+  EXPECT_EQ(parse_error(minimal_scene(), {"method.K"}), "--set 'method.K': expected key.path=value, e.g. method.K=8");
+}
+
+TEST(SceneLoader, LoadMissingFile) {
+  const std::string path = "/nonexistent/lucent/scene.json";
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "load_scene accepted a missing file";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()), "/nonexistent/lucent/scene.json: cannot open scene file");
+  }
+}
+
+}  // namespace
+}  // namespace lucent
