@@ -101,7 +101,7 @@ void run(const RenderOptions& o) {
   Renderer renderer(scene);
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
   ApplicationFramebuffer target(width, height);
-  ProgressBar progress("rendering", frames);
+  ProgressBar progress("rendering", o.quiet ? 1 : frames);
   std::vector<FrameTimings> timings;
   for (int f = 0; f < frames; ++f) {
     renderer.render(scene.camera, {target.id(), width, height});

@@ -51,11 +51,13 @@ vec4 combine_maps(vec3 x_o, vec3 n_o) {
   return n > 0.0f ? vec4(color / n, 1.0f) : vec4(0.0f);
 }
 
+// Shadow test in the scene-wide view of light l (light G-buffer layer L + l), normal offset of 2 texels.
 float light_visibility(int l, vec3 x, vec3 n) {
-  float texel_width = frame.lights[l].direction.w / float(frame.sizes.y);
-  vec3 t = view_texture_coords(frame.lights[l].clip_from_world, x + 2.0f * texel_width * n);
+  ViewGPU view = frame.shadows[l];
+  float texel_width = view.direction.w / float(frame.sizes.y);
+  vec3 t = view_texture_coords(view.clip_from_world, x + 2.0f * texel_width * n);
   if (any(lessThan(t, vec3(0.0f))) || any(greaterThanEqual(t, vec3(1.0f)))) return 1.0f;
-  return multisample_visibility(light_depth, t, l, frame.sizes.y, 2.0f * texel_width / frame.lights[l].radiance.w);
+  return multisample_visibility(light_depth, t, frame.counts.x + l, frame.sizes.y, 2.0f * texel_width / view.radiance.w);
 }
 
 vec3 shade_opaque(vec3 x, vec3 n, vec3 albedo) {

@@ -72,7 +72,8 @@ struct FrameGPU {
   uvec4 seeds;           // x: user seed, y: frame counter (never repeats), z: 1 = restart accumulation
   vec4 biases;           // x: eps_bias [map texels], y: eps_comb [map texels], z: filter lod, w: roughness
   vec4 options;          // x: exposure scale 2^stops, y: debug view, z: specular on, w: tone-map operator
-  ViewGPU lights[LUCENT_MAX_LIGHTS];
+  ViewGPU lights[LUCENT_MAX_LIGHTS];   // light G-buffer views framing the translucent objects (step 1)
+  ViewGPU shadows[LUCENT_MAX_LIGHTS];  // the same lights framing the whole scene: shadows of opaque objects
   ViewGPU maps[LUCENT_MAX_MAPS];
 };
 
@@ -99,8 +100,9 @@ static_assert(sizeof(lucent::shader::VertexGPU) == 32);
 static_assert(sizeof(lucent::shader::ParityCaseGPU) == 128);
 static_assert(offsetof(lucent::shader::FrameGPU, counts) == 96);
 static_assert(offsetof(lucent::shader::FrameGPU, lights) == 176);
-static_assert(offsetof(lucent::shader::FrameGPU, maps) == 176 + 96 * LUCENT_MAX_LIGHTS);
-static_assert(sizeof(lucent::shader::FrameGPU) == 176 + 96 * (LUCENT_MAX_LIGHTS + LUCENT_MAX_MAPS));
+static_assert(offsetof(lucent::shader::FrameGPU, shadows) == 176 + 96 * LUCENT_MAX_LIGHTS);
+static_assert(offsetof(lucent::shader::FrameGPU, maps) == 176 + 96 * 2 * LUCENT_MAX_LIGHTS);
+static_assert(sizeof(lucent::shader::FrameGPU) == 176 + 96 * (2 * LUCENT_MAX_LIGHTS + LUCENT_MAX_MAPS));
 #endif
 
 #endif

@@ -72,7 +72,7 @@ class RadiosityMaps final : public Method {
         map_size_(params_.integer("map_size")),
         light_map_size_(params_.integer("light_map_size")),
         light_count_(static_cast<int>(scene.lights.size())),
-        light_gbuffer_(light_map_size_, light_map_size_, std::max(1, light_count_), "light G-buffer"),
+        light_gbuffer_(light_map_size_, light_map_size_, 2 * std::max(1, light_count_), "light G-buffer"),
         map_gbuffer_(map_size_, map_size_, K_, "radiosity-map G-buffer"),
         gbuffer_program_(gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "gbuffer/layered_views.geom",
                                                       "gbuffer/gbuffer.frag")),
@@ -104,6 +104,7 @@ class RadiosityMaps final : public Method {
     frame.options.y = params_.text("view") == "coverage" ? LUCENT_VIEW_COVERAGE : LUCENT_VIEW_SHADED;
     frame.options.z = params_.boolean("specular") ? 1.0f : 0.0f;
     std::copy(lights_.begin(), lights_.end(), frame.lights);
+    std::copy(shadows_.begin(), shadows_.end(), frame.shadows);
     std::copy(maps_.begin(), maps_.end(), frame.maps);
   }
 
@@ -142,6 +143,13 @@ class RadiosityMaps final : public Method {
       view.direction = glm::vec4(light.direction, 2.0f * half_width);
       view.radiance = glm::vec4(light.radiance, 2.0f * eye_distance);
       lights_.push_back(view);
+      // Scene-wide view of the same light for the shadows of opaque objects.
+      float scene_half_width = 1.02f * all.radius + 1e-6f;
+      view.clip_from_world = orthographic_view(all.center, -light.direction, scene_half_width, scene_half_width,
+                                               2.0f * scene_half_width);
+      view.direction.w = 2.0f * scene_half_width;
+      view.radiance.w = 2.0f * scene_half_width;
+      shadows_.push_back(view);
     }
     // Step 2 views: K directions from a Halton sequence on the bounding sphere, looking at its centre.
     for (glm::vec3 d : halton_sphere_directions(K_)) {
@@ -217,7 +225,7 @@ class RadiosityMaps final : public Method {
   gpu::GBuffer light_gbuffer_, map_gbuffer_;
   gpu::ShaderProgram gbuffer_program_, integrate_program_, combine_program_;
   GLuint radiosity_ = 0, counter_buffer_ = 0;
-  std::vector<ViewGPU> lights_, maps_;
+  std::vector<ViewGPU> lights_, shadows_, maps_;
 };
 
 }  // namespace
