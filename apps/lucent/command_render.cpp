@@ -60,7 +60,8 @@ void print_timings(const std::vector<FrameTimings>& frames, const std::string& d
     }
     step1.push_back(t.light_gbuffer_ms), step2.push_back(t.radiosity_maps_ms), step3.push_back(t.combine_ms);
     total.push_back(t.total_ms);
-    if (t.radiosity_maps_ms > 0) rate.push_back(static_cast<double>(t.bssrdf_samples) / (t.radiosity_maps_ms * 1e-3));
+    for (const StepTiming& s : t.passes)
+      if (s.name == "integrate" && s.ms > 0) rate.push_back(static_cast<double>(t.bssrdf_samples) / (s.ms * 1e-3));
   }
   fmt::print("GPU time per frame, median of {} frame(s), on {}:\n", frames.size(), device);
   fmt::print("  1. light G-buffer      {:10.3f} ms\n", median(step1));
@@ -69,7 +70,7 @@ void print_timings(const std::vector<FrameTimings>& frames, const std::string& d
   fmt::print("  total                  {:10.3f} ms\n", median(total));
   fmt::print("  passes:");
   for (const std::string& name : order) fmt::print(" {} {:.3f}", name, median(per_pass[name]));
-  fmt::print(" (ms)\n  BSSRDF samples: {} per frame, {:.3g} per second in step 2\n", frames.back().bssrdf_samples,
+  fmt::print(" (ms)\n  BSSRDF samples: {} per frame, {:.3g} per second in the integrate pass\n", frames.back().bssrdf_samples,
              median(rate));
 }
 

@@ -19,11 +19,13 @@ ImageDifference compare(const ImageRGBA8& actual, const ImageRGBA8& expected) {
     return d;
   }
   std::vector<int> per_pixel;
-  double sum = 0.0;
+  double sum = 0.0, signed_sum = 0.0;
   for (std::size_t i = 0; i < actual.pixels.size(); i += 4) {
     int worst = 0;
     for (std::size_t c = 0; c < 3; ++c) {
-      int diff = std::abs(int(actual.pixels[i + c]) - int(expected.pixels[i + c]));
+      int signed_diff = int(actual.pixels[i + c]) - int(expected.pixels[i + c]);
+      int diff = std::abs(signed_diff);
+      signed_sum += signed_diff;
       sum += diff;
       worst = std::max(worst, diff);
     }
@@ -31,6 +33,7 @@ ImageDifference compare(const ImageRGBA8& actual, const ImageRGBA8& expected) {
     d.max_abs = std::max(d.max_abs, worst);
   }
   d.mean_abs = sum / (3.0 * static_cast<double>(per_pixel.size()));
+  d.mean_signed = signed_sum / (3.0 * static_cast<double>(per_pixel.size()));
   std::sort(per_pixel.begin(), per_pixel.end());
   d.percentile_99 = per_pixel[static_cast<std::size_t>(0.99 * static_cast<double>(per_pixel.size() - 1))];
   return d;

@@ -9,6 +9,7 @@ namespace lucent::test {
 
 struct ImageDifference {
   double mean_abs = 0.0;       // mean |a - b| over RGB, in 8-bit steps
+  double mean_signed = 0.0;    // mean (a - b) over RGB: a systematic brightness change, noise averages out
   double percentile_99 = 0.0;  // 99th percentile of the per-pixel max-channel difference, 8-bit steps
   int max_abs = 0;
 };

@@ -88,9 +88,10 @@ TEST(RadiosityMaps, LightBleedsPastTerminatorFartherInRedThanBlue) {
 
 // ---- (b) determinism -----------------------------------------------------------------------------------------
 
-Scene small_default(unsigned seed) {
-  return lucent::default_scene({"render.width=96", "render.height=64", "render.frames=2", "method.K=6", "method.N=8",
-                                "method.map_size=64", "method.light_map_size=128", fmt::format("render.seed={}", seed)});
+Scene small_default(unsigned seed, int samples = 8, int frames = 2) {
+  return lucent::default_scene({"render.width=96", "render.height=64", fmt::format("render.frames={}", frames),
+                                "method.K=6", fmt::format("method.N={}", samples), "method.map_size=64",
+                                "method.light_map_size=128", fmt::format("render.seed={}", seed)});
 }
 
 TEST(RadiosityMaps, SameSeedGivesIdenticalImageAndOtherSeedDiffers) {
@@ -103,11 +104,12 @@ TEST(RadiosityMaps, SameSeedGivesIdenticalImageAndOtherSeedDiffers) {
 // ---- (c) golden image ----------------------------------------------------------------------------------------
 
 TEST(RadiosityMaps, DefaultSceneMatchesGoldenImage) {
-  // Tolerance: mean |difference| <= 1.5 and 99th percentile <= 12 (8-bit steps). The image is a Monte Carlo
-  // estimate with a fixed seed; drivers differ in the last bits of exp/log and in rasterization tie rules,
-  // which moves noise slightly, but a wrong model, unit or pass changes the mean by far more.
+  // Tolerance (8-bit steps): mean |difference| <= 1.5, 99th percentile <= 12, and a mean signed difference
+  // within +-0.5. The image is a Monte Carlo estimate with a fixed seed; another driver (or seed) moves the
+  // noise: rendering seed 2 against the seed-1 golden stays within all three bounds. A systematic change does
+  // not: 10% less translucent radiance moves the signed mean by about -1.5 and fails.
   std::string golden_path = std::string(LUCENT_TEST_DATA) + "/golden/default_96x64.png";
-  ImageRGBA8 actual = render(small_default(1)).display;
+  ImageRGBA8 actual = render(small_default(1, 32, 4)).display;  // 128 samples per band and map: low noise
   if (std::getenv("LUCENT_UPDATE_GOLDEN")) {
     std::filesystem::create_directories(std::filesystem::path(golden_path).parent_path());
     lucent::write_png(golden_path, actual);
@@ -115,12 +117,12 @@ TEST(RadiosityMaps, DefaultSceneMatchesGoldenImage) {
   }
   ImageRGBA8 expected = lucent::read_png(golden_path);
   lucent::test::ImageDifference d = lucent::test::compare(actual, expected);
-  bool ok = d.mean_abs <= 1.5 && d.percentile_99 <= 12.0;
+  bool ok = d.mean_abs <= 1.5 && d.percentile_99 <= 12.0 && std::abs(d.mean_signed) <= 0.5;
   if (!ok) {
     lucent::write_png(lucent::test::output_path("default_96x64.actual.png"), actual);
     lucent::write_png(lucent::test::output_path("default_96x64.diff.png"), lucent::test::difference_image(actual, expected));
   }
-  EXPECT_TRUE(ok) << "mean " << d.mean_abs << " p99 " << d.percentile_99 << " max " << d.max_abs
+  EXPECT_TRUE(ok) << "mean " << d.mean_abs << " signed " << d.mean_signed << " p99 " << d.percentile_99 << " max " << d.max_abs
                   << "; actual and diff written to " << LUCENT_TEST_OUT;
 }
 
