@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "lucent/error.h"
 #include "lucent/material.h"
+#include "lucent/scene.h"
 
 namespace lucent::cli {
 namespace {
@@ -79,16 +80,25 @@ void run(const BssrdfOptions& o) {
 
 }  // namespace
 
+// Help text of a material parameter, from the declarations the scene parser uses.
+std::string doc(std::string_view name) {
+  for (const ParamSection& section : scene_param_sections())
+    if (section.name == "objects[].material")
+      for (const ParamDecl& p : section.params)
+        if (p.name == name) return fmt::format("{}{}", p.doc, p.unit.empty() ? "" : fmt::format(" [{}]", p.unit));
+  return "";
+}
+
 void add_bssrdf_command(CLI::App& app) {
   auto options = std::make_shared<BssrdfOptions>();
   CLI::App* cmd = app.add_subcommand("bssrdf", "evaluate S_d of a diffusion model at one point (mm, mm^-1)");
-  cmd->add_option("--model", options->model, "directional | standard")->capture_default_str();
-  cmd->add_option("--material", options->material, "a preset name (lucent materials)");
-  cmd->add_option("--sigma-a", options->sigma_a, "absorption R,G,B [mm^-1]")->delimiter(',');
-  cmd->add_option("--sigma-s", options->sigma_s, "scattering R,G,B, unreduced [mm^-1]")->delimiter(',');
-  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, "reduced scattering R,G,B [mm^-1]")->delimiter(',');
-  cmd->add_option("--g", options->g, "Henyey-Greenstein g (one value or R,G,B)")->delimiter(',');
-  cmd->add_option("--eta", options->eta, "relative refractive index");
+  cmd->add_option("--model", options->model, doc("model") + ": directional | standard")->capture_default_str();
+  cmd->add_option("--material", options->material, doc("preset"));
+  cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',');
+  cmd->add_option("--sigma-s", options->sigma_s, doc("sigma_s") + ", R,G,B")->delimiter(',');
+  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',');
+  cmd->add_option("--g", options->g, doc("g"))->delimiter(',');
+  cmd->add_option("--eta", options->eta, doc("eta"));
   cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->capture_default_str();
   cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->capture_default_str();
   cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->capture_default_str();

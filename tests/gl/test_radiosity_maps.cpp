@@ -101,6 +101,56 @@ TEST(RadiosityMaps, SameSeedGivesIdenticalImageAndOtherSeedDiffers) {
   EXPECT_NE(a.pixels, c.pixels);
 }
 
+// ---- progressive accumulation -----------------------------------------------------------------------------
+
+// Relative standard deviation of red over the flat centre of the slab image (a noise measure).
+double relative_noise(const ImageRGBA32F& image) {
+  double sum = 0.0, sum2 = 0.0;
+  int n = 0;
+  for (int y = image.height / 4; y < 3 * image.height / 4; ++y)
+    for (int x = image.width / 4; x < 3 * image.width / 4; ++x, ++n) sum += image.at(x, y)[0], sum2 += double(image.at(x, y)[0]) * image.at(x, y)[0];
+  double mean = sum / n;
+  return std::sqrt(std::max(0.0, sum2 / n - mean * mean)) / mean;
+}
+
+TEST(RadiosityMaps, ProgressiveAccumulationConvergesAndRestartsOnSceneChange) {
+  // A flat slab under normal incidence has a constant B: pixel-to-pixel spread is Monte Carlo noise, which must
+  // fall as frames accumulate (ideally as 1/sqrt(frames): 16 frames -> 1/4; at least a factor 2.5 required).
+  Scene scene = lucent::parse_scene(R"({
+    "scale_mm": 10,
+    "camera": { "eye": [0, 9, 0], "target": [0, 5, 0], "up": [0, 0, -1], "fov_y_deg": 8 },
+    "lights": [{ "direction": [0, -1, 0], "radiance": [1, 1, 1] }],
+    "objects": [{ "shape": "box", "size": [30, 10, 30], "material": "Marble" }],
+    "method": { "K": 4, "N": 2, "map_size": 128, "light_map_size": 512, "specular": false },
+    "render": { "width": 32, "height": 32, "tonemap": "linear" } })", "noise slab", ".");
+  lucent::test::ensure_gl_context();
+  lucent::Renderer renderer(scene);
+  GLuint color = 0, framebuffer = 0;
+  glCreateRenderbuffers(1, &color);
+  glNamedRenderbufferStorage(color, GL_RGBA8, 32, 32);
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+  renderer.render(scene.camera, {framebuffer, 32, 32});
+  double noise_1 = relative_noise(renderer.read_radiance());
+  lucent::Camera moved = scene.camera;
+  for (int f = 1; f < 16; ++f) {
+    moved.eye.x = 0.01f * static_cast<float>(f);  // only the camera moves: keep accumulating
+    renderer.render(moved, {framebuffer, 32, 32});
+  }
+  EXPECT_EQ(renderer.accumulated_frames(), 16);
+  double noise_16 = relative_noise(renderer.read_radiance());
+  RecordProperty("noise_1", std::to_string(noise_1));
+  RecordProperty("noise_16", std::to_string(noise_16));
+  EXPECT_LT(noise_16, noise_1 / 2.5) << noise_1 << " -> " << noise_16;
+
+  renderer.scene().lights[0].radiance = glm::vec3(2.0f);  // a light change restarts accumulation
+  renderer.scene_changed();
+  renderer.render(scene.camera, {framebuffer, 32, 32});
+  EXPECT_EQ(renderer.accumulated_frames(), 1);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteRenderbuffers(1, &color);
+}
+
 // ---- (c) golden image ----------------------------------------------------------------------------------------
 
 TEST(RadiosityMaps, DefaultSceneMatchesGoldenImage) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -85,6 +86,7 @@ class RadiosityMaps final : public Method {
     glNamedBufferStorage(counter_buffer_, sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, counter_buffer_, "covered texel counter");
     build_views(scene, scene_gpu);
+    warn_about_pearling(scene);
   }
 
   ~RadiosityMaps() override {
@@ -128,6 +130,24 @@ class RadiosityMaps final : public Method {
   static std::string fmt_lights_error(const std::string& source, int count) {
     return source + ": " + std::to_string(count) + " directional lights; radiosity-maps supports at most " +
            std::to_string(LUCENT_MAX_LIGHTS);
+  }
+
+  // Dal Corso et al., Section 5: when the scattering length 1/sigma_tr is under about two light-map texels the
+  // contributions cluster ("pearling"). Say so once, with the light-map size that would avoid it.
+  void warn_about_pearling(const Scene& scene) const {
+    if (lights_.empty()) return;
+    float texel_mm = lights_[0].direction.w / static_cast<float>(light_map_size_) * scene.scale_mm;
+    for (const SceneObject& object : scene.objects) {
+      if (!object.material) continue;
+      glm::vec3 sigma_tr = object.material->sigma_tr();
+      float length_mm = 1.0f / std::max({sigma_tr.x, sigma_tr.y, sigma_tr.z});
+      if (length_mm >= 2.0f * texel_mm) continue;
+      std::fprintf(stderr,
+                   "lucent: warning: %s: scattering length %.3g mm is under 2 light-map texels (%.3g mm each); "
+                   "expect pearling, or raise method.light_map_size to %d\n",
+                   object.name.c_str(), length_mm, texel_mm,
+                   static_cast<int>(std::ceil(2.0f * texel_mm / length_mm * static_cast<float>(light_map_size_))));
+    }
   }
 
   void build_views(const Scene& scene, const render::SceneGpu& scene_gpu) {
