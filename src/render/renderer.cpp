@@ -179,29 +179,31 @@ std::string Renderer::device() const {
   return caps.renderer + ", OpenGL " + caps.version;
 }
 
-ImageRGBA32F Renderer::read_radiance() const {
-  ImageRGBA32F image{impl_->output.width, impl_->output.height, {}};
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
-  glGetTextureImage(impl_->output.hdr, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.pixels.size() * 4),
+namespace {
+
+// Reads a texture into an image; GL rows start at the bottom, images at the top.
+template <typename Image>
+Image read_texture(GLuint texture, int width, int height, GLenum type, std::size_t bytes_per_channel) {
+  Image image{width, height, {}};
+  image.pixels.resize(static_cast<std::size_t>(width) * height * 4);
+  glGetTextureImage(texture, 0, GL_RGBA, type, static_cast<GLsizei>(image.pixels.size() * bytes_per_channel),
                     image.pixels.data());
-  // GL rows start at the bottom; images start at the top.
-  for (int y = 0; y < image.height / 2; ++y)
-    for (int x = 0; x < image.width * 4; ++x)
-      std::swap(image.pixels[static_cast<std::size_t>(y) * image.width * 4 + x],
-                image.pixels[static_cast<std::size_t>(image.height - 1 - y) * image.width * 4 + x]);
+  std::size_t row = static_cast<std::size_t>(width) * 4;
+  for (int y = 0; y < height / 2; ++y)
+    std::swap_ranges(image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row),
+                     image.pixels.begin() + static_cast<std::ptrdiff_t>((y + 1) * row),
+                     image.pixels.begin() + static_cast<std::ptrdiff_t>((height - 1 - y) * row));
   return image;
 }
 
+}  // namespace
+
+ImageRGBA32F Renderer::read_radiance() const {
+  return read_texture<ImageRGBA32F>(impl_->output.hdr, impl_->output.width, impl_->output.height, GL_FLOAT, 4);
+}
+
 ImageRGBA8 Renderer::read_display() const {
-  ImageRGBA8 image{impl_->output.width, impl_->output.height, {}};
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
-  glGetTextureImage(impl_->output.ldr, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(image.pixels.size()),
-                    image.pixels.data());
-  for (int y = 0; y < image.height / 2; ++y)
-    for (int x = 0; x < image.width * 4; ++x)
-      std::swap(image.pixels[static_cast<std::size_t>(y) * image.width * 4 + x],
-                image.pixels[static_cast<std::size_t>(image.height - 1 - y) * image.width * 4 + x]);
-  return image;
+  return read_texture<ImageRGBA8>(impl_->output.ldr, impl_->output.width, impl_->output.height, GL_UNSIGNED_BYTE, 1);
 }
 
 }  // namespace lucent

@@ -27,19 +27,11 @@ struct Rendered {
 };
 
 Rendered render(const Scene& scene) {
-  lucent::test::ensure_gl_context();
+  lucent::test::TestFramebuffer framebuffer(scene.render.width, scene.render.height);
   lucent::Renderer renderer(scene);
-  GLuint color = 0, framebuffer = 0;
-  glCreateRenderbuffers(1, &color);
-  glNamedRenderbufferStorage(color, GL_RGBA8, scene.render.width, scene.render.height);
-  glCreateFramebuffers(1, &framebuffer);
-  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
   for (int f = 0; f < scene.render.frames; ++f)
-    renderer.render(scene.camera, {framebuffer, scene.render.width, scene.render.height});
-  Rendered out{renderer.read_radiance(), renderer.read_display()};
-  glDeleteFramebuffers(1, &framebuffer);
-  glDeleteRenderbuffers(1, &color);
-  return out;
+    renderer.render(scene.camera, {framebuffer.id(), scene.render.width, scene.render.height});
+  return {renderer.read_radiance(), renderer.read_display()};
 }
 
 // ---- (a) bleeding past the terminator ----------------------------------------------------------------------
@@ -123,19 +115,15 @@ TEST(RadiosityMaps, ProgressiveAccumulationConvergesAndRestartsOnSceneChange) {
     "objects": [{ "shape": "box", "size": [30, 10, 30], "material": "Marble" }],
     "method": { "K": 4, "N": 2, "map_size": 128, "light_map_size": 512, "specular": false },
     "render": { "width": 32, "height": 32, "tonemap": "linear" } })", "noise slab", ".");
-  lucent::test::ensure_gl_context();
+  lucent::test::TestFramebuffer target(32, 32);
   lucent::Renderer renderer(scene);
-  GLuint color = 0, framebuffer = 0;
-  glCreateRenderbuffers(1, &color);
-  glNamedRenderbufferStorage(color, GL_RGBA8, 32, 32);
-  glCreateFramebuffers(1, &framebuffer);
-  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
-  renderer.render(scene.camera, {framebuffer, 32, 32});
+  const lucent::RenderTarget framebuffer{target.id(), 32, 32};
+  renderer.render(scene.camera, framebuffer);
   double noise_1 = relative_noise(renderer.read_radiance());
   lucent::Camera moved = scene.camera;
   for (int f = 1; f < 16; ++f) {
     moved.eye.x = 0.01f * static_cast<float>(f);  // only the camera moves: keep accumulating
-    renderer.render(moved, {framebuffer, 32, 32});
+    renderer.render(moved, framebuffer);
   }
   EXPECT_EQ(renderer.accumulated_frames(), 16);
   double noise_16 = relative_noise(renderer.read_radiance());
@@ -145,10 +133,8 @@ TEST(RadiosityMaps, ProgressiveAccumulationConvergesAndRestartsOnSceneChange) {
 
   renderer.scene().lights[0].radiance = glm::vec3(2.0f);  // a light change restarts accumulation
   renderer.scene_changed();
-  renderer.render(scene.camera, {framebuffer, 32, 32});
+  renderer.render(scene.camera, framebuffer);
   EXPECT_EQ(renderer.accumulated_frames(), 1);
-  glDeleteFramebuffers(1, &framebuffer);
-  glDeleteRenderbuffers(1, &color);
 }
 
 // ---- (c) golden image ----------------------------------------------------------------------------------------
