@@ -312,3 +312,36 @@ TEST_F(LoadMesh, LinesAndPointsBesideTrianglesAreDropped) {
 }
 
 }  // namespace
+
+// The same unit right triangle (area 0.5, normal +z) in each text format the scene files accept.
+TEST_F(LoadMesh, StlPlyAndGltfGiveTheSameTriangle) {
+  const std::string stl =
+      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+      "endsolid t\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  // glTF 2.0 with the 36-byte position buffer embedded as base64 (floats 0,0,0, 1,0,0, 0,1,0).
+  const std::string gltf = R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "scene": 0,
+    "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+  for (const auto& [name, text] : {std::pair{"t.stl", stl}, std::pair{"t.ply", ply}, std::pair{"t.gltf", gltf}}) {
+    SCOPED_TRACE(name);
+    TriangleMesh m = lucent::load_mesh(write(name, text));
+    ASSERT_EQ(triangle_count(m), 1u);
+    EXPECT_NEAR(lucent::surface_area(m), 0.5f, 1e-6f);
+    expect_unit_normals(m);
+    EXPECT_GT(geometric_normal(m, 0).z, 0.0f);
+  }
+}
+
+TEST_F(LoadMesh, ThreeDsCubeFromGlmark2) {
+  const std::string path = "/usr/share/glmark2/models/cube.3ds";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is missing (Debian package glmark2-data)";
+  TriangleMesh cube = lucent::load_mesh(path);
+  EXPECT_EQ(triangle_count(cube), 12u);
+  expect_unit_normals(cube);
+}

@@ -12,6 +12,7 @@
 
 #include "image_compare.h"
 #include "lucent/image.h"
+#include "platform/gl_capabilities.h"
 
 namespace {
 
@@ -87,6 +88,16 @@ TEST(Cli, NoGlContext) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.output.rfind("lucent: no OpenGL context: ", 0), 0u) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(Cli, DriverWithoutOpenGl45) {
+  // Mesa's MESA_GL_VERSION_OVERRIDE makes the driver offer only OpenGL 4.3; other drivers ignore it.
+  lucent::test::ensure_gl_context();
+  if (lucent::platform::current_capabilities().renderer.find("llvmpipe") == std::string::npos)
+    GTEST_SKIP() << "needs Mesa llvmpipe";
+  expect_one_line_error(run(std::string("render ") + kSmall, "MESA_GL_VERSION_OVERRIDE=4.3"),
+                        "lucent: no OpenGL context: the driver cannot create an OpenGL 4.5 core context (EGL error "
+                        "0x3009)");
 }
 
 TEST(Cli, BssrdfPrintsPotatoReferenceValues) {

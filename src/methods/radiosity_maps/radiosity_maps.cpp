@@ -87,6 +87,7 @@ class RadiosityMaps final : public Method {
     gpu::label_object(GL_BUFFER, counter_buffer_, "covered texel counter");
     build_views(scene, scene_gpu);
     warn_about_pearling(scene);
+    warn_about_low_albedo(scene);
   }
 
   ~RadiosityMaps() override {
@@ -147,6 +148,22 @@ class RadiosityMaps final : public Method {
                    "expect pearling, or raise method.light_map_size to %d\n",
                    object.name.c_str(), length_mm, texel_mm,
                    static_cast<int>(std::ceil(2.0f * texel_mm / length_mm * static_cast<float>(light_map_size_))));
+    }
+  }
+
+  // Diffusion models assume scattering dominates absorption. Far from that (reduced albedo well under 1/2 in some
+  // band) the dipoles give implausible colours, e.g. Strawberry Shampoo, whose alpha' is 0.01 / 0.003 / 0.0002.
+  static void warn_about_low_albedo(const Scene& scene) {
+    for (const SceneObject& object : scene.objects) {
+      if (!object.material) continue;
+      glm::vec3 s = object.material->sigma_s_prime();
+      glm::vec3 alpha_prime = s / (s + object.material->sigma_a);
+      float lowest = std::min({alpha_prime.x, alpha_prime.y, alpha_prime.z});
+      if (lowest >= 0.3f) continue;
+      std::fprintf(stderr,
+                   "lucent: warning: %s: reduced albedo alpha' = (%.3g, %.3g, %.3g); the diffusion models are far "
+                   "outside their validity below about 0.3 and colours may be implausible\n",
+                   object.name.c_str(), alpha_prime.x, alpha_prime.y, alpha_prime.z);
     }
   }
 
