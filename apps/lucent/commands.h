@@ -7,5 +7,6 @@ namespace lucent::cli {
 void add_render_command(CLI::App& app);
 void add_bssrdf_command(CLI::App& app);
 void add_materials_command(CLI::App& app);
+void add_slab_command(CLI::App& app);
 
 }  // namespace lucent::cli

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   lucent::cli::add_render_command(app);
   lucent::cli::add_bssrdf_command(app);
   lucent::cli::add_materials_command(app);
+  lucent::cli::add_slab_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

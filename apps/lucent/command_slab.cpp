@@ -1,0 +1,81 @@
+// command_slab.cpp: `lucent slab`: total diffuse reflectance and transmittance of a slab or half-space by Monte
+// Carlo photon transport (the random walk and Fresnel code of the volumetric path tracer), with standard errors.
+#include <limits>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "lucent/error.h"
+#include "reference/slab.h"
+
+namespace lucent::cli {
+namespace {
+
+struct SlabOptions {
+  reference::SlabConfig config;
+  std::string thickness = "inf";
+  std::string incidence = "normal";
+  bool json = false;
+};
+
+nlohmann::json to_json(const reference::Estimate& e) { return {{"mean", e.mean}, {"standard_error", e.standard_error}}; }
+
+void run(SlabOptions o) {
+  if (o.thickness == "inf") {
+    o.config.thickness = std::numeric_limits<double>::infinity();
+  } else {
+    try {
+      o.config.thickness = std::stod(o.thickness);
+    } catch (const std::exception&) {
+      throw Error(fmt::format("--thickness: '{}' is not a number or inf", o.thickness));
+    }
+  }
+  if (o.incidence != "normal" && o.incidence != "diffuse")
+    throw Error(fmt::format("--incidence: '{}' is not one of normal, diffuse", o.incidence));
+  o.config.incidence = o.incidence == "normal" ? reference::Incidence::Normal : reference::Incidence::Diffuse;
+  reference::SlabResult r = reference::simulate_slab(o.config);
+  if (o.json) {
+    nlohmann::json out = {{"albedo", o.config.albedo}, {"g", o.config.g}, {"eta", o.config.eta},
+                          {"thickness", o.thickness}, {"incidence", o.incidence}, {"photons", r.photons},
+                          {"specular_reflectance", to_json(r.specular_reflectance)},
+                          {"diffuse_reflectance", to_json(r.diffuse_reflectance)},
+                          {"diffuse_reflectance_per_refracted", to_json(r.diffuse_reflectance_per_refracted)},
+                          {"transmittance", to_json(r.transmittance)},
+                          {"unscattered_transmittance", to_json(r.unscattered_transmittance)},
+                          {"seconds", r.seconds}};
+    fmt::print("{}\n", out.dump(2));
+    return;
+  }
+  auto line = [](const char* name, const reference::Estimate& e) {
+    fmt::print("{:<36} {:.6f} +- {:.6f}\n", name, e.mean, e.standard_error);
+  };
+  fmt::print("slab: albedo {} g {} eta {} thickness {} incidence {}, {} photons in {:.2f} s\n", o.config.albedo,
+             o.config.g, o.config.eta, o.thickness, o.incidence, r.photons, r.seconds);
+  line("specular reflectance", r.specular_reflectance);
+  line("diffuse reflectance (per incident)", r.diffuse_reflectance);
+  line("diffuse reflectance (per refracted)", r.diffuse_reflectance_per_refracted);
+  line("transmittance (per incident)", r.transmittance);
+  line("  of which unscattered", r.unscattered_transmittance);
+}
+
+}  // namespace
+
+void add_slab_command(CLI::App& app) {
+  auto o = std::make_shared<SlabOptions>();
+  CLI::App* cmd = app.add_subcommand("slab", "reflectance and transmittance of a slab by Monte Carlo photon transport");
+  cmd->add_option("--albedo", o->config.albedo, "single-scattering albedo sigma_s/sigma_t [0, 1]")->required();
+  cmd->add_option("--g", o->config.g, "Henyey-Greenstein mean cosine (-1, 1)")->capture_default_str();
+  cmd->add_option("--eta", o->config.eta, "relative refractive index n_medium/n_outside [1, 3]")->capture_default_str();
+  cmd->add_option("--thickness", o->thickness, "optical thickness sigma_t d, or inf")->capture_default_str();
+  cmd->add_option("--incidence", o->incidence, "normal (collimated) | diffuse (Lambertian)")->capture_default_str();
+  cmd->add_option("--incidence-deg", o->config.incidence_deg, "angle of the collimated beam [degrees]")
+      ->capture_default_str();
+  cmd->add_option("--photons", o->config.photons, "photons to trace")->capture_default_str();
+  cmd->add_option("--seed", o->config.seed, "random seed")->capture_default_str();
+  cmd->add_option("--threads", o->config.threads, "threads (0 = all cores)")->capture_default_str();
+  cmd->add_flag("--json", o->json, "print JSON");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace lucent::cli

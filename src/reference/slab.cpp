@@ -1,0 +1,115 @@
+// slab.cpp: see slab.h.
+#include "reference/slab.h"
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "bssrdf/fresnel.h"
+#include "lucent/error.h"
+#include "reference/random_walk.h"
+
+namespace lucent::reference {
+namespace {
+
+struct PhotonTally {
+  double specular = 0.0, reflected = 0.0, transmitted = 0.0, unscattered = 0.0, refracted = 0.0;
+};
+
+struct BlockTally {
+  Accumulator specular, reflected, reflected_per_refracted, transmitted, unscattered;
+  void add(const PhotonTally& t) {
+    specular.add(t.specular), reflected.add(t.reflected), transmitted.add(t.transmitted);
+    unscattered.add(t.unscattered);
+    reflected_per_refracted.add(t.refracted > 0.0 ? t.reflected / t.refracted : 0.0);
+  }
+  void merge(const BlockTally& o) {
+    specular.merge(o.specular), reflected.merge(o.reflected), transmitted.merge(o.transmitted);
+    unscattered.merge(o.unscattered), reflected_per_refracted.merge(o.reflected_per_refracted);
+  }
+};
+
+void check(bool ok, const std::string& what) {
+  if (!ok) throw Error(what);
+}
+
+// One photon: z is depth (0 at the lit surface, growing into the medium), sigma_t = 1.
+PhotonTally trace_photon(const SlabConfig& c, Rng& rng) {
+  PhotonTally t;
+  double cos_i = c.incidence == Incidence::Normal ? std::cos(c.incidence_deg * M_PI / 180.0)
+                                                 : std::sqrt(rng.uniform());  // diffuse: cosine-weighted
+  double F = shader::fresnel_reflectance(static_cast<float>(c.eta), static_cast<float>(cos_i));
+  t.specular = F;
+  double weight = 1.0 - F;
+  t.refracted = weight;
+  double sin_t = std::sqrt(1.0 - cos_i * cos_i) / c.eta;
+  glm::dvec3 dir(sin_t, 0.0, std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t)));
+  double z = 0.0;
+  bool scattered = false;
+  while (weight > 0.0) {
+    double s = sample_free_flight(rng, 1.0);
+    bool leaves_bottom = dir.z > 0.0 && z + s * dir.z >= c.thickness;
+    bool leaves_top = dir.z < 0.0 && z + s * dir.z <= 0.0;
+    if (leaves_bottom || leaves_top) {
+      // Boundary: the escaping part leaves, the Fresnel-reflected part continues mirrored.
+      z = leaves_bottom ? c.thickness : 0.0;
+      double R = shader::fresnel_reflectance(static_cast<float>(1.0 / c.eta), static_cast<float>(std::abs(dir.z)));
+      double escaping = weight * (1.0 - R);
+      if (leaves_top) t.reflected += escaping;
+      if (leaves_bottom) t.transmitted += escaping, t.unscattered += scattered ? 0.0 : escaping;
+      weight *= R;
+      dir.z = -dir.z;
+    } else {
+      z += s * dir.z;
+      weight *= c.albedo;
+      dir = sample_henyey_greenstein(rng, dir, c.g);
+      scattered = true;
+    }
+    if (!russian_roulette(rng, weight, c.roulette_threshold)) break;
+  }
+  return t;
+}
+
+}  // namespace
+
+SlabResult simulate_slab(const SlabConfig& c) {
+  check(c.albedo >= 0.0 && c.albedo <= 1.0, fmt::format("--albedo {} is out of range; allowed range [0, 1]", c.albedo));
+  check(c.g > -1.0 && c.g < 1.0, fmt::format("--g {} is out of range; allowed range (-1, 1)", c.g));
+  check(c.eta >= 1.0 && c.eta <= 3.0, fmt::format("--eta {} is out of range; allowed range [1, 3]", c.eta));
+  check(c.thickness > 0.0, fmt::format("--thickness {} must be positive (optical thickness) or inf", c.thickness));
+  check(c.photons > 0, "--photons must be positive");
+  check(c.incidence_deg >= 0.0 && c.incidence_deg < 90.0,
+        fmt::format("--incidence-deg {} is out of range; allowed range [0, 90)", c.incidence_deg));
+  auto start = std::chrono::steady_clock::now();
+  // Fixed blocks, each with its own random streams, summed in order: identical results for any thread count.
+  const std::uint64_t block_size = 4096;
+  std::size_t blocks = static_cast<std::size_t>((c.photons + block_size - 1) / block_size);
+  std::vector<BlockTally> tallies(blocks);
+  std::unique_ptr<tbb::global_control> limit;
+  if (c.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, c.threads);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::uint64_t first = b * block_size, last = std::min(c.photons, first + block_size);
+    for (std::uint64_t i = first; i < last; ++i) {
+      Rng rng(c.seed, i);
+      tallies[b].add(trace_photon(c, rng));
+    }
+  });
+  BlockTally total;
+  for (const BlockTally& t : tallies) total.merge(t);
+  SlabResult r;
+  r.specular_reflectance = total.specular.estimate();
+  r.diffuse_reflectance = total.reflected.estimate();
+  r.diffuse_reflectance_per_refracted = total.reflected_per_refracted.estimate();
+  r.transmittance = total.transmitted.estimate();
+  r.unscattered_transmittance = total.unscattered.estimate();
+  r.photons = c.photons;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace lucent::reference

@@ -1,0 +1,43 @@
+// slab.h: total diffuse reflectance and transmittance of a plane-parallel slab (or half-space) by Monte Carlo
+// photon transport, like the tissue-optics tools researchers use (MCML: Wang, Jacques, Zheng 1995).
+// Homogeneous medium with single-scattering albedo a, Henyey-Greenstein g, optical thickness b = sigma_t d,
+// smooth Fresnel boundaries of relative index eta on both sides (total internal reflection included).
+// Photons carry weights: boundary events split the weight into the escaping part (1 - F) and the reflected part F;
+// absorption scales it by a per scattering; Russian roulette ends light photons without bias.
+#pragma once
+#include <cstdint>
+#include <limits>
+
+#include "reference/estimate.h"
+
+namespace lucent::reference {
+
+enum class Incidence { Normal, Diffuse };
+
+struct SlabConfig {
+  double albedo = 0.9;                                        // sigma_s / sigma_t
+  double g = 0.0;                                             // Henyey-Greenstein mean cosine
+  double eta = 1.0;                                           // n_medium / n_outside
+  double thickness = std::numeric_limits<double>::infinity();  // optical thickness sigma_t d; inf = half-space
+  Incidence incidence = Incidence::Normal;
+  double incidence_deg = 0.0;                                 // angle of a collimated beam (Normal incidence)
+  std::uint64_t photons = 1000000;
+  std::uint64_t seed = 1;
+  int threads = 0;                                            // 0 = all cores
+  double roulette_threshold = 1e-3;  // weights below this play Russian roulette (survival 0.1)
+};
+
+struct SlabResult {
+  Estimate specular_reflectance;         // reflected at the first surface, per incident power
+  Estimate diffuse_reflectance;          // leaving the top after entering, per incident power
+  Estimate diffuse_reflectance_per_refracted;  // the same per power that entered the medium
+  Estimate transmittance;                // leaving the bottom, per incident power (includes unscattered)
+  Estimate unscattered_transmittance;    // leaving the bottom without scattering, per incident power
+  std::uint64_t photons = 0;
+  double seconds = 0.0;
+};
+
+// Throws lucent::Error naming the parameter when a value is out of range.
+SlabResult simulate_slab(const SlabConfig& config);
+
+}  // namespace lucent::reference
