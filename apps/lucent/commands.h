@@ -8,5 +8,8 @@ void add_render_command(CLI::App& app);
 void add_bssrdf_command(CLI::App& app);
 void add_materials_command(CLI::App& app);
 void add_slab_command(CLI::App& app);
+void add_reference_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
+void add_tonemap_command(CLI::App& app);
 
 }  // namespace lucent::cli

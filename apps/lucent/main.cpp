@@ -11,6 +11,9 @@ int main(int argc, char** argv) {
   lucent::cli::add_bssrdf_command(app);
   lucent::cli::add_materials_command(app);
   lucent::cli::add_slab_command(app);
+  lucent::cli::add_reference_command(app);
+  lucent::cli::add_compare_command(app);
+  lucent::cli::add_tonemap_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

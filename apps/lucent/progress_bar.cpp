@@ -13,6 +13,8 @@ void ProgressBar::update(int done) {
   constexpr int kWidth = 30;
   int filled = done * kWidth / total_;
   double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (done < total_ && elapsed - last_draw_ < 0.25) return;  // redraw at most four times a second
+  last_draw_ = elapsed;
   double left = done > 0 ? elapsed * (total_ - done) / done : 0.0;
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(kWidth, '.');

@@ -16,6 +16,7 @@ class ProgressBar {
   int total_;
   std::chrono::steady_clock::time_point start_;
   bool enabled_;
+  double last_draw_ = -1.0;  // seconds since start of the last redraw
 };
 
 }  // namespace lucent::cli

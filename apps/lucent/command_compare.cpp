@@ -1,0 +1,80 @@
+// command_compare.cpp: `lucent compare A B`: error of image A against reference B (EXR), on linear and on
+// tone-mapped values, with a heat-map difference image. B's standard error is read from B.stderr.exr if present.
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "image/image_metrics.h"
+#include "lucent/error.h"
+
+namespace lucent::cli {
+namespace {
+
+struct CompareOptions {
+  std::string a, b, diff;
+  float exposure = 0.0f;
+  double scale = 0.0;
+  bool json = false;
+};
+
+nlohmann::json to_json(const ImageError& e) {
+  return {{"rmse", {e.rmse[0], e.rmse[1], e.rmse[2]}}, {"rmse_rgb", e.rmse_rgb},
+          {"relative_mse", e.relative_mse},             {"mean_error", e.mean_error},
+          {"mean_error_se", e.mean_error_se},           {"psnr_db", e.psnr_db},
+          {"reference_noise_rms", e.reference_noise_rms}};
+}
+
+void run(const CompareOptions& o) {
+  ImageRGBA32F a = read_exr(o.a), b = read_exr(o.b);
+  std::filesystem::path p(o.b);
+  std::string se_path = (p.parent_path() / (p.stem().string() + ".stderr.exr")).string();
+  std::optional<ImageRGBA32F> se;
+  if (std::filesystem::exists(se_path)) se = read_exr(se_path);
+  ImageError linear = image_error(a, b, se ? &*se : nullptr);
+  ImageError display = display_error(a, b, o.exposure);
+  if (!o.diff.empty()) {
+    double scale = o.scale > 0.0 ? o.scale : std::max(1e-6, 4.0 * linear.rmse_rgb);
+    write_png(o.diff, heat_map(a, b, scale));
+  }
+  if (o.json) {
+    fmt::print("{}\n", nlohmann::json{{"a", o.a}, {"b", o.b}, {"linear", to_json(linear)},
+                                      {"display", to_json(display)}}.dump(2));
+    return;
+  }
+  fmt::print("{} vs {} ({}x{})\n", o.a, o.b, a.width, a.height);
+  for (auto [name, e] : {std::pair{"linear", linear}, std::pair{"display", display}})
+    fmt::print("  {:<8} RMSE r/g/b {:.5f} {:.5f} {:.5f}  sqrt(dr2+dg2+db2) {:.5f}  relMSE {:.5f}  mean error "
+               "{:+.5f} +- {:.5f}  PSNR {:.2f} dB\n",
+               name, e.rmse[0], e.rmse[1], e.rmse[2], e.rmse_rgb, e.relative_mse, e.mean_error, e.mean_error_se,
+               e.psnr_db);
+  if (se) fmt::print("  reference noise (RMS standard error) {:.5f}\n", linear.reference_noise_rms);
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand("compare", "error of image A (EXR) against reference B (EXR)");
+  cmd->add_option("a", o->a, "image to measure (EXR)")->required();
+  cmd->add_option("b", o->b, "reference (EXR); B.stderr.exr is used when present")->required();
+  cmd->add_option("--diff", o->diff, "write a heat map of sqrt(dr^2+dg^2+db^2) (PNG)");
+  cmd->add_option("--diff-scale", o->scale, "radiance difference shown as white (default 4 x RMSE)");
+  cmd->add_option("--exposure", o->exposure, "exposure [stops] for the tone-mapped comparison")->capture_default_str();
+  cmd->add_flag("--json", o->json, "print JSON");
+  cmd->callback([o] { run(*o); });
+}
+
+void add_tonemap_command(CLI::App& app) {
+  auto input = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  auto exposure = std::make_shared<float>(0.0f);
+  CLI::App* cmd = app.add_subcommand("tonemap", "tone-map an EXR to PNG (ACES, sRGB), as lucent render does");
+  cmd->add_option("input", *input, "linear EXR")->required();
+  cmd->add_option("-o,--output", *output, "PNG")->required();
+  cmd->add_option("--exposure", *exposure, "exposure [stops]")->capture_default_str();
+  cmd->callback([input, output, exposure] { write_png(*output, to_display(read_exr(*input), *exposure)); });
+}
+
+}  // namespace lucent::cli

@@ -1,0 +1,85 @@
+// image_metrics.cpp: see image_metrics.h.
+#include "image/image_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "lucent/error.h"
+#include "shared/tonemap.h"
+
+namespace lucent {
+
+ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error) {
+  if (a.width != b.width || a.height != b.height)
+    throw Error(fmt::format("images differ in size: {}x{} and {}x{}", a.width, a.height, b.width, b.height));
+  ImageError e;
+  double sum_sq[3] = {0, 0, 0}, sum_rel = 0.0, sum_err = 0.0, sum_var = 0.0, peak = 0.0;
+  std::size_t n = a.pixels.size() / 4;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      double x = a.pixels[4 * i + c], y = b.pixels[4 * i + c], d = x - y;
+      sum_sq[c] += d * d;
+      sum_rel += d * d / (y * y + 1e-2);
+      sum_err += d;
+      peak = std::max(peak, y);
+      if (standard_error) sum_var += double(standard_error->pixels[4 * i + c]) * standard_error->pixels[4 * i + c];
+    }
+  double mse_all = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    e.rmse[c] = std::sqrt(sum_sq[c] / static_cast<double>(n));
+    mse_all += sum_sq[c] / (3.0 * static_cast<double>(n));
+  }
+  e.rmse_rgb = std::sqrt((sum_sq[0] + sum_sq[1] + sum_sq[2]) / static_cast<double>(n));
+  e.relative_mse = sum_rel / (3.0 * static_cast<double>(n));
+  e.mean_error = sum_err / (3.0 * static_cast<double>(n));
+  e.mean_error_se = std::sqrt(sum_var) / (3.0 * static_cast<double>(n));
+  e.reference_noise_rms = std::sqrt(sum_var / (3.0 * static_cast<double>(n)));
+  e.psnr_db = mse_all > 0.0 ? 10.0 * std::log10(std::max(peak, 1e-12) * std::max(peak, 1e-12) / mse_all) : 1e9;
+  return e;
+}
+
+ImageRGBA32F tonemapped(const ImageRGBA32F& image, float exposure) {
+  ImageRGBA32F out = image;
+  float scale = std::exp2(exposure);
+  for (std::size_t i = 0; i < out.pixels.size(); i += 4) {
+    glm::vec3 v = shader::tonemap(glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]), scale,
+                                  LUCENT_TONEMAP_ACES);
+    out.pixels[i] = v.x, out.pixels[i + 1] = v.y, out.pixels[i + 2] = v.z, out.pixels[i + 3] = 1.0f;
+  }
+  return out;
+}
+
+ImageError display_error(const ImageRGBA32F& a, const ImageRGBA32F& b, float exposure) {
+  ImageError e = image_error(tonemapped(a, exposure), tonemapped(b, exposure));
+  e.psnr_db = e.rmse_rgb > 0.0 ? 10.0 * std::log10(3.0 / (e.rmse_rgb * e.rmse_rgb)) : 1e9;  // peak 1 per channel
+  return e;
+}
+
+ImageRGBA8 to_display(const ImageRGBA32F& image, float exposure) {
+  ImageRGBA32F t = tonemapped(image, exposure);
+  ImageRGBA8 out{image.width, image.height, std::vector<std::uint8_t>(t.pixels.size())};
+  for (std::size_t i = 0; i < t.pixels.size(); ++i)
+    out.pixels[i] = static_cast<std::uint8_t>(std::lround(std::clamp(t.pixels[i], 0.0f, 1.0f) * 255.0f));
+  return out;
+}
+
+ImageRGBA8 heat_map(const ImageRGBA32F& a, const ImageRGBA32F& b, double scale) {
+  ImageRGBA8 out{a.width, a.height, std::vector<std::uint8_t>(a.pixels.size())};
+  for (std::size_t i = 0; i < a.pixels.size(); i += 4) {
+    double d2 = 0.0;
+    for (std::size_t c = 0; c < 3; ++c) d2 += std::pow(double(a.pixels[i + c]) - b.pixels[i + c], 2.0);
+    double x = std::clamp(std::sqrt(d2) / scale, 0.0, 1.0);
+    // black -> blue -> red -> yellow -> white
+    double r = std::clamp(3.0 * x - 1.0, 0.0, 1.0), g = std::clamp(3.0 * x - 2.0, 0.0, 1.0);
+    double bl = x < 1.0 / 3.0 ? 3.0 * x : std::clamp(2.0 - 3.0 * x, 0.0, 1.0) + std::clamp(3.0 * x - 2.0, 0.0, 1.0);
+    out.pixels[i] = static_cast<std::uint8_t>(255.0 * r);
+    out.pixels[i + 1] = static_cast<std::uint8_t>(255.0 * g);
+    out.pixels[i + 2] = static_cast<std::uint8_t>(255.0 * std::min(1.0, bl));
+    out.pixels[i + 3] = 255;
+  }
+  return out;
+}
+
+}  // namespace lucent

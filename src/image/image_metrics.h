@@ -1,0 +1,30 @@
+// image_metrics.h: error of an image against a reference: RMSE per channel, Dal Corso et al.'s
+// sqrt(dr^2 + dg^2 + db^2) (Fig. 8), relative MSE, mean error with its standard error (when the reference
+// carries one), PSNR, on linear and on tone-mapped values; and a heat-map difference image.
+#pragma once
+#include <string>
+
+#include "lucent/image.h"
+
+namespace lucent {
+
+struct ImageError {
+  double rmse[3] = {0, 0, 0};      // per channel
+  double rmse_rgb = 0.0;           // sqrt(mean over pixels of dr^2 + dg^2 + db^2)
+  double relative_mse = 0.0;       // mean of (a - b)^2 / (b^2 + 1e-2) over pixels and channels
+  double mean_error = 0.0;         // mean of (a - b) over pixels and channels
+  double mean_error_se = 0.0;      // its standard error from the reference's per-pixel errors (0 if none)
+  double psnr_db = 0.0;            // 10 log10(peak^2 / MSE), peak = max of the reference (1 for display values)
+  double reference_noise_rms = 0.0;  // RMS of the reference's per-pixel standard error (0 if none)
+};
+
+// `standard_error` may be null. Both images must have the same size (throws lucent::Error otherwise).
+ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error = nullptr);
+// The same on tone-mapped values in [0, 1] (exposure in stops, ACES, sRGB).
+ImageError display_error(const ImageRGBA32F& a, const ImageRGBA32F& b, float exposure);
+ImageRGBA32F tonemapped(const ImageRGBA32F& image, float exposure);  // display values in [0, 1]
+ImageRGBA8 to_display(const ImageRGBA32F& image, float exposure);    // tone-mapped 8-bit
+// |a - b| per pixel (sqrt(dr^2+dg^2+db^2)) as a heat map (black, blue, red, yellow, white) scaled to `scale`.
+ImageRGBA8 heat_map(const ImageRGBA32F& a, const ImageRGBA32F& b, double scale);
+
+}  // namespace lucent

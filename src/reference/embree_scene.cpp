@@ -1,0 +1,138 @@
+// embree_scene.cpp: see embree_scene.h.
+#include "reference/embree_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "lucent/error.h"
+
+namespace lucent::reference {
+namespace {
+
+ObjectData object_data(const SceneObject& object, float scale_mm) {
+  ObjectData d;
+  glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(object.world_from_object)));
+  for (std::size_t i = 0; i < object.mesh.positions.size(); ++i) {
+    d.positions.push_back(glm::vec3(object.world_from_object * glm::vec4(object.mesh.positions[i], 1.0f)));
+    d.normals.push_back(glm::normalize(normal_matrix * object.mesh.normals[i]));
+  }
+  d.indices = object.mesh.indices;
+  double total = 0.0;
+  for (std::size_t t = 0; t + 2 < d.indices.size(); t += 3) {
+    glm::dvec3 a = d.positions[d.indices[t]], b = d.positions[d.indices[t + 1]], c = d.positions[d.indices[t + 2]];
+    total += 0.5 * glm::length(glm::cross(b - a, c - a));
+    d.triangle_cdf.push_back(total);
+  }
+  for (double& v : d.triangle_cdf) v /= total;
+  d.area = total;
+  d.albedo = object.albedo;
+  if (object.material) {
+    const Material& m = *object.material;
+    d.translucent = true;
+    d.sigma_a = glm::dvec3(m.sigma_a) * static_cast<double>(scale_mm);
+    d.sigma_s = glm::dvec3(m.sigma_s) * static_cast<double>(scale_mm);
+    d.g = m.g;
+    d.eta = m.eta;
+    d.model = static_cast<int>(m.model);
+  }
+  return d;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw Error("Embree: cannot create a device");
+  scene_ = rtcNewScene(device_);
+  glm::dvec3 lo(1e30), hi(-1e30);
+  for (const SceneObject& object : scene.objects) {
+    objects_.push_back(object_data(object, scene.scale_mm));
+    const ObjectData& d = objects_.back();
+    RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), d.positions.size()));
+    for (std::size_t i = 0; i < d.positions.size(); ++i) {
+      for (int k = 0; k < 3; ++k) vertices[3 * i + static_cast<std::size_t>(k)] = d.positions[i][k];
+      lo = glm::min(lo, glm::dvec3(d.positions[i])), hi = glm::max(hi, glm::dvec3(d.positions[i]));
+    }
+    auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), d.indices.size() / 3));
+    std::copy(d.indices.begin(), d.indices.end(), indices);
+    rtcCommitGeometry(geometry);
+    unsigned id = rtcAttachGeometry(scene_, geometry);
+    rtcReleaseGeometry(geometry);
+    if (object_of_geometry_.size() <= id) object_of_geometry_.resize(id + 1, -1);
+    object_of_geometry_[id] = static_cast<int>(objects_.size() - 1);
+  }
+  rtcCommitScene(scene_);
+  radius_ = 0.5 * glm::length(hi - lo);
+  epsilon_ = 1e-5 * radius_;
+}
+
+EmbreeScene::~EmbreeScene() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(origin.x), rh.ray.org_y = static_cast<float>(origin.y);
+  rh.ray.org_z = static_cast<float>(origin.z);
+  rh.ray.dir_x = static_cast<float>(direction.x), rh.ray.dir_y = static_cast<float>(direction.y);
+  rh.ray.dir_z = static_cast<float>(direction.z);
+  rh.ray.tnear = static_cast<float>(epsilon_);
+  rh.ray.tfar = static_cast<float>(std::min(t_max, 1e30));
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  SurfaceHit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.object = object_of_geometry_[rh.hit.geomID];
+  hit.t = rh.ray.tfar;
+  hit.position = origin + hit.t * direction;
+  const ObjectData& d = objects_[static_cast<std::size_t>(hit.object)];
+  std::size_t t = 3 * static_cast<std::size_t>(rh.hit.primID);
+  double u = rh.hit.u, v = rh.hit.v;
+  glm::dvec3 n = (1.0 - u - v) * glm::dvec3(d.normals[d.indices[t]]) + u * glm::dvec3(d.normals[d.indices[t + 1]]) +
+                 v * glm::dvec3(d.normals[d.indices[t + 2]]);
+  hit.normal = glm::normalize(n);
+  glm::dvec3 ng = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+  hit.geometric_normal = glm::dot(ng, hit.normal) < 0.0 ? -ng : ng;
+  return hit;
+}
+
+bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(origin.x), ray.org_y = static_cast<float>(origin.y);
+  ray.org_z = static_cast<float>(origin.z);
+  ray.dir_x = static_cast<float>(direction.x), ray.dir_y = static_cast<float>(direction.y);
+  ray.dir_z = static_cast<float>(direction.z);
+  ray.tnear = static_cast<float>(epsilon_);
+  ray.tfar = static_cast<float>(std::min(t_max, 1e30));
+  ray.mask = 0xffffffffu;
+  rtcOccluded1(scene_, &context, &ray);
+  return ray.tfar < 0.0f;
+}
+
+SurfaceSample EmbreeScene::sample_surface(int object, double u0, double u1, double u2) const {
+  const ObjectData& d = objects_[static_cast<std::size_t>(object)];
+  auto it = std::lower_bound(d.triangle_cdf.begin(), d.triangle_cdf.end(), u0);
+  std::size_t t = 3 * static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - d.triangle_cdf.begin(),
+                                                                          static_cast<std::ptrdiff_t>(d.triangle_cdf.size()) - 1));
+  // Uniform barycentrics (square-root mapping).
+  double s = std::sqrt(u1), b0 = 1.0 - s, b1 = u2 * s, b2 = 1.0 - b0 - b1;
+  glm::dvec3 p = b0 * glm::dvec3(d.positions[d.indices[t]]) + b1 * glm::dvec3(d.positions[d.indices[t + 1]]) +
+                 b2 * glm::dvec3(d.positions[d.indices[t + 2]]);
+  glm::dvec3 n = b0 * glm::dvec3(d.normals[d.indices[t]]) + b1 * glm::dvec3(d.normals[d.indices[t + 1]]) +
+                 b2 * glm::dvec3(d.normals[d.indices[t + 2]]);
+  return {p, glm::normalize(n), 1.0 / d.area};
+}
+
+}  // namespace lucent::reference

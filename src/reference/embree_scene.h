@@ -1,0 +1,64 @@
+// embree_scene.h: a lucent::Scene as an Embree 3 ray-tracing scene for the CPU references: world-space
+// triangles, one Embree geometry per object, interpolated shading normals, materials in scene units and
+// uniform area sampling of each object's surface.
+#pragma once
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "lucent/scene.h"
+
+namespace lucent::reference {
+
+struct SurfaceHit {
+  double t = 0.0;
+  int object = -1;           // index into Scene::objects; -1 = miss
+  glm::dvec3 position{0.0};  // [scene units]
+  glm::dvec3 normal{0.0};    // interpolated shading normal, unit, pointing out of the object
+  glm::dvec3 geometric_normal{0.0};  // unit, on the same side as `normal`
+  bool hit() const { return object >= 0; }
+};
+
+// Per object: optical properties in scene units and the data for area sampling.
+struct ObjectData {
+  bool translucent = false;
+  glm::dvec3 albedo{0.0};
+  glm::dvec3 sigma_a{0.0}, sigma_s{0.0}, g{0.0};  // [1/scene unit], unreduced sigma_s
+  double eta = 1.0;
+  int model = 1;                                  // LUCENT_MODEL_*
+  double area = 0.0;                              // [scene units^2]
+  std::vector<double> triangle_cdf;               // cumulative area, normalised
+  std::vector<glm::vec3> positions, normals;      // world space
+  std::vector<std::uint32_t> indices;
+};
+
+struct SurfaceSample {
+  glm::dvec3 position, normal;
+  double pdf_area;  // 1 / area
+};
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(const Scene& scene);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  SurfaceHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
+  bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
+
+  const ObjectData& object(int index) const { return objects_[static_cast<std::size_t>(index)]; }
+  SurfaceSample sample_surface(int object, double u0, double u1, double u2) const;
+  double ray_epsilon() const { return epsilon_; }  // self-intersection offset [scene units]
+  double radius() const { return radius_; }        // bounding radius of the scene [scene units]
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<ObjectData> objects_;
+  std::vector<int> object_of_geometry_;
+  double epsilon_ = 1e-4, radius_ = 1.0;
+};
+
+}  // namespace lucent::reference

@@ -1,0 +1,40 @@
+// integrators.h: the two CPU ground truths, radiance along one camera ray.
+//
+// volpath (the physics): brute-force volumetric path tracing. Translucent interiors are homogeneous media
+// (sigma_a, sigma_s, per-band Henyey-Greenstein g) behind a smooth dielectric boundary (Fresnel reflection and
+// refraction, total internal reflection, eta); opaque objects are Lambertian with full global illumination.
+// Directional lights are deltas, so light reaches a medium vertex only through a refracting boundary point:
+// next-event estimation finds that point by fixed-point iteration on the refraction direction and weights the
+// refracted beam by its Fresnel transmittance, its compression (finite differences of the refracted beam through
+// the interpolated normal field) and the attenuation to the vertex. Russian roulette keeps it unbiased.
+// Known limits: one entry point per medium vertex (the nearest along the refracted direction; thin parts with
+// several entry points miss the others); nested or touching translucent objects are not supported.
+//
+// bssrdf (the model): Monte Carlo integration of Dal Corso et al.'s eq. 1 / Frisvad et al.'s progressive
+// reference over the object's surface with the same S_d code the shaders run: x_i uniform by area, Russian
+// roulette on exp(-sigma_tr r) with the smallest band's sigma_tr, light visibility by shadow rays, Fresnel
+// transmittance in and out. Opaque objects get direct light only, as in the real-time methods.
+//
+// Both: camera rays that miss show the background radiance; rays that escape later carry nothing (the
+// background does not light the scene, as in the real-time methods).
+#pragma once
+#include <glm/glm.hpp>
+
+#include "lucent/scene.h"
+#include "reference/embree_scene.h"
+#include "reference/rng.h"
+
+namespace lucent::reference {
+
+struct ReferenceScene {
+  const Scene& scene;
+  const EmbreeScene& rt;
+};
+
+glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng);
+glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng);
+
+// Direct light on an opaque Lambertian surface point (shadow rays to every directional light).
+glm::dvec3 direct_light_lambertian(const ReferenceScene& s, const SurfaceHit& hit, glm::dvec3 normal);
+
+}  // namespace lucent::reference

@@ -1,0 +1,112 @@
+// reference_renderer.cpp: see reference_renderer.h.
+#include "reference/reference_renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "lucent/error.h"
+#include "reference/embree_scene.h"
+#include "reference/integrators.h"
+#include "reference/rng.h"
+
+namespace lucent::reference {
+
+std::string_view to_string(Integrator integrator) { return integrator == Integrator::Volpath ? "volpath" : "bssrdf"; }
+
+void camera_ray(const Camera& camera, int width, int height, double px, double py, glm::dvec3& origin,
+                glm::dvec3& direction) {
+  glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target - camera.eye));
+  glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(camera.up)));
+  glm::dvec3 up = glm::cross(right, forward);
+  double tan_half = std::tan(glm::radians(static_cast<double>(camera.fov_y_deg)) / 2.0);
+  double aspect = static_cast<double>(width) / height;
+  double sx = (2.0 * px / width - 1.0) * tan_half * aspect;
+  double sy = (1.0 - 2.0 * py / height) * tan_half;
+  origin = camera.eye;
+  direction = glm::normalize(forward + sx * right + sy * up);
+}
+
+namespace {
+
+struct PixelSums {
+  std::vector<glm::dvec3> sum, sum2;
+};
+
+PixelSums sums_from(const ReferenceImage& image) {
+  std::size_t n = image.mean.pixels.size() / 4;
+  PixelSums s{std::vector<glm::dvec3>(n), std::vector<glm::dvec3>(n)};
+  double count = image.samples_per_pixel;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      double mean = image.mean.pixels[4 * i + static_cast<std::size_t>(c)];
+      double se = image.standard_error.pixels[4 * i + static_cast<std::size_t>(c)];
+      s.sum[i][c] = mean * count;
+      s.sum2[i][c] = se * se * count * std::max(1.0, count - 1.0) + count * mean * mean;
+    }
+  return s;
+}
+
+}  // namespace
+
+ReferenceImage render_reference(const Scene& scene, const ReferenceSettings& settings, const ReferenceImage* previous) {
+  const int width = scene.render.width, height = scene.render.height;
+  if (settings.samples_per_pixel < 1) throw Error("--spp must be at least 1");
+  if (previous && (previous->mean.width != width || previous->mean.height != height))
+    throw Error(fmt::format("cannot add samples: the existing reference is {}x{}, the scene renders {}x{}",
+                            previous->mean.width, previous->mean.height, width, height));
+  auto start = std::chrono::steady_clock::now();
+  EmbreeScene rt(scene);
+  ReferenceScene rs{scene, rt};
+  std::size_t pixels = static_cast<std::size_t>(width) * height;
+  PixelSums sums = previous ? sums_from(*previous) : PixelSums{std::vector<glm::dvec3>(pixels), std::vector<glm::dvec3>(pixels)};
+  int first_sample = previous ? previous->samples_per_pixel : 0;
+  int total_samples = first_sample + settings.samples_per_pixel;
+  auto radiance = settings.integrator == Integrator::Volpath ? volpath_radiance : bssrdf_radiance;
+
+  std::unique_ptr<tbb::global_control> limit;
+  if (settings.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, settings.threads);
+  const int rows_per_chunk = std::max(1, height / 50);
+  for (int row0 = 0; row0 < height; row0 += rows_per_chunk) {
+    int row1 = std::min(height, row0 + rows_per_chunk);
+    tbb::parallel_for(row0 * width, row1 * width, [&](int index) {
+      int x = index % width, y = index / width;
+      auto pixel = static_cast<std::size_t>(index);
+      for (int sample = first_sample; sample < total_samples; ++sample) {
+        Rng rng(settings.seed, (static_cast<std::uint64_t>(pixel) << 24) ^ static_cast<std::uint64_t>(sample));
+        double jx = settings.jitter ? rng.uniform() : 0.5, jy = settings.jitter ? rng.uniform() : 0.5;
+        glm::dvec3 origin, direction;
+        camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
+        glm::dvec3 L = radiance(rs, origin, direction, rng);
+        if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
+        sums.sum[pixel] += L;
+        sums.sum2[pixel] += L * L;
+      }
+    });
+    if (settings.progress) settings.progress(static_cast<double>(row1) / height);
+  }
+
+  ReferenceImage out;
+  out.samples_per_pixel = total_samples;
+  out.mean = {width, height, std::vector<float>(pixels * 4)};
+  out.standard_error = {width, height, std::vector<float>(pixels * 4)};
+  double n = total_samples;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      double mean = sums.sum[i][c] / n;
+      double variance = n > 1 ? std::max(0.0, (sums.sum2[i][c] - n * mean * mean) / (n - 1.0)) : 0.0;
+      out.mean.pixels[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(mean);
+      out.standard_error.pixels[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::sqrt(variance / n));
+    }
+    out.mean.pixels[4 * i + 3] = 1.0f;
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace lucent::reference

@@ -1,0 +1,41 @@
+// reference_renderer.h: renders a scene with one of the CPU references, progressively, deterministically from
+// (seed, pixel, sample), producing the mean image and the per-pixel standard error.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "lucent/image.h"
+#include "lucent/scene.h"
+
+namespace lucent::reference {
+
+enum class Integrator { Volpath, Bssrdf };
+std::string_view to_string(Integrator integrator);
+
+struct ReferenceSettings {
+  Integrator integrator = Integrator::Volpath;
+  int samples_per_pixel = 16;
+  std::uint64_t seed = 1;
+  int threads = 0;      // 0 = all cores
+  bool jitter = false;  // false: rays through pixel centres, as the rasterizer samples
+  std::function<void(double done_fraction)> progress;
+};
+
+struct ReferenceImage {
+  ImageRGBA32F mean;            // linear radiance; alpha = 1
+  ImageRGBA32F standard_error;  // per channel standard error of the mean; alpha = 0
+  int samples_per_pixel = 0;
+  double seconds = 0.0;
+};
+
+// Renders `settings.samples_per_pixel` samples; with `previous`, adds them to its samples (sample indices
+// continue after previous->samples_per_pixel, so two runs of S equal one run of 2S up to float rounding).
+ReferenceImage render_reference(const Scene& scene, const ReferenceSettings& settings,
+                                const ReferenceImage* previous = nullptr);
+
+// The camera ray through pixel (x + dx, y + dy), y = 0 the top row, matching the rasterizer's projection.
+void camera_ray(const Camera& camera, int width, int height, double px, double py, glm::dvec3& origin,
+                glm::dvec3& direction);
+
+}  // namespace lucent::reference

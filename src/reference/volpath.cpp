@@ -1,0 +1,206 @@
+// volpath.cpp: the physics reference (see integrators.h).
+#include <algorithm>
+#include <cmath>
+
+#include "reference/integrators.h"
+#include "reference/random_walk.h"
+
+namespace lucent::reference {
+namespace {
+
+constexpr int kMaxSurfaceBounces = 64;
+constexpr int kRouletteAfter = 8;  // events before Russian roulette on the throughput starts
+
+double mean(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
+double max_component(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
+
+glm::dvec3 exp_neg(const glm::dvec3& v) { return glm::dvec3(std::exp(-v.x), std::exp(-v.y), std::exp(-v.z)); }
+
+glm::dvec3 hg_pdf_bands(double cos_theta, const glm::dvec3& g) {
+  return {henyey_greenstein_pdf(cos_theta, g.x), henyey_greenstein_pdf(cos_theta, g.y),
+          henyey_greenstein_pdf(cos_theta, g.z)};
+}
+
+// The refracted beam of a directional light that reaches medium point x: entry point, inside direction, the
+// irradiance factor (transmittance x beam compression) and the path length inside.
+struct RefractedBeam {
+  bool found = false;
+  glm::dvec3 entry, direction;  // direction: the way the light travels inside
+  double irradiance_factor = 0.0;
+  double distance = 0.0;
+};
+
+// Where the beam through offset `offset` (perpendicular to the light) meets the plane through x perpendicular to
+// the central inside direction; false if it misses the object.
+bool offset_beam_point(const ReferenceScene& s, int object, const RefractedBeam& beam, glm::dvec3 light_dir,
+                       glm::dvec3 offset, glm::dvec3 x, double eta, glm::dvec3& point) {
+  glm::dvec3 start = beam.entry + offset - light_dir * (10.0 * s.rt.ray_epsilon() + 1e-3 * s.rt.radius());
+  SurfaceHit hit = s.rt.intersect(start, light_dir);
+  if (!hit.hit() || hit.object != object || glm::dot(hit.normal, light_dir) >= 0.0) return false;
+  glm::dvec3 t = refract(light_dir, hit.normal, eta);
+  double denominator = glm::dot(t, beam.direction);
+  if (denominator <= 1e-6) return false;
+  point = hit.position + glm::dot(x - hit.position, beam.direction) / denominator * t;
+  return true;
+}
+
+RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 light_dir) {
+  const ObjectData& o = s.rt.object(object);
+  RefractedBeam beam;
+  glm::dvec3 toward = -light_dir;
+  SurfaceHit hit;
+  for (int iteration = 0; iteration < 16; ++iteration) {
+    hit = s.rt.intersect(x, toward);
+    if (!hit.hit() || hit.object != object) return beam;
+    if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;  // the boundary faces away from the light
+    glm::dvec3 inside = refract(light_dir, hit.normal, o.eta);
+    glm::dvec3 next = -inside;
+    bool converged = glm::length(next - toward) < 1e-9;
+    toward = next;
+    if (converged) break;
+  }
+  hit = s.rt.intersect(x, toward);
+  if (!hit.hit() || hit.object != object || glm::dot(hit.normal, light_dir) >= 0.0) return beam;
+  beam.entry = hit.position;
+  beam.direction = -toward;
+  beam.distance = hit.t;
+  double cos_i = -glm::dot(light_dir, hit.normal);
+  double T12 = 1.0 - dielectric_reflectance(light_dir, hit.normal, o.eta);
+  // Beam compression: a parallelogram of the incident beam (area delta^2 perpendicular to the light) maps to the
+  // parallelogram spanned by the offset beams in the plane through x perpendicular to the inside direction.
+  double flat = cos_i / std::max(1e-9, glm::dot(-beam.direction, hit.normal));
+  double compression = flat;
+  glm::dvec3 a, b;
+  orthonormal_basis(light_dir, a, b);
+  double delta = 1e-4 * s.rt.radius();
+  glm::dvec3 pa, pb;
+  if (offset_beam_point(s, object, beam, light_dir, delta * a, x, o.eta, pa) &&
+      offset_beam_point(s, object, beam, light_dir, delta * b, x, o.eta, pb)) {
+    double area = glm::length(glm::cross(pa - x, pb - x));
+    if (area > 0.0) compression = delta * delta / area;
+  }
+  beam.irradiance_factor = T12 * compression;
+  beam.found = true;
+  return beam;
+}
+
+// Next-event estimation at a medium scattering vertex: light in-scattered toward -path_dir.
+glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 path_dir) {
+  const ObjectData& o = s.rt.object(object);
+  glm::dvec3 L(0.0);
+  for (const DirectionalLight& light : s.scene.lights) {
+    glm::dvec3 light_dir = glm::normalize(glm::dvec3(light.direction));
+    RefractedBeam beam = find_refracted_beam(s, object, x, light_dir);
+    if (!beam.found) continue;
+    glm::dvec3 entry_outside = beam.entry - s.rt.ray_epsilon() * light_dir * 2.0;
+    if (s.rt.occluded(entry_outside, -light_dir)) continue;
+    glm::dvec3 transmittance = exp_neg((o.sigma_a + o.sigma_s) * beam.distance);
+    glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
+    L += glm::dvec3(light.radiance) * beam.irradiance_factor * transmittance * phase;
+  }
+  return L;
+}
+
+struct PathState {
+  glm::dvec3 origin, direction;
+  glm::dvec3 throughput{1.0};
+  glm::dvec3 radiance{0.0};
+  int medium = -1;  // object whose interior the path is in
+  int events = 0;
+};
+
+bool roulette(PathState& p, Rng& rng) {
+  if (++p.events < kRouletteAfter) return true;
+  double survive = std::min(0.95, max_component(p.throughput));
+  if (survive <= 0.0 || rng.uniform() >= survive) return false;
+  p.throughput /= survive;
+  return true;
+}
+
+// Inside a medium: scatter (with next-event estimation) or reach the boundary and reflect or leave.
+bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
+  const ObjectData& o = s.rt.object(p.medium);
+  glm::dvec3 sigma_t = o.sigma_a + o.sigma_s;
+  SurfaceHit boundary = s.rt.intersect(p.origin, p.direction);
+  if (!boundary.hit()) return false;  // numerical leak out of a closed mesh
+  int channel = std::min(2, static_cast<int>(rng.uniform() * 3.0));
+  double t = -std::log(1.0 - rng.uniform()) / sigma_t[channel];
+  if (t < boundary.t) {
+    // Scattering vertex; distance pdf averaged over the bands (spectral MIS).
+    glm::dvec3 attenuation = exp_neg(sigma_t * t);
+    p.throughput *= o.sigma_s * attenuation / mean(sigma_t * attenuation);
+    glm::dvec3 x = p.origin + t * p.direction;
+    p.radiance += p.throughput * medium_next_event(s, p.medium, x, p.direction);
+    int phase_channel = std::min(2, static_cast<int>(rng.uniform() * 3.0));
+    glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[phase_channel]);
+    glm::dvec3 pdfs = hg_pdf_bands(glm::dot(next, p.direction), o.g);
+    p.throughput *= pdfs / mean(pdfs);
+    p.origin = x, p.direction = next;
+    return roulette(p, rng);
+  }
+  glm::dvec3 attenuation = exp_neg(sigma_t * boundary.t);
+  p.throughput *= attenuation / mean(attenuation);
+  // Boundary from inside: relative index 1/eta; reflect with probability F (1 under total internal reflection).
+  glm::dvec3 n = boundary.normal;
+  double F = dielectric_reflectance(p.direction, n, 1.0 / o.eta);
+  p.origin = boundary.position;
+  if (rng.uniform() < F) {
+    p.direction = reflect(p.direction, n);
+    p.origin -= s.rt.ray_epsilon() * boundary.geometric_normal;
+  } else {
+    p.direction = refract(p.direction, n, 1.0 / o.eta);
+    p.throughput *= o.eta * o.eta;  // radiance leaving the denser medium: L_out = L_in / eta^2 seen backward
+    p.origin += s.rt.ray_epsilon() * boundary.geometric_normal;
+    p.medium = -1;
+  }
+  return roulette(p, rng);
+}
+
+// Outside: hit a surface; opaque = Lambertian with next-event estimation, translucent = dielectric boundary.
+bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce) {
+  SurfaceHit hit = s.rt.intersect(p.origin, p.direction);
+  if (!hit.hit()) {
+    if (bounce == 0) p.radiance += p.throughput * glm::dvec3(s.scene.render.background);
+    return false;
+  }
+  const ObjectData& o = s.rt.object(hit.object);
+  glm::dvec3 n = hit.normal, ng = hit.geometric_normal;
+  if (!o.translucent) {
+    if (glm::dot(n, p.direction) > 0.0) n = -n, ng = -ng;
+    p.radiance += p.throughput * direct_light_lambertian(s, hit, n);
+    glm::dvec3 u, v;
+    orthonormal_basis(n, u, v);
+    double r = std::sqrt(rng.uniform()), phi = 2.0 * M_PI * rng.uniform();
+    p.direction = r * std::cos(phi) * u + r * std::sin(phi) * v + std::sqrt(std::max(0.0, 1.0 - r * r)) * n;
+    p.origin = hit.position + s.rt.ray_epsilon() * ng;
+    p.throughput *= o.albedo;  // cosine sampling cancels cos/pi
+    return roulette(p, rng);
+  }
+  if (glm::dot(ng, p.direction) > 0.0) return false;  // reached an inside face from outside: leaky mesh
+  double F = dielectric_reflectance(p.direction, n, o.eta);
+  if (rng.uniform() < F) {
+    p.direction = reflect(p.direction, n);
+    p.origin = hit.position + s.rt.ray_epsilon() * ng;
+  } else {
+    p.direction = refract(p.direction, n, o.eta);
+    p.throughput /= o.eta * o.eta;
+    p.origin = hit.position - s.rt.ray_epsilon() * ng;
+    p.medium = hit.object;
+  }
+  return true;
+}
+
+}  // namespace
+
+glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng) {
+  PathState p;
+  p.origin = origin, p.direction = direction;
+  int bounce = 0;
+  while (bounce < kMaxSurfaceBounces) {
+    bool alive = p.medium >= 0 ? medium_step(s, p, rng) : surface_step(s, p, rng, bounce++);
+    if (!alive) break;
+  }
+  return p.radiance;
+}
+
+}  // namespace lucent::reference
