@@ -1,42 +1,117 @@
 // bssrdf_integrator.cpp: the model reference (see integrators.h).
+//
+// x_i is drawn by one-sample multiple importance sampling (balance heuristic) of two techniques:
+//  - area: uniform over the object's surface (reaches every lit point, also far or behind x_o);
+//  - probe: a point at distance rho from x_o in its tangent plane, rho ~ sigma_tr e^{-sigma_tr rho} for a band
+//    chosen uniformly, projected onto the surface along n_o (one of the object's hits on that line, chosen
+//    uniformly). It captures the near-field peak of the directional dipole (within ~D of x_o at normal
+//    incidence) that area sampling alone almost never hits: on a marble slab area sampling alone returned
+//    0.73 +- 0.07 of the true 1.12 after 4e5 samples.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "bssrdf/model.h"
 #include "reference/integrators.h"
+#include "reference/random_walk.h"
 
 namespace lucent::reference {
 namespace {
 
-// B(x_o) / pi for one area sample of the object's surface (eq. 7 of Dal Corso et al., divided by pi).
-glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm::dvec3 x_o, glm::dvec3 n_o, Rng& rng) {
-  const ObjectData& o = s.rt.object(object);
-  SurfaceSample x_i = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform());
-  // Russian roulette on the exponential falloff of the band that reaches farthest.
-  shader::BandMedium media[3];
-  double sigma_tr_min = 1e30;
-  for (int c = 0; c < 3; ++c) {
-    media[c] = shader::make_band_medium(static_cast<float>(o.sigma_a[c]), static_cast<float>(o.sigma_s[c]),
-                                        static_cast<float>(o.g[c]));
-    sigma_tr_min = std::min(sigma_tr_min, static_cast<double>(media[c].sigma_tr));
+struct Probe {
+  glm::dvec3 x_o, n_o, t1, t2;
+  glm::dvec3 sigma_tr;
+  double half_length;  // of the probe segment along n_o
+};
+
+// All hits of `object` on the segment of the line through `point` along n_o within half_length of the plane.
+std::vector<SurfaceHit> probe_hits(const ReferenceScene& s, const Probe& p, int object, glm::dvec3 point) {
+  std::vector<SurfaceHit> hits;
+  double offset = glm::dot(point - p.x_o, p.n_o);
+  glm::dvec3 start = point + (p.half_length - offset) * p.n_o;
+  double travelled = 0.0;
+  while (travelled < 2.0 * p.half_length && hits.size() < 64) {
+    SurfaceHit hit = s.rt.intersect(start, -p.n_o, 2.0 * p.half_length - travelled);
+    if (!hit.hit()) break;
+    if (hit.object == object) hits.push_back(hit);
+    travelled += hit.t;
+    start = hit.position;
   }
-  double r = glm::length(x_o - x_i.position);
-  double keep = std::exp(-sigma_tr_min * r);
-  if (rng.uniform() >= keep) return glm::dvec3(0.0);
+  return hits;
+}
+
+double probe_plane_pdf(const Probe& p, double rho) {
+  double sum = 0.0;
+  for (int c = 0; c < 3; ++c) sum += p.sigma_tr[c] * std::exp(-p.sigma_tr[c] * rho);
+  return sum / 3.0 / (2.0 * M_PI * std::max(rho, 1e-12));
+}
+
+// Area-measure density of the probe technique at x_i (0 outside the probe segment).
+double probe_pdf(const ReferenceScene& s, const Probe& p, int object, glm::dvec3 x_i, glm::dvec3 n_i) {
+  glm::dvec3 d = x_i - p.x_o;
+  double along = glm::dot(d, p.n_o);
+  if (std::abs(along) > p.half_length) return 0.0;
+  double rho = glm::length(d - along * p.n_o);
+  std::size_t count = probe_hits(s, p, object, x_i).size();
+  if (count == 0) return 0.0;
+  return probe_plane_pdf(p, rho) * std::abs(glm::dot(n_i, p.n_o)) / static_cast<double>(count);
+}
+
+bool sample_probe(const ReferenceScene& s, const Probe& p, int object, Rng& rng, SurfaceHit& out) {
+  int channel = std::min(2, static_cast<int>(rng.uniform() * 3.0));
+  double rho = -std::log(1.0 - rng.uniform()) / p.sigma_tr[channel];
+  double alpha = 2.0 * M_PI * rng.uniform();
+  glm::dvec3 point = p.x_o + rho * (std::cos(alpha) * p.t1 + std::sin(alpha) * p.t2);
+  std::vector<SurfaceHit> hits = probe_hits(s, p, object, point);
+  if (hits.empty()) return false;
+  out = hits[std::min(hits.size() - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(hits.size())))];
+  return true;
+}
+
+// E * integral of S_d T12 cos over the lit surface for one x_i (the integrand, before dividing by the pdf).
+glm::dvec3 integrand(const ReferenceScene& s, const ObjectData& o, const shader::BandMedium* media, glm::dvec3 x_i,
+                     glm::dvec3 n_i, glm::dvec3 x_o, glm::dvec3 n_o) {
   glm::dvec3 sum(0.0);
   for (const DirectionalLight& light : s.scene.lights) {
     glm::dvec3 w_i = -glm::dvec3(light.direction);
-    double cos_i = glm::dot(x_i.normal, w_i);
-    if (cos_i <= 0.0 || s.rt.occluded(x_i.position + s.rt.ray_epsilon() * x_i.normal, w_i)) continue;
+    double cos_i = glm::dot(n_i, w_i);
+    if (cos_i <= 0.0 || s.rt.occluded(x_i + s.rt.ray_epsilon() * n_i, w_i)) continue;
     double T12 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_i));
     for (int c = 0; c < 3; ++c) {
-      double S_d = shader::bssrdf_Sd(o.model, media[c], static_cast<float>(o.eta), glm::vec3(x_i.position),
-                                     glm::vec3(w_i), glm::vec3(x_i.normal), glm::vec3(x_o), glm::vec3(n_o));
+      double S_d = shader::bssrdf_Sd(o.model, media[c], static_cast<float>(o.eta), glm::vec3(x_i), glm::vec3(w_i),
+                                     glm::vec3(n_i), glm::vec3(x_o), glm::vec3(n_o));
       sum[c] += light.radiance[c] * S_d * T12 * cos_i;
     }
   }
-  // B = pi E integral(S_d T12 cos dA); estimator divides by the area pdf and the roulette probability.
-  return sum / (x_i.pdf_area * keep);
+  return sum;
+}
+
+// B(x_o) / pi, one MIS sample.
+glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm::dvec3 x_o, glm::dvec3 n_o, Rng& rng) {
+  const ObjectData& o = s.rt.object(object);
+  shader::BandMedium media[3];
+  Probe probe{x_o, n_o, {}, {}, {}, 0.0};
+  for (int c = 0; c < 3; ++c) {
+    media[c] = shader::make_band_medium(static_cast<float>(o.sigma_a[c]), static_cast<float>(o.sigma_s[c]),
+                                        static_cast<float>(o.g[c]));
+    probe.sigma_tr[c] = media[c].sigma_tr;
+  }
+  orthonormal_basis(n_o, probe.t1, probe.t2);
+  probe.half_length = 10.0 / std::min({probe.sigma_tr.x, probe.sigma_tr.y, probe.sigma_tr.z});
+
+  glm::dvec3 x_i, n_i;
+  if (rng.uniform() < 0.5) {
+    SurfaceSample a = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform());
+    x_i = a.position, n_i = a.normal;
+  } else {
+    SurfaceHit hit;
+    if (!sample_probe(s, probe, object, rng, hit)) return glm::dvec3(0.0);
+    x_i = hit.position, n_i = hit.normal;
+  }
+  glm::dvec3 f = integrand(s, o, media, x_i, n_i, x_o, n_o);
+  if (f == glm::dvec3(0.0)) return f;
+  double pdf = 0.5 / o.area + 0.5 * probe_pdf(s, probe, object, x_i, n_i);
+  return f / pdf;
 }
 
 }  // namespace

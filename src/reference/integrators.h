@@ -10,10 +10,12 @@
 // Known limits: one entry point per medium vertex (the nearest along the refracted direction; thin parts with
 // several entry points miss the others); nested or touching translucent objects are not supported.
 //
-// bssrdf (the model): Monte Carlo integration of Dal Corso et al.'s eq. 1 / Frisvad et al.'s progressive
-// reference over the object's surface with the same S_d code the shaders run: x_i uniform by area, Russian
-// roulette on exp(-sigma_tr r) with the smallest band's sigma_tr, light visibility by shadow rays, Fresnel
-// transmittance in and out. Opaque objects get direct light only, as in the real-time methods.
+// bssrdf (the model): Monte Carlo integration of Dal Corso et al.'s eq. 1 over the object's surface with the
+// same S_d code the shaders run, light visibility by shadow rays, Fresnel transmittance in and out. x_i comes
+// from uniform area sampling combined by multiple importance sampling with exponential probes around x_o (the
+// paper's reference uses area sampling with a Russian roulette on exp(-sigma_tr r); that misses the directional
+// dipole's near-field peak too often to converge in useful time, see bssrdf_integrator.cpp). Opaque objects get
+// direct light only, as in the real-time methods.
 //
 // Both: camera rays that miss show the background radiance; rays that escape later carry nothing (the
 // background does not light the scene, as in the real-time methods).
