@@ -101,17 +101,26 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, 
   return L;
 }
 
+// Chromatic media: distances and phase directions are sampled with one "hero" band per path; every band keeps
+// its throughput divided by the hero's path pdf (throughput) and the ratio of its own path pdf to the hero's
+// (r_u). Contributions are throughput / mean(r_u): the balance heuristic over bands for the whole path
+// (Wilkie et al. 2014; pbrt-v4's rescaled path probabilities). Per-event MIS instead lets one band's weight
+// grow as a product over hundreds of scattering events in high-albedo media (coloured fireflies).
 struct PathState {
   glm::dvec3 origin, direction;
   glm::dvec3 throughput{1.0};
+  glm::dvec3 r_u{1.0};
   glm::dvec3 radiance{0.0};
+  int hero = 0;
   int medium = -1;  // object whose interior the path is in
   int events = 0;
+  glm::dvec3 weight() const { return throughput / mean(r_u); }
+  void add(const glm::dvec3& incoming) { radiance += weight() * incoming; }
 };
 
 bool roulette(PathState& p, Rng& rng) {
   if (++p.events < kRouletteAfter) return true;
-  double survive = std::min(0.95, max_component(p.throughput));
+  double survive = std::min(0.95, max_component(p.weight()));
   if (survive <= 0.0 || rng.uniform() >= survive) return false;
   p.throughput /= survive;
   return true;
@@ -123,23 +132,26 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
   glm::dvec3 sigma_t = o.sigma_a + o.sigma_s;
   SurfaceHit boundary = s.rt.intersect(p.origin, p.direction);
   if (!boundary.hit()) return false;  // numerical leak out of a closed mesh
-  int channel = std::min(2, static_cast<int>(rng.uniform() * 3.0));
-  double t = -std::log(1.0 - rng.uniform()) / sigma_t[channel];
+  double t = -std::log(1.0 - rng.uniform()) / sigma_t[p.hero];
   if (t < boundary.t) {
-    // Scattering vertex; distance pdf averaged over the bands (spectral MIS).
+    // Scattering vertex: distance pdf sigma_t e^{-sigma_t t} of each band relative to the hero's.
     glm::dvec3 attenuation = exp_neg(sigma_t * t);
-    p.throughput *= o.sigma_s * attenuation / mean(sigma_t * attenuation);
+    glm::dvec3 pdf = sigma_t * attenuation;
+    p.throughput *= o.sigma_s * attenuation / pdf[p.hero];
+    p.r_u *= pdf / pdf[p.hero];
     glm::dvec3 x = p.origin + t * p.direction;
-    p.radiance += p.throughput * medium_next_event(s, p.medium, x, p.direction);
-    int phase_channel = std::min(2, static_cast<int>(rng.uniform() * 3.0));
-    glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[phase_channel]);
-    glm::dvec3 pdfs = hg_pdf_bands(glm::dot(next, p.direction), o.g);
-    p.throughput *= pdfs / mean(pdfs);
+    p.add(medium_next_event(s, p.medium, x, p.direction));
+    glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[p.hero]);
+    glm::dvec3 phase = hg_pdf_bands(glm::dot(next, p.direction), o.g);
+    p.throughput *= phase / phase[p.hero];
+    p.r_u *= phase / phase[p.hero];
     p.origin = x, p.direction = next;
     return roulette(p, rng);
   }
+  // Past the boundary: probability e^{-sigma_t t_b} of each band relative to the hero's.
   glm::dvec3 attenuation = exp_neg(sigma_t * boundary.t);
-  p.throughput *= attenuation / mean(attenuation);
+  p.throughput *= attenuation / attenuation[p.hero];
+  p.r_u *= attenuation / attenuation[p.hero];
   // Boundary from inside: relative index 1/eta; reflect with probability F (1 under total internal reflection).
   glm::dvec3 n = boundary.normal;
   double F = dielectric_reflectance(p.direction, n, 1.0 / o.eta);
@@ -160,14 +172,14 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
 bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce) {
   SurfaceHit hit = s.rt.intersect(p.origin, p.direction);
   if (!hit.hit()) {
-    if (bounce == 0) p.radiance += p.throughput * glm::dvec3(s.scene.render.background);
+    if (bounce == 0) p.add(glm::dvec3(s.scene.render.background));
     return false;
   }
   const ObjectData& o = s.rt.object(hit.object);
   glm::dvec3 n = hit.normal, ng = hit.geometric_normal;
   if (!o.translucent) {
     if (glm::dot(n, p.direction) > 0.0) n = -n, ng = -ng;
-    p.radiance += p.throughput * direct_light_lambertian(s, hit, n);
+    p.add(direct_light_lambertian(s, hit, n));
     glm::dvec3 u, v;
     orthonormal_basis(n, u, v);
     double r = std::sqrt(rng.uniform()), phi = 2.0 * M_PI * rng.uniform();
@@ -195,6 +207,7 @@ bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce) {
 glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng) {
   PathState p;
   p.origin = origin, p.direction = direction;
+  p.hero = std::min(2, static_cast<int>(rng.uniform() * 3.0));
   int bounce = 0;
   while (bounce < kMaxSurfaceBounces) {
     bool alive = p.medium >= 0 ? medium_step(s, p, rng) : surface_step(s, p, rng, bounce++);
