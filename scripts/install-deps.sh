@@ -17,6 +17,8 @@ packages=(
   libimgui-dev xvfb xauth
   # example assets: the Stanford bunny at /usr/share/glmark2/models/bunny.obj
   glmark2-data
+  # benchmark plots
+  gnuplot-nox
 )
 
 missing=()

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   lucent::cli::add_reference_command(app);
   lucent::cli::add_compare_command(app);
   lucent::cli::add_tonemap_command(app);
+  lucent::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -34,6 +34,7 @@ struct FrameTimings {
   double combine_ms = 0.0;         // step 3 (camera G-buffer, combine, tone map)
   double total_ms = 0.0;
   std::uint64_t bssrdf_samples = 0;  // light-space samples drawn this frame (each evaluates S_d once if lit)
+  std::size_t gpu_memory_bytes = 0;  // textures and buffers of the method and the output images
 };
 
 class Renderer {
@@ -56,6 +57,7 @@ class Renderer {
   int accumulated_frames() const;
   const FrameTimings& timings() const;  // of the last frame
   std::string device() const;           // GL renderer and version
+  static std::string device_of_current_context();
 
   // The last frame's linear radiance and tone-mapped image, top row first.
   ImageRGBA32F read_radiance() const;

@@ -34,6 +34,7 @@ class Method {
   virtual void render(const FrameContext& context) = 0;
   virtual int accumulated_frames() const = 0;
   virtual std::uint64_t bssrdf_samples_last_frame() const = 0;
+  virtual std::size_t gpu_memory_bytes() const = 0;  // textures and buffers the method allocated
 };
 
 struct MethodInfo {

@@ -144,6 +144,9 @@ struct Renderer::Impl {
       timings.total_ms += ms;
     }
     timings.bssrdf_samples = method->bssrdf_samples_last_frame();
+    // Output images: RGBA32F radiance, RGBA8 display, camera G-buffer (RGBA32F + RGBA16F + DEPTH32F).
+    std::size_t pixels = static_cast<std::size_t>(output.width) * static_cast<std::size_t>(output.height);
+    timings.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4);
   }
 
   void render(const Camera& camera, const RenderTarget& target) {
@@ -174,10 +177,12 @@ const Scene& Renderer::scene() const { return impl_->scene; }
 void Renderer::scene_changed() { impl_->rebuild(); }
 int Renderer::accumulated_frames() const { return impl_->method->accumulated_frames(); }
 const FrameTimings& Renderer::timings() const { return impl_->timings; }
-std::string Renderer::device() const {
+std::string Renderer::device_of_current_context() {
   const auto& caps = platform::current_capabilities();
   return caps.renderer + ", OpenGL " + caps.version;
 }
+
+std::string Renderer::device() const { return device_of_current_context(); }
 
 namespace {
 

@@ -120,6 +120,16 @@ class RadiosityMaps final : public Method {
   }
 
   int accumulated_frames() const override { return accumulated_; }
+
+  std::size_t gpu_memory_bytes() const override {
+    auto layers = [](const gpu::GBuffer& g) { return static_cast<std::size_t>(std::max(1, g.layers())); };
+    auto gbuffer = [&](const gpu::GBuffer& g) {  // RGBA32F position + RGBA16F normal + DEPTH32F
+      return static_cast<std::size_t>(g.size_x()) * static_cast<std::size_t>(g.size_y()) * layers(g) * (16 + 8 + 4);
+    };
+    std::size_t maps = static_cast<std::size_t>(map_size_) * static_cast<std::size_t>(map_size_) *
+                       static_cast<std::size_t>(K_) * 16 * 4 / 3;  // RGBA32F with its mip chain
+    return gbuffer(light_gbuffer_) + gbuffer(map_gbuffer_) + maps;
+  }
   std::uint64_t bssrdf_samples_last_frame() const override {
     std::uint32_t covered = 0;
     glGetNamedBufferSubData(counter_buffer_, 0, sizeof(covered), &covered);

@@ -1,0 +1,75 @@
+// test_cli_references.cpp: `lucent slab`, `lucent reference` and `lucent compare` from outside: exact errors for
+// bad input, the files a reference run writes, and compare's numbers on an image against itself.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct Result {
+  int exit_code;
+  std::string output;
+};
+
+Result run(const std::string& arguments) {
+  std::string command = std::string(LUCENT_CLI) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+  int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::filesystem::path temp_dir() {
+  auto dir = std::filesystem::temp_directory_path() / "lucent_cli_references";
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+TEST(CliReferences, SlabRejectsBadAlbedoAndPrintsJson) {
+  Result bad = run("slab --albedo 1.5");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_EQ(bad.output, "lucent: --albedo 1.5 is out of range; allowed range [0, 1]\n");
+  Result ok = run("slab --albedo 0.9 --photons 20000 --json");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  auto j = nlohmann::json::parse(ok.output);
+  EXPECT_NEAR(j["diffuse_reflectance"]["mean"].get<double>(), 0.414948,
+              4.0 * j["diffuse_reflectance"]["standard_error"].get<double>());
+}
+
+TEST(CliReferences, ReferenceWritesMeanErrorAndMetadataAndResumes) {
+  auto dir = temp_dir();
+  std::string scene = (dir / "sphere.json").string(), exr = (dir / "ref.exr").string();
+  std::ofstream(scene) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
+    "render": {"width": 12, "height": 8}})";
+  Result first = run("reference " + scene + " --integrator bssrdf --spp 2 -q -o " + exr);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  Result second = run("reference " + scene + " --integrator bssrdf --spp 3 -q --resume -o " + exr);
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "ref.stderr.exr"));
+  auto meta = nlohmann::json::parse(std::ifstream(dir / "ref.json"));
+  EXPECT_EQ(meta["samples_per_pixel"].get<int>(), 5);
+  Result self = run("compare " + exr + " " + exr + " --json");
+  ASSERT_EQ(self.exit_code, 0) << self.output;
+  EXPECT_EQ(nlohmann::json::parse(self.output)["linear"]["rmse_rgb"].get<double>(), 0.0);
+}
+
+TEST(CliReferences, BadInputsNameTheInput) {
+  Result integrator = run("reference /nonexistent.json --integrator photon");
+  EXPECT_EQ(integrator.output, "lucent: --integrator: 'photon' is not one of volpath, bssrdf\n");
+  Result scene = run("reference /nonexistent/scene.json");
+  EXPECT_EQ(scene.output, "lucent: /nonexistent/scene.json: cannot open scene file\n");
+  Result compare = run("compare /nonexistent/a.exr /nonexistent/b.exr");
+  EXPECT_NE(compare.exit_code, 0);
+  EXPECT_EQ(compare.output.rfind("lucent: /nonexistent/a.exr: cannot read EXR:", 0), 0u) << compare.output;
+}
+
+}  // namespace

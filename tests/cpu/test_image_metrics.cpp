@@ -1,0 +1,67 @@
+// test_image_metrics.cpp: the comparison metrics of `lucent compare` and `lucent bench` on images with known
+// differences, and the reference renderer's resume (2 + 2 samples equal 4 samples).
+#include <cmath>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "image/image_metrics.h"
+#include "lucent/scene.h"
+#include "reference/reference_renderer.h"
+
+namespace {
+
+using lucent::ImageRGBA32F;
+
+ImageRGBA32F constant(int w, int h, float r, float g, float b) {
+  ImageRGBA32F image{w, h, std::vector<float>(static_cast<std::size_t>(w * h) * 4, 1.0f)};
+  for (std::size_t i = 0; i < image.pixels.size(); i += 4) image.pixels[i] = r, image.pixels[i + 1] = g, image.pixels[i + 2] = b;
+  return image;
+}
+
+TEST(ImageMetrics, KnownDifferences) {
+  ImageRGBA32F reference = constant(8, 4, 0.5f, 0.25f, 1.0f);
+  ImageRGBA32F shifted = constant(8, 4, 0.5f + 0.1f, 0.25f, 1.0f - 0.2f);
+  lucent::ImageError e = lucent::image_error(shifted, reference);
+  EXPECT_NEAR(e.rmse[0], 0.1, 1e-6);
+  EXPECT_NEAR(e.rmse[1], 0.0, 1e-9);
+  EXPECT_NEAR(e.rmse[2], 0.2, 1e-6);
+  EXPECT_NEAR(e.rmse_rgb, std::sqrt(0.01 + 0.04), 1e-6);  // Dal Corso et al.'s sqrt(dr^2 + dg^2 + db^2)
+  EXPECT_NEAR(e.mean_error, (0.1 - 0.2) / 3.0, 1e-6);
+  EXPECT_NEAR(e.psnr_db, 10.0 * std::log10(1.0 / ((0.01 + 0.04) / 3.0)), 1e-4);  // peak 1 (the reference's max)
+  EXPECT_EQ(lucent::image_error(reference, reference).rmse_rgb, 0.0);
+}
+
+TEST(ImageMetrics, ReferenceNoiseAndMeanErrorStandardError) {
+  ImageRGBA32F a = constant(10, 10, 1.0f, 1.0f, 1.0f), b = a, se = constant(10, 10, 0.3f, 0.3f, 0.3f);
+  lucent::ImageError e = lucent::image_error(a, b, &se);
+  EXPECT_NEAR(e.reference_noise_rms, 0.3, 1e-6);
+  EXPECT_NEAR(e.mean_error_se, 0.3 / std::sqrt(300.0), 1e-6);  // 300 independent channel values
+}
+
+TEST(ImageMetrics, SizeMismatchIsAnError) {
+  EXPECT_THROW(lucent::image_error(constant(2, 2, 0, 0, 0), constant(3, 2, 0, 0, 0)), std::exception);
+}
+
+TEST(ReferenceRenderer, ResumingAddsSamplesExactly) {
+  lucent::Scene scene = lucent::parse_scene(R"({
+    "scale_mm": 10, "camera": { "eye": [0, 0, 5], "target": [0, 0, 0], "fov_y_deg": 30 },
+    "lights": [{ "direction": [0.6, -0.8, 0], "radiance": [1, 1, 1] }],
+    "objects": [{ "shape": "sphere", "radius": 1, "segments": 24, "material": "Potato" }],
+    "render": { "width": 8, "height": 6 } })", "resume", ".");
+  for (auto integrator : {lucent::reference::Integrator::Bssrdf, lucent::reference::Integrator::Volpath}) {
+    lucent::reference::ReferenceSettings settings;
+    settings.integrator = integrator;
+    settings.samples_per_pixel = 4;
+    auto whole = lucent::reference::render_reference(scene, settings);
+    settings.samples_per_pixel = 2;
+    auto half = lucent::reference::render_reference(scene, settings);
+    auto resumed = lucent::reference::render_reference(scene, settings, &half);
+    ASSERT_EQ(resumed.samples_per_pixel, 4);
+    for (std::size_t i = 0; i < whole.mean.pixels.size(); ++i)
+      EXPECT_NEAR(resumed.mean.pixels[i], whole.mean.pixels[i], 1e-5 * std::abs(whole.mean.pixels[i]) + 1e-7)
+          << "value " << i;
+  }
+}
+
+}  // namespace
