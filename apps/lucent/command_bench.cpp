@@ -63,12 +63,21 @@ std::vector<std::string> strings(const json& j, const char* key) {
   return out;
 }
 
-// Overrides that change the image of a reference (not method parameters, not frame counts).
-std::string reference_key(const std::string& scene, const std::vector<std::string>& sets, const std::string& integrator) {
+// Overrides that change the image of a reference: not method parameters or frame counts, and for volpath not
+// the diffusion model either (the physics does not use it).
+std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator) {
   std::vector<std::string> relevant;
-  for (const std::string& s : sets)
-    if (s.rfind("method.", 0) != 0 && s.rfind("render.frames", 0) != 0) relevant.push_back(s);
+  for (const std::string& s : sets) {
+    bool method = s.rfind("method.", 0) == 0 || s.rfind("render.frames", 0) == 0;
+    bool model = integrator == "volpath" && s.find(".model=") != std::string::npos;
+    if (!method && !model) relevant.push_back(s);
+  }
   std::sort(relevant.begin(), relevant.end());
+  return relevant;
+}
+
+std::string reference_key(const std::string& scene, const std::vector<std::string>& sets, const std::string& integrator) {
+  std::vector<std::string> relevant = relevant_overrides(sets, integrator);
   std::string text = scene + "|" + integrator;
   for (const std::string& s : relevant) text += "|" + s;
   return fmt::format("{}_{:016x}", integrator, std::hash<std::string>{}(text));
@@ -86,11 +95,22 @@ struct Bench {
     fs::path meta = exr;
     meta.replace_extension(".json");
     fs::path se = exr.parent_path() / (exr.stem().string() + ".stderr.exr");
-    if (fs::exists(meta)) {
-      json m = json::parse(std::ifstream(meta));
-      reference::ReferenceImage cached{read_exr(exr.string()), read_exr(se.string()), m["samples_per_pixel"], m["seconds"]};
-      if (cached.samples_per_pixel >= spp) return cached;
-    }
+    // A cached reference of the same scene, integrator and image-relevant overrides (found by its metadata).
+    if (fs::exists(exr.parent_path()))
+      for (const auto& entry : fs::directory_iterator(exr.parent_path())) {
+        if (entry.path().extension() != ".json") continue;
+        json m = json::parse(std::ifstream(entry.path()), nullptr, false);
+        if (m.is_discarded() || m.value("scene", "") != scene_path || m.value("integrator", "") != integrator) continue;
+        if (relevant_overrides(m.value("overrides", std::vector<std::string>{}), integrator) !=
+            relevant_overrides(sets, integrator))
+          continue;
+        fs::path cached_exr = entry.path();
+        cached_exr.replace_extension(".exr");
+        reference::ReferenceImage cached{read_exr(cached_exr.string()),
+                                         read_exr((cached_exr.parent_path() / (cached_exr.stem().string() + ".stderr.exr")).string()),
+                                         m["samples_per_pixel"], m["seconds"]};
+        if (cached.samples_per_pixel >= spp) return cached;
+      }
     Scene scene = load_scene(scene_path, sets);
     reference::ReferenceSettings settings;
     settings.integrator = integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
@@ -194,12 +214,14 @@ struct Bench {
         continue;
       reference::ReferenceImage ref = reference_image(scene_path, sets, integrator, spec.value("spp", 256));
       ImageError e = image_error(image, ref.mean, &ref.standard_error);
-      std::string ref_png = "images/" + reference_key(scene_path, sets, integrator) + ".png";
+      std::string ref_png = "images/" + run_name + "_reference_" + integrator +
+                            (integrator == "bssrdf" ? "_" + std::string(to_string(scene.objects[0].material ? scene.objects[0].material->model : BssrdfModel::DirectionalDipole)) : "") + ".png";
       write_png((out / ref_png).string(), to_display(ref.mean, scene.render.exposure));
       write_png((out / "images" / (stem + "_vs_" + integrator + ".png")).string(),
                 heat_map(image, ref.mean, std::max(1e-6, 4.0 * e.rmse_rgb)));
       result["error"][integrator] = {{"rmse_rgb", e.rmse_rgb}, {"rmse", {e.rmse[0], e.rmse[1], e.rmse[2]}},
                                      {"relative_mse", e.relative_mse}, {"mean_error", e.mean_error},
+                                     {"mean_error_se", e.mean_error_se},
                                      {"reference_noise_rms", e.reference_noise_rms},
                                      {"reference_spp", ref.samples_per_pixel}, {"reference_image", ref_png}};
       if (integrator == "bssrdf" && variant.value("equal_time", false)) {
@@ -216,22 +238,32 @@ struct Bench {
 
 std::string markdown(const json& results) {
   std::string md = "| run | variant | frames | step 1 ms | step 2 ms | step 3 ms | total ms (median [min, max]) | "
-                   "S_d samples/s | GPU MB | coverage | RMSE vs bssrdf | RMSE vs volpath | equal-time bssrdf RMSE |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+                   "S_d samples/s | GPU MB | coverage | RMSE vs bssrdf | RMSE vs volpath | mean error vs volpath | "
+                   "equal-time bssrdf RMSE |\n"
+                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  // RMSE, the reference's own noise, and the noise-corrected RMSE sqrt(max(0, RMSE^2 - noise^2)): the expected
+  // squared error against a noisy reference is the method's squared error plus the reference's variance.
   auto error = [](const json& r, const char* integrator) {
     if (!r.contains("error") || !r["error"].contains(integrator)) return std::string("-");
     const json& e = r["error"][integrator];
-    return fmt::format("{:.4f} (ref noise {:.4f})", e["rmse_rgb"].get<double>(), e["reference_noise_rms"].get<double>());
+    double rmse = e["rmse_rgb"].get<double>(), noise = e["reference_noise_rms"].get<double>() * std::sqrt(3.0);
+    return fmt::format("{:.4f} (ref noise {:.4f}; corrected {:.4f})", rmse, noise,
+                       std::sqrt(std::max(0.0, rmse * rmse - noise * noise)));
+  };
+  auto bias = [](const json& r, const char* integrator) {
+    if (!r.contains("error") || !r["error"].contains(integrator)) return std::string("-");
+    const json& e = r["error"][integrator];
+    return fmt::format("{:+.4f} +- {:.4f}", e["mean_error"].get<double>(), e["mean_error_se"].get<double>());
   };
   for (const json& r : results) {
-    md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} [{:.2f}, {:.2f}] | {:.3g} | {:.1f} | {} | {} | {} | {} |\n",
+    md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} [{:.2f}, {:.2f}] | {:.3g} | {:.1f} | {} | {} | {} | {} | {} |\n",
                       r["run"].get<std::string>(), r["variant"].get<std::string>(), r["frames"].get<int>(),
                       r["light_gbuffer_ms"]["median"].get<double>(), r["radiosity_maps_ms"]["median"].get<double>(),
                       r["combine_ms"]["median"].get<double>(), r["total_ms"]["median"].get<double>(),
                       r["total_ms"]["min"].get<double>(), r["total_ms"]["max"].get<double>(),
                       r["bssrdf_samples_per_second"]["median"].get<double>(), r["gpu_memory_mb"].get<double>(),
                       r.contains("coverage") ? fmt::format("{:.3f}", r["coverage"].get<double>()) : "-",
-                      error(r, "bssrdf"), error(r, "volpath"),
+                      error(r, "bssrdf"), error(r, "volpath"), bias(r, "volpath"),
                       r.contains("equal_time_bssrdf")
                           ? fmt::format("{:.4f} ({} spp)", r["equal_time_bssrdf"]["rmse_rgb"].get<double>(),
                                         r["equal_time_bssrdf"]["spp"].get<int>())

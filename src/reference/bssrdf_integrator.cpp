@@ -7,6 +7,8 @@
 //    uniformly). It captures the near-field peak of the directional dipole (within ~D of x_o at normal
 //    incidence) that area sampling alone almost never hits: on a marble slab area sampling alone returned
 //    0.73 +- 0.07 of the true 1.12 after 4e5 samples.
+// A fifth of the samples by area, four fifths by probes: on the marble bunny (80x60, 256 spp) this halved the
+// variance x time against an even split (RMS standard error 0.044 -> 0.034 in 0.79 -> 0.66 s).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -17,6 +19,9 @@
 
 namespace lucent::reference {
 namespace {
+
+// Share of x_i samples drawn by area; the rest by exponential probes around x_o.
+constexpr double kAreaFraction = 0.2;
 
 struct Probe {
   glm::dvec3 x_o, n_o, t1, t2;
@@ -100,7 +105,7 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
   probe.half_length = 10.0 / std::min({probe.sigma_tr.x, probe.sigma_tr.y, probe.sigma_tr.z});
 
   glm::dvec3 x_i, n_i;
-  if (rng.uniform() < 0.5) {
+  if (rng.uniform() < kAreaFraction) {
     SurfaceSample a = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform());
     x_i = a.position, n_i = a.normal;
   } else {
@@ -110,7 +115,7 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
   }
   glm::dvec3 f = integrand(s, o, media, x_i, n_i, x_o, n_o);
   if (f == glm::dvec3(0.0)) return f;
-  double pdf = 0.5 / o.area + 0.5 * probe_pdf(s, probe, object, x_i, n_i);
+  double pdf = kAreaFraction / o.area + (1.0 - kAreaFraction) * probe_pdf(s, probe, object, x_i, n_i);
   return f / pdf;
 }
 
