@@ -6,7 +6,7 @@ set output out
 set datafile separator "\t"
 set key top right
 set logscale x
-set xlabel "bunny size [mm] (scale_mm x 2)"
+set xlabel "bunny width [mm]"
 set ylabel "RMSE sqrt(dr^2+dg^2+db^2) vs converged reference"
 set grid
 plot tsv using ($5*2):9 skip 1 with linespoints lw 2 pt 7 title "radiosity-maps, 1 frame", \
