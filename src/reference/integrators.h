@@ -5,10 +5,12 @@
 // refraction, total internal reflection, eta); opaque objects are Lambertian with full global illumination.
 // Directional lights are deltas, so light reaches a medium vertex only through a refracting boundary point:
 // next-event estimation finds that point by fixed-point iteration on the refraction direction and weights the
-// refracted beam by its Fresnel transmittance, its compression (finite differences of the refracted beam through
-// the interpolated normal field) and the attenuation to the vertex. Russian roulette keeps it unbiased.
+// refracted beam by its Fresnel transmittance, its compression at a locally flat boundary (cos theta_i /
+// cos theta_t) and the attenuation to the vertex. Russian roulette keeps it unbiased.
 // Known limits: one entry point per medium vertex (the nearest along the refracted direction; thin parts with
-// several entry points miss the others); nested or touching translucent objects are not supported.
+// several entry points miss the others); focusing by the boundary's curvature is neglected (exact on flat
+// boundaries, a bias of the order of depth / focal length on curved ones); nested or touching translucent objects
+// are not supported.
 //
 // bssrdf (the model): Monte Carlo integration of Dal Corso et al.'s eq. 1 over the object's surface with the
 // same S_d code the shaders run, light visibility by shadow rays, Fresnel transmittance in and out. x_i comes
