@@ -38,24 +38,6 @@ Stats stats(std::vector<double> v) {
   return {v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]), v.front(), v.back()};
 }
 
-class Framebuffer {
- public:
-  Framebuffer(int w, int h) {
-    glCreateRenderbuffers(1, &color_);
-    glNamedRenderbufferStorage(color_, GL_RGBA8, w, h);
-    glCreateFramebuffers(1, &id_);
-    glNamedFramebufferRenderbuffer(id_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-  }
-  ~Framebuffer() {
-    glDeleteFramebuffers(1, &id_);
-    glDeleteRenderbuffers(1, &color_);
-  }
-  GLuint id() const { return id_; }
-
- private:
-  GLuint id_ = 0, color_ = 0;
-};
-
 std::vector<std::string> strings(const json& j, const char* key) {
   std::vector<std::string> out;
   if (j.contains(key))
@@ -146,7 +128,7 @@ struct Bench {
     scene.method_params.set("view", std::string("coverage"));
     scene.method_params.set("progressive", false);
     Renderer renderer(scene);
-    Framebuffer target(scene.render.width, scene.render.height);
+    OffscreenFramebuffer target(scene.render.width, scene.render.height);
     renderer.render(scene.camera, {target.id(), scene.render.width, scene.render.height});
     ImageRGBA32F image = renderer.read_radiance();
     std::size_t covered = 0, uncovered = 0;
@@ -169,7 +151,7 @@ struct Bench {
     fmt::print(stderr, "{} / {}: {} frame(s)\n", run_name, name, frames);
 
     Renderer renderer(scene);
-    Framebuffer target(scene.render.width, scene.render.height);
+    OffscreenFramebuffer target(scene.render.width, scene.render.height);
     std::vector<double> step1, step2, step3, total, rate;
     auto start = std::chrono::steady_clock::now();
     FrameTimings last;

@@ -23,25 +23,6 @@ struct RenderOptions {
   bool quiet = false;
 };
 
-// The framebuffer an embedding application would own; here an RGBA8 renderbuffer.
-class ApplicationFramebuffer {
- public:
-  ApplicationFramebuffer(int width, int height) {
-    glCreateRenderbuffers(1, &color_);
-    glNamedRenderbufferStorage(color_, GL_RGBA8, width, height);
-    glCreateFramebuffers(1, &framebuffer_);
-    glNamedFramebufferRenderbuffer(framebuffer_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-  }
-  ~ApplicationFramebuffer() {
-    glDeleteFramebuffers(1, &framebuffer_);
-    glDeleteRenderbuffers(1, &color_);
-  }
-  GLuint id() const { return framebuffer_; }
-
- private:
-  GLuint framebuffer_ = 0, color_ = 0;
-};
-
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -101,7 +82,7 @@ void run(const RenderOptions& o) {
   auto context = create_headless_context();
   Renderer renderer(scene);
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
-  ApplicationFramebuffer target(width, height);
+  OffscreenFramebuffer target(width, height);
   ProgressBar progress("rendering", o.quiet ? 1 : frames);
   std::vector<FrameTimings> timings;
   for (int f = 0; f < frames; ++f) {

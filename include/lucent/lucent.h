@@ -5,6 +5,7 @@
 #include "lucent/image.h"
 #include "lucent/material.h"
 #include "lucent/mesh.h"
+#include "lucent/offscreen_framebuffer.h"
 #include "lucent/params.h"
 #include "lucent/renderer.h"
 #include "lucent/scene.h"

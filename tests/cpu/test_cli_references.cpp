@@ -8,24 +8,15 @@
 #include <sys/wait.h>
 
 #include <gtest/gtest.h>
+
+#include "../cli_runner.h"
 #include <nlohmann/json.hpp>
 
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string output;
-};
+using Result = lucent::test::CliResult;
 
-Result run(const std::string& arguments) {
-  std::string command = std::string(LUCENT_CLI) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-  int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+Result run(const std::string& arguments) { return lucent::test::run_cli(arguments); }
 
 std::filesystem::path temp_dir() {
   auto dir = std::filesystem::temp_directory_path() / "lucent_cli_references";

@@ -7,8 +7,6 @@
 #include <memory>
 #include <vector>
 
-#include <epoxy/gl.h>
-
 #include "lucent/context.h"
 
 namespace lucent::test {
@@ -61,19 +59,6 @@ std::string output_path(const std::string& name) {
 void ensure_gl_context() {
   static std::unique_ptr<GLContext> context = create_headless_context();
   context->make_current();
-}
-
-TestFramebuffer::TestFramebuffer(int width, int height) {
-  ensure_gl_context();
-  glCreateRenderbuffers(1, &color_);
-  glNamedRenderbufferStorage(color_, GL_RGBA8, width, height);
-  glCreateFramebuffers(1, &framebuffer_);
-  glNamedFramebufferRenderbuffer(framebuffer_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-}
-
-TestFramebuffer::~TestFramebuffer() {
-  glDeleteFramebuffers(1, &framebuffer_);
-  glDeleteRenderbuffers(1, &color_);
 }
 
 }  // namespace lucent::test

@@ -24,17 +24,4 @@ std::string output_path(const std::string& name);
 // A shared headless context for the GL tests of one process.
 void ensure_gl_context();
 
-// The application-side framebuffer a test renders into (RGBA8 renderbuffer).
-class TestFramebuffer {
- public:
-  TestFramebuffer(int width, int height);
-  ~TestFramebuffer();
-  TestFramebuffer(const TestFramebuffer&) = delete;
-  TestFramebuffer& operator=(const TestFramebuffer&) = delete;
-  unsigned id() const { return framebuffer_; }
-
- private:
-  unsigned framebuffer_ = 0, color_ = 0;
-};
-
 }  // namespace lucent::test

@@ -10,25 +10,17 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "../cli_runner.h"
 #include "image_compare.h"
 #include "lucent/image.h"
 #include "platform/gl_capabilities.h"
 
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
+using Result = lucent::test::CliResult;
 
 Result run(const std::string& arguments, const std::string& environment = "") {
-  std::string command = environment + " " + LUCENT_CLI + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-  int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return lucent::test::run_cli(arguments, environment);
 }
 
 std::string write_file(const std::string& name, const std::string& text) {

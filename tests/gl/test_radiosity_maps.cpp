@@ -27,7 +27,8 @@ struct Rendered {
 };
 
 Rendered render(const Scene& scene) {
-  lucent::test::TestFramebuffer framebuffer(scene.render.width, scene.render.height);
+  lucent::test::ensure_gl_context();
+  lucent::OffscreenFramebuffer framebuffer(scene.render.width, scene.render.height);
   lucent::Renderer renderer(scene);
   for (int f = 0; f < scene.render.frames; ++f)
     renderer.render(scene.camera, {framebuffer.id(), scene.render.width, scene.render.height});
@@ -115,7 +116,8 @@ TEST(RadiosityMaps, ProgressiveAccumulationConvergesAndRestartsOnSceneChange) {
     "objects": [{ "shape": "box", "size": [30, 10, 30], "material": "Marble" }],
     "method": { "K": 4, "N": 2, "map_size": 128, "light_map_size": 512, "specular": false },
     "render": { "width": 32, "height": 32, "tonemap": "linear" } })", "noise slab", ".");
-  lucent::test::TestFramebuffer target(32, 32);
+  lucent::test::ensure_gl_context();
+  lucent::OffscreenFramebuffer target(32, 32);
   lucent::Renderer renderer(scene);
   const lucent::RenderTarget framebuffer{target.id(), 32, 32};
   renderer.render(scene.camera, framebuffer);
