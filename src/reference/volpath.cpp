@@ -47,8 +47,12 @@ RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec
   }
   hit = s.rt.intersect(x, toward);
   if (!hit.hit() || hit.object != object || glm::dot(hit.normal, light_dir) >= 0.0) return beam;
+  // Only a converged solution is a light path: the light refracted at the entry must travel along -toward.
+  // (Accepting an unconverged direction let cos(theta_t) approach 0 and the compression blow up.)
+  glm::dvec3 inside = refract(light_dir, hit.normal, o.eta);
+  if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;
   beam.entry = hit.position;
-  beam.direction = -toward;
+  beam.direction = inside;
   beam.distance = hit.t;
   double cos_i = -glm::dot(light_dir, hit.normal);
   double T12 = 1.0 - dielectric_reflectance(light_dir, hit.normal, o.eta);
