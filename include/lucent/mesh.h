@@ -33,4 +33,8 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& what);
 // Total surface area [scene units^2].
 float surface_area(const TriangleMesh& mesh);
 
+// The mesh with positions transformed by `world_from_object` and normals by its inverse transpose
+// (renormalised). Used by the GPU upload and by the CPU references, so both see the same world-space geometry.
+TriangleMesh transformed(const TriangleMesh& mesh, const glm::mat4& world_from_object);
+
 }  // namespace lucent

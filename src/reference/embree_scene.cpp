@@ -14,12 +14,10 @@ namespace {
 
 ObjectData object_data(const SceneObject& object, float scale_mm) {
   ObjectData d;
-  glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(object.world_from_object)));
-  for (std::size_t i = 0; i < object.mesh.positions.size(); ++i) {
-    d.positions.push_back(glm::vec3(object.world_from_object * glm::vec4(object.mesh.positions[i], 1.0f)));
-    d.normals.push_back(glm::normalize(normal_matrix * object.mesh.normals[i]));
-  }
-  d.indices = object.mesh.indices;
+  TriangleMesh world = transformed(object.mesh, object.world_from_object);
+  d.positions = std::move(world.positions);
+  d.normals = std::move(world.normals);
+  d.indices = std::move(world.indices);
   double total = 0.0;
   for (std::size_t t = 0; t + 2 < d.indices.size(); t += 3) {
     glm::dvec3 a = d.positions[d.indices[t]], b = d.positions[d.indices[t + 1]], c = d.positions[d.indices[t + 2]];

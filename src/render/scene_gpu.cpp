@@ -56,12 +56,11 @@ SceneGpu::SceneGpu(const Scene& scene) {
   std::vector<glm::vec3> all_points, translucent_points;
   for (std::size_t i : order) {
     const SceneObject& object = scene.objects[i];
-    glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(object.world_from_object)));
+    TriangleMesh world = transformed(object.mesh, object.world_from_object);
     auto base = static_cast<std::uint32_t>(vertices.size());
-    for (std::size_t v = 0; v < object.mesh.positions.size(); ++v) {
-      glm::vec3 p = glm::vec3(object.world_from_object * glm::vec4(object.mesh.positions[v], 1.0f));
-      glm::vec3 n = glm::normalize(normal_matrix * object.mesh.normals[v]);
-      vertices.push_back({glm::vec4(p, static_cast<float>(i)), glm::vec4(n, 0.0f)});
+    for (std::size_t v = 0; v < world.positions.size(); ++v) {
+      glm::vec3 p = world.positions[v];
+      vertices.push_back({glm::vec4(p, static_cast<float>(i)), glm::vec4(world.normals[v], 0.0f)});
       all_points.push_back(p);
       if (object.translucent()) translucent_points.push_back(p);
     }
