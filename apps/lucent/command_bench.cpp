@@ -76,7 +76,7 @@ struct Bench {
     fs::path exr = out / "references" / (reference_key(scene_path, sets, integrator) + ".exr");
     fs::path meta = exr;
     meta.replace_extension(".json");
-    fs::path se = exr.parent_path() / (exr.stem().string() + ".stderr.exr");
+    fs::path se = reference::reference_sidecar(exr.string(), ".stderr.exr");
     // A cached reference of the same scene, integrator and image-relevant overrides (found by its metadata).
     if (fs::exists(exr.parent_path()))
       for (const auto& entry : fs::directory_iterator(exr.parent_path())) {
@@ -89,7 +89,7 @@ struct Bench {
         fs::path cached_exr = entry.path();
         cached_exr.replace_extension(".exr");
         reference::ReferenceImage cached{read_exr(cached_exr.string()),
-                                         read_exr((cached_exr.parent_path() / (cached_exr.stem().string() + ".stderr.exr")).string()),
+                                         read_exr(reference::reference_sidecar(cached_exr.string(), ".stderr.exr")),
                                          m["samples_per_pixel"], m["seconds"]};
         if (cached.samples_per_pixel >= spp) return cached;
       }

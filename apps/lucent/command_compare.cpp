@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "image/image_metrics.h"
 #include "lucent/error.h"
+#include "reference/reference_renderer.h"
 
 namespace lucent::cli {
 namespace {
@@ -28,8 +29,7 @@ nlohmann::json to_json(const ImageError& e) {
 
 void run(const CompareOptions& o) {
   ImageRGBA32F a = read_exr(o.a), b = read_exr(o.b);
-  std::filesystem::path p(o.b);
-  std::string se_path = (p.parent_path() / (p.stem().string() + ".stderr.exr")).string();
+  std::string se_path = reference::reference_sidecar(o.b, ".stderr.exr");
   std::optional<ImageRGBA32F> se;
   if (std::filesystem::exists(se_path)) se = read_exr(se_path);
   ImageError linear = image_error(a, b, se ? &*se : nullptr);

@@ -25,13 +25,8 @@ struct ReferenceOptions {
   bool quiet = false;
 };
 
-std::string sibling(const std::string& exr, const std::string& suffix) {
-  std::filesystem::path p(exr);
-  return (p.parent_path() / (p.stem().string() + suffix)).string();
-}
-
 reference::ReferenceImage load_previous(const std::string& exr) {
-  std::string meta_path = sibling(exr, ".json");
+  std::string meta_path = reference::reference_sidecar(exr, ".json");
   std::ifstream meta(meta_path);
   if (!meta) throw Error(fmt::format("{}: cannot resume: no such file (written next to the reference)", meta_path));
   nlohmann::json j = nlohmann::json::parse(meta, nullptr, false);
@@ -39,7 +34,7 @@ reference::ReferenceImage load_previous(const std::string& exr) {
     throw Error(fmt::format("{}: cannot resume: malformed metadata", meta_path));
   reference::ReferenceImage previous;
   previous.mean = read_exr(exr);
-  previous.standard_error = read_exr(sibling(exr, ".stderr.exr"));
+  previous.standard_error = read_exr(reference::reference_sidecar(exr, ".stderr.exr"));
   previous.samples_per_pixel = j["samples_per_pixel"].get<int>();
   previous.seconds = j.value("seconds", 0.0);
   return previous;
@@ -60,7 +55,7 @@ void run(ReferenceOptions o) {
   auto parent = std::filesystem::path(o.output).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
   write_exr(o.output, image.mean);
-  write_exr(sibling(o.output, ".stderr.exr"), image.standard_error);
+  write_exr(reference::reference_sidecar(o.output, ".stderr.exr"), image.standard_error);
   double paths = static_cast<double>(scene.render.width) * scene.render.height * image.samples_per_pixel;
   nlohmann::json meta = {{"scene", o.scene_path},
                          {"integrator", o.integrator},
@@ -71,7 +66,7 @@ void run(ReferenceOptions o) {
                          {"seconds", image.seconds},
                          {"camera_paths_per_second", paths / image.seconds},
                          {"overrides", o.sets}};
-  std::ofstream(sibling(o.output, ".json")) << meta.dump(2) << "\n";
+  std::ofstream(reference::reference_sidecar(o.output, ".json")) << meta.dump(2) << "\n";
   if (!o.quiet)
     fmt::print("{}: {} {}x{}, {} spp in {:.1f} s ({:.3g} camera paths/s) -> {} (+ .stderr.exr, .json)\n",
                o.scene_path, o.integrator, scene.render.width, scene.render.height, image.samples_per_pixel,
