@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -25,6 +26,10 @@ TriangleMesh make_sphere(float radius, int rings, int segments);
 TriangleMesh make_torus(float major_radius, float minor_radius, int rings, int segments);
 TriangleMesh make_box(glm::vec3 size);    // full edge lengths
 TriangleMesh make_plane(glm::vec2 size);  // in the xz plane, normal +y
+// A closed profile polygon of (r, y) points (r >= 0) revolved about the y axis: candles, cups, lamp shades.
+TriangleMesh make_lathe(std::span<const glm::vec2> profile, int segments, float crease_deg = 35.0f);
+// A hollow sphere: the shell between inner_radius and radius.
+TriangleMesh make_shell(float radius, float inner_radius, int segments);
 
 // Throws lucent::Error("<what>: ...") when the mesh has no triangles, an index out of range, a NaN or
 // infinite coordinate, or zero total area.

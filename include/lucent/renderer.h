@@ -37,6 +37,15 @@ struct FrameTimings {
   std::size_t gpu_memory_bytes = 0;  // textures and buffers of the method and the output images
 };
 
+// A virtual point light carrying a translucent object's emergent light to the scene (radiosity-maps, VPLs on).
+struct VirtualPointLight {
+  glm::vec3 position{0.0f};   // [scene units]
+  glm::vec3 normal{0.0f};     // outward unit normal
+  float area = 0.0f;          // surface area it stands for [scene units^2]; 0 when its direction missed the object
+  glm::vec3 radiosity{0.0f};  // scattered radiosity B at its position (before the exit Fresnel term)
+  float eta = 1.0f;           // relative refractive index of its material
+};
+
 class Renderer {
  public:
   // Needs a current OpenGL 4.5 core context. Compiles shaders and uploads the scene; throws lucent::Error.
@@ -58,6 +67,12 @@ class Renderer {
   const FrameTimings& timings() const;  // of the last frame
   std::string device() const;           // GL renderer and version
   static std::string device_of_current_context();
+
+  // Diagnostics of the last frame, for methods that cache scattered radiosity (empty otherwise):
+  // B at surface points (position, outward normal; w = 1 where a map sees the point, else 0), and the VPLs.
+  std::vector<glm::vec4> scattered_radiosity(const std::vector<glm::vec3>& points,
+                                             const std::vector<glm::vec3>& normals) const;
+  std::vector<VirtualPointLight> virtual_point_lights() const;
 
   // The last frame's linear radiance and tone-mapped image, top row first.
   ImageRGBA32F read_radiance() const;

@@ -26,6 +26,18 @@ struct DirectionalLight {
   glm::vec3 radiance{1.0f};                // RGB radiance-times-solid-angle, i.e. irradiance on a surface facing it
 };
 
+// A point light, or a spot light when `spot` is set. Radiant intensity in W/sr: a surface facing the light at
+// distance d receives the irradiance I / d^2 with d in metres (scene units times scale_mm / 1000), in the same
+// units as a directional light's `radiance`.
+struct PointLight {
+  glm::vec3 position{0.0f};                 // [scene units]
+  glm::vec3 intensity{1.0f};                // RGB radiant intensity [W/sr]
+  bool spot = false;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};   // spot: unit axis, the direction the light travels
+  float inner_deg = 30.0f;                  // spot: full intensity within this half-angle [degrees]
+  float outer_deg = 45.0f;                  // spot: no light beyond this half-angle [degrees]
+};
+
 struct SceneObject {
   std::string name;
   TriangleMesh mesh;                  // object space
@@ -52,6 +64,7 @@ struct Scene {
   float scale_mm = 1.0f;                        // millimetres per scene unit
   Camera camera;
   std::vector<DirectionalLight> lights;
+  std::vector<PointLight> point_lights;         // point and spot lights
   std::vector<SceneObject> objects;
   std::string method = "radiosity-maps";
   ParamValues method_params;                    // declared by the method (see `lucent render --help`)

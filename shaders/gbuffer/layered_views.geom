@@ -1,6 +1,7 @@
-// layered_views.geom: layered rendering of one triangle into every orthographic view of a set (the
-// directional lights' G-buffers, or the K scattered-radiosity map views) in a single pass.
-// 32 invocations x 2 views each cover LUCENT_MAX_MAPS = 64 layers (and 2 x LUCENT_MAX_LIGHTS light layers).
+// layered_views.geom: layered rendering of one triangle into every view of a set (the light G-buffer layers:
+// orthographic for directional lights, perspective frusta and cube faces for point lights; or the K
+// scattered-radiosity map views) in a single pass.
+// 32 invocations x 2 views each cover LUCENT_MAX_MAPS = LUCENT_MAX_LIGHT_VIEWS = 64 layers.
 #include "common/frame.glsl"
 
 layout(triangles, invocations = 32) in;
@@ -18,15 +19,15 @@ out VertexData {
   flat float object_id;
 } v_out;
 
-uniform int u_view_set;  // 0: lights (layers [0, L) object views, [L, 2L) scene-wide shadow views), 1: maps
+uniform int u_view_set;  // 0: the light G-buffer layers (frame.light_views), 1: the maps, 2: the VPL cube
 
 mat4 view_matrix(int k) {
-  if (u_view_set == 1) return frame.maps[k].clip_from_world;
-  return k < frame.counts.x ? frame.lights[k].clip_from_world : frame.shadows[k - frame.counts.x].clip_from_world;
+  if (u_view_set == 2) return frame.vpl_views[k].clip_from_world;
+  return u_view_set == 1 ? frame.maps[k].clip_from_world : frame.light_views[k].clip_from_world;
 }
 
 void main() {
-  int count = u_view_set == 0 ? 2 * frame.counts.x : frame.counts.y;
+  int count = u_view_set == 0 ? frame.extra_counts.x : u_view_set == 1 ? frame.counts.y : 6;
   for (int k = gl_InvocationID; k < count; k += 32) {
     mat4 clip_from_world = view_matrix(k);
     for (int i = 0; i < 3; ++i) {

@@ -49,16 +49,16 @@ GBuffer::~GBuffer() {
   glDeleteTextures(3, textures);
 }
 
-void GBuffer::begin_pass() const {
+void GBuffer::begin_pass(bool farthest) const {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, size_x_, size_y_);
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  const float one = 1.0f;
+  const float clear_depth = farthest ? 0.0f : 1.0f;
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, zero);
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 1, zero);
-  glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
+  glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &clear_depth);
   glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
+  glDepthFunc(farthest ? GL_GREATER : GL_LESS);
   glDisable(GL_CULL_FACE);
 }
 

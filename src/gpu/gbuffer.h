@@ -15,8 +15,9 @@ class GBuffer {
   GBuffer(const GBuffer&) = delete;
   GBuffer& operator=(const GBuffer&) = delete;
 
-  // Binds the framebuffer, sets the viewport and clears (position w = 0 marks empty texels, depth = 1).
-  void begin_pass() const;
+  // Binds the framebuffer, sets the viewport and clears (position w = 0 marks empty texels). Nearest surface
+  // wins (depth cleared to 1, GL_LESS), or with `farthest` the farthest one (cleared to 0, GL_GREATER).
+  void begin_pass(bool farthest = false) const;
   void bind_textures(GLuint position_unit, GLuint normal_unit, GLuint depth_unit) const;
 
   int size_x() const { return size_x_; }

@@ -5,6 +5,7 @@
 #include <memory>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "gpu/gbuffer.h"
 #include "gpu/gpu_timer.h"
@@ -35,6 +36,13 @@ class Method {
   virtual int accumulated_frames() const = 0;
   virtual std::uint64_t bssrdf_samples_last_frame() const = 0;
   virtual std::size_t gpu_memory_bytes() const = 0;  // textures and buffers the method allocated
+  // Diagnostics (after a frame): the scattered radiosity B at surface points, and the virtual point lights.
+  // Methods without a radiosity cache or VPLs return empty vectors.
+  virtual std::vector<shader::ProbeGPU> scattered_radiosity(std::vector<shader::ProbeGPU> probes) const {
+    (void)probes;
+    return {};
+  }
+  virtual std::vector<shader::VplGPU> virtual_point_lights() const { return {}; }
 };
 
 struct MethodInfo {

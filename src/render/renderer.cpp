@@ -184,6 +184,28 @@ std::string Renderer::device_of_current_context() {
 
 std::string Renderer::device() const { return device_of_current_context(); }
 
+std::vector<glm::vec4> Renderer::scattered_radiosity(const std::vector<glm::vec3>& points,
+                                                     const std::vector<glm::vec3>& normals) const {
+  if (points.size() != normals.size())
+    throw Error(fmt::format("scattered_radiosity: {} points but {} normals", points.size(), normals.size()));
+  std::vector<shader::ProbeGPU> probes(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    probes[i].position = glm::vec4(points[i], 0.0f);
+    probes[i].normal = glm::vec4(normals[i], 0.0f);
+  }
+  probes = impl_->method->scattered_radiosity(std::move(probes));
+  std::vector<glm::vec4> out;
+  for (const shader::ProbeGPU& p : probes) out.push_back(p.radiosity);
+  return out;
+}
+
+std::vector<VirtualPointLight> Renderer::virtual_point_lights() const {
+  std::vector<VirtualPointLight> out;
+  for (const shader::VplGPU& v : impl_->method->virtual_point_lights())
+    out.push_back({glm::vec3(v.position), glm::vec3(v.normal), v.position.w, glm::vec3(v.radiosity), v.normal.w});
+  return out;
+}
+
 namespace {
 
 // Reads a texture into an image; GL rows start at the bottom, images at the top.

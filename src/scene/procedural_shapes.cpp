@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
 
 #include <glm/gtc/constants.hpp>
 
@@ -109,6 +112,81 @@ TriangleMesh make_box(glm::vec3 size) {
   add_face(mesh, z, x, y, ez);
   add_face(mesh, -z, y, x, -ez);
   return mesh;
+}
+
+// Revolves a closed profile polygon in the (r, y) half-plane about the y axis. Profile points on the axis
+// (r = 0) become single pole vertices and edges along the axis produce nothing, so a closed profile gives a
+// watertight mesh. Normals are smooth across profile corners flatter than crease_deg and split at sharper ones.
+TriangleMesh make_lathe(std::span<const glm::vec2> profile_in, int segments, float crease_deg) {
+  segments = std::max(segments, 3);
+  std::vector<glm::vec2> profile(profile_in.begin(), profile_in.end());
+  const auto n = static_cast<int>(profile.size());
+  // Traverse clockwise in the (r, y) plane (r right, y up): the outward normal of edge a -> b is (-dy, dr).
+  double twice_area = 0.0;
+  for (int i = 0; i < n; ++i) {
+    glm::vec2 a = profile[i], b = profile[(i + 1) % n];
+    twice_area += static_cast<double>(a.x) * b.y - static_cast<double>(b.x) * a.y;
+  }
+  if (twice_area > 0.0) std::reverse(profile.begin(), profile.end());
+  auto edge_normal = [&](int i) {
+    glm::vec2 d = profile[(i + 1) % n] - profile[i];
+    return glm::normalize(glm::vec2(-d.y, d.x));
+  };
+  const float cos_crease = std::cos(glm::radians(crease_deg));
+  TriangleMesh mesh;
+  for (int i = 0; i < n; ++i) {
+    glm::vec2 a = profile[i], b = profile[(i + 1) % n];
+    if (a.x <= 0.0f && b.x <= 0.0f) continue;  // along the axis: no surface
+    glm::vec2 e = edge_normal(i);
+    glm::vec2 before = edge_normal((i + n - 1) % n), after = edge_normal((i + 1) % n);
+    glm::vec2 na = glm::dot(e, before) >= cos_crease ? glm::normalize(e + before) : e;
+    glm::vec2 nb = glm::dot(e, after) >= cos_crease ? glm::normalize(e + after) : e;
+    // One ring of vertices per end of the edge (a single pole vertex where the end lies on the axis).
+    auto ring = [&](glm::vec2 p, glm::vec2 normal) {
+      const auto first = static_cast<std::uint32_t>(mesh.positions.size());
+      int count = p.x <= 0.0f ? 1 : segments;
+      for (int s = 0; s < count; ++s) {
+        float phi = glm::two_pi<float>() * fraction(s, segments);
+        glm::vec3 radial(std::cos(phi), 0.0f, -std::sin(phi));
+        glm::vec3 n3 = count == 1 ? glm::vec3(0.0f, normal.y >= 0.0f ? 1.0f : -1.0f, 0.0f)
+                                  : glm::normalize(glm::vec3(normal.x * radial.x, normal.y, normal.x * radial.z));
+        add_vertex(mesh, glm::vec3(std::max(p.x, 0.0f) * radial.x, p.y, std::max(p.x, 0.0f) * radial.z), n3);
+      }
+      return std::pair{first, count};
+    };
+    auto [ra, ca] = ring(a, na);
+    auto [rb, cb] = ring(b, nb);
+    auto at = [&](std::uint32_t first, int count, int s) { return first + (count == 1 ? 0u : u32(s % segments)); };
+    // Outward face normal of this band, to orient each triangle counter-clockwise seen from outside.
+    auto emit = [&](std::uint32_t i0, std::uint32_t i1, std::uint32_t i2) {
+      glm::vec3 p0 = mesh.positions[i0], p1 = mesh.positions[i1], p2 = mesh.positions[i2];
+      glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
+      if (glm::dot(c, c) <= 0.0f) return;  // degenerate at a pole
+      glm::vec3 outward = mesh.normals[i0] + mesh.normals[i1] + mesh.normals[i2];
+      if (glm::dot(c, outward) >= 0.0f) add_triangle(mesh, i0, i1, i2);
+      else add_triangle(mesh, i0, i2, i1);
+    };
+    for (int s = 0; s < segments; ++s) {
+      emit(at(ra, ca, s), at(ra, ca, s + 1), at(rb, cb, s));
+      emit(at(ra, ca, s + 1), at(rb, cb, s + 1), at(rb, cb, s));
+    }
+  }
+  return mesh;
+}
+
+// A hollow sphere: the shell between inner_radius and radius (the inner surface faces the cavity).
+TriangleMesh make_shell(float radius, float inner_radius, int segments) {
+  std::vector<glm::vec2> profile;
+  int arc = std::max(segments / 2, 2);
+  for (int i = 0; i <= arc; ++i) {  // outer arc, top to bottom
+    float theta = glm::pi<float>() * fraction(i, arc);
+    profile.emplace_back(radius * std::sin(theta), radius * std::cos(theta));
+  }
+  for (int i = arc; i >= 0; --i) {  // inner arc, bottom to top
+    float theta = glm::pi<float>() * fraction(i, arc);
+    profile.emplace_back(inner_radius * std::sin(theta), inner_radius * std::cos(theta));
+  }
+  return make_lathe(profile, segments, 45.0f);
 }
 
 // size.x along x, size.y along z.

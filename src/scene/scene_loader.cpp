@@ -32,15 +32,21 @@ constexpr ParamDecl kCameraParams[] = {
     {"fov_y_deg", ParamType::Float, "40", "degrees", 1, 179, "", "vertical field of view"},
 };
 constexpr ParamDecl kLightParams[] = {
-    {"type", ParamType::Enum, "\"directional\"", "", 0, 0, "directional", "light type"},
-    {"direction", ParamType::Vec3, "", "", -1e9, 1e9, "", "direction the light travels (required)"},
-    {"radiance", ParamType::Vec3, "[1, 1, 1]", "W/m^2 (RGB)", 0, 1e9, "", "irradiance on a surface facing it"},
+    {"type", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|point|spot", "light type"},
+    {"direction", ParamType::Vec3, "", "", -1e9, 1e9, "", "directional, spot: direction the light travels (required)"},
+    {"radiance", ParamType::Vec3, "", "W/m^2 (RGB)", 0, 1e9, "", "directional: irradiance on a surface facing it (default 1)"},
+    {"position", ParamType::Vec3, "", "units", -1e9, 1e9, "", "point, spot: position (required)"},
+    {"intensity", ParamType::Vec3, "", "W/sr (RGB)", 0, 1e9, "", "point, spot: radiant intensity (default 1e-3); irradiance I/d^2, d in m"},
+    {"inner_deg", ParamType::Float, "", "degrees", 0, 90, "", "spot: full intensity within this half-angle (default 30)"},
+    {"outer_deg", ParamType::Float, "", "degrees", 0, 90, "", "spot: no light beyond this half-angle (default 45)"},
 };
 constexpr ParamDecl kObjectParams[] = {
     {"name", ParamType::String, "\"\"", "", 0, 0, "", "name used in messages"},
-    {"shape", ParamType::Enum, "\"\"", "", 0, 0, "|sphere|torus|box|plane", "procedural shape (or give mesh)"},
+    {"shape", ParamType::Enum, "\"\"", "", 0, 0, "|sphere|shell|torus|box|plane|lathe",
+     "procedural shape (or give mesh); lathe revolves \"profile\": [[r, y], ...] (units, r >= 0) about y"},
     {"mesh", ParamType::String, "\"\"", "", 0, 0, "", "mesh file (OBJ, PLY, glTF, STL, 3DS, ...), relative to the scene"},
-    {"radius", ParamType::Float, "1", "units", kPositive, 1e9, "", "sphere radius"},
+    {"radius", ParamType::Float, "1", "units", kPositive, 1e9, "", "sphere and shell radius"},
+    {"inner_radius", ParamType::Float, "0.8", "units", kPositive, 1e9, "", "shell: radius of the hollow inside"},
     {"major_radius", ParamType::Float, "1", "units", kPositive, 1e9, "", "torus: ring radius"},
     {"minor_radius", ParamType::Float, "0.4", "units", kPositive, 1e9, "", "torus: tube radius"},
     {"size", ParamType::Vec3, "[1, 1, 1]", "units", kPositive, 1e9, "", "box edge lengths"},
@@ -91,10 +97,42 @@ Camera read_camera(const json& j, const JsonLocation& where) {
   return camera;
 }
 
-DirectionalLight read_light(const json& j, const JsonLocation& where) {
+// Reads one light into the scene's directional or point lights. Keys that the light's type does not use are
+// errors, so that a misspelt type cannot silently drop a position or a direction.
+void read_light(const json& j, const JsonLocation& where, Scene& scene) {
   ParamValues v = read_params(j, {"light", kLightParams}, where);
-  if (!v.has("direction")) fail(where.child("direction"), "missing; the direction the light travels, e.g. [0, -1, 0]");
-  return {unit(v.vec3("direction"), where.child("direction")), v.vec3("radiance")};
+  const std::string& type = v.text("type");
+  auto forbid = [&](std::initializer_list<const char*> keys) {
+    for (const char* key : keys)
+      if (v.has(key)) fail(where.child(key), fmt::format("not used by a {} light", type));
+  };
+  auto require = [&](const char* key, const char* example) {
+    if (!v.has(key)) fail(where.child(key), fmt::format("missing; a {} light needs it, e.g. {}", type, example));
+  };
+  if (type == "directional") {
+    forbid({"position", "intensity", "inner_deg", "outer_deg"});
+    require("direction", "[0, -1, 0] (the direction the light travels)");
+    scene.lights.push_back({unit(v.vec3("direction"), where.child("direction")),
+                            v.has("radiance") ? v.vec3("radiance") : glm::vec3(1.0f)});
+    return;
+  }
+  forbid({"radiance"});
+  require("position", "[0, 1, 0]");
+  PointLight light;
+  light.position = v.vec3("position");
+  light.intensity = v.has("intensity") ? v.vec3("intensity") : glm::vec3(1e-3f);
+  if (type == "point") {
+    forbid({"direction", "inner_deg", "outer_deg"});
+  } else {
+    require("direction", "[0, -1, 0] (the spot's axis, the direction the light travels)");
+    light.spot = true;
+    light.direction = unit(v.vec3("direction"), where.child("direction"));
+    if (v.has("inner_deg")) light.inner_deg = static_cast<float>(v.number("inner_deg"));
+    if (v.has("outer_deg")) light.outer_deg = static_cast<float>(v.number("outer_deg"));
+    if (light.inner_deg > light.outer_deg)
+      fail(where.child("inner_deg"), fmt::format("{} exceeds outer_deg {}", light.inner_deg, light.outer_deg));
+  }
+  scene.point_lights.push_back(light);
 }
 
 json normalized_material(const json& j) {
@@ -128,7 +166,27 @@ Material read_material(const json& raw, const JsonLocation& where) {
   return m;
 }
 
-TriangleMesh read_geometry(const ParamValues& v, const JsonLocation& where, const std::string& base_dir) {
+// A lathe profile: an array of [r, y] pairs with r >= 0, finite.
+std::vector<glm::vec2> read_profile(const json& object, const JsonLocation& where) {
+  std::vector<glm::vec2> profile;
+  if (!object.contains("profile")) return profile;
+  const json& p = object["profile"];
+  JsonLocation at = where.child("profile");
+  if (!p.is_array()) fail(at, "expected an array of [r, y] points");
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const json& q = p[i];
+    if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+      fail(at.child(i), "expected [r, y] (two numbers)");
+    glm::vec2 point(q[0].get<float>(), q[1].get<float>());
+    if (!std::isfinite(point.x) || !std::isfinite(point.y) || point.x < 0.0f)
+      fail(at.child(i), fmt::format("[{}, {}]: r must be >= 0 and both finite", point.x, point.y));
+    profile.push_back(point);
+  }
+  return profile;
+}
+
+TriangleMesh read_geometry(const ParamValues& v, const std::vector<glm::vec2>& profile, const JsonLocation& where,
+                           const std::string& base_dir) {
   const std::string& shape = v.text("shape");
   const std::string& mesh = v.text("mesh");
   if (shape.empty() == mesh.empty()) fail(where, "give exactly one of shape and mesh");
@@ -137,6 +195,16 @@ TriangleMesh read_geometry(const ParamValues& v, const JsonLocation& where, cons
   if (shape == "torus")
     return make_torus(static_cast<float>(v.number("major_radius")), static_cast<float>(v.number("minor_radius")),
                       segments, segments / 2);
+  if (shape == "shell") {
+    if (v.number("inner_radius") >= v.number("radius"))
+      fail(where.child("inner_radius"), fmt::format("{} must be smaller than radius {}", v.number("inner_radius"), v.number("radius")));
+    return make_shell(static_cast<float>(v.number("radius")), static_cast<float>(v.number("inner_radius")), segments);
+  }
+  if (shape == "lathe") {
+    if (profile.size() < 3) fail(where.child("profile"), "lathe needs a profile of at least 3 [r, y] points");
+    return make_lathe(profile, segments);
+  }
+  if (!profile.empty()) fail(where.child("profile"), "only used by shape lathe");
   if (shape == "box") return make_box(v.vec3("size"));
   if (shape == "plane") return make_plane(glm::vec2(v.vec3("extent")));
   std::filesystem::path path = mesh;
@@ -171,10 +239,10 @@ glm::mat4 read_transform(const ParamValues& v) {
 }
 
 SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir) {
-  ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material"});
+  ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile"});
   SceneObject object;
   object.name = v.text("name").empty() ? where.pointer : v.text("name");
-  object.mesh = read_geometry(v, where, base_dir);
+  object.mesh = read_geometry(v, read_profile(j, where), where, base_dir);
   validate_mesh(object.mesh, where.str());
   object.world_from_object = read_transform(v);
   object.albedo = v.vec3("albedo");
@@ -269,7 +337,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   scene.camera = read_camera(doc.value("camera", json::object()), root.child("camera"));
   const json lights = doc.value("lights", json::array());
   if (!lights.is_array()) fail(root.child("lights"), "expected an array of lights");
-  for (std::size_t i = 0; i < lights.size(); ++i) scene.lights.push_back(read_light(lights[i], root.child("lights").child(i)));
+  for (std::size_t i = 0; i < lights.size(); ++i) read_light(lights[i], root.child("lights").child(i), scene);
   const json objects = doc.value("objects", json::array());
   if (!objects.is_array() || objects.empty()) fail(root.child("objects"), "expected a non-empty array of objects");
   for (std::size_t i = 0; i < objects.size(); ++i)

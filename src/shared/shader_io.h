@@ -10,6 +10,8 @@
 #define LUCENT_BINDING_OBJECTS 2     // buffer ObjectGPU[] (std430)
 #define LUCENT_BINDING_PARITY 3      // buffer used by the GPU parity test (std430)
 #define LUCENT_BINDING_COUNTERS 4    // buffer uint[]: x = covered map texels this frame (std430)
+#define LUCENT_BINDING_VPLS 5        // buffer VplGPU[] (std430)
+#define LUCENT_BINDING_PROBES 6      // buffer ProbeGPU[] (std430)
 
 // Texture units (samplers) and image units.
 #define LUCENT_TEX_CAMERA_POSITION 0
@@ -22,12 +24,21 @@
 #define LUCENT_TEX_MAP_DEPTH 7
 #define LUCENT_TEX_RADIOSITY 8
 #define LUCENT_TEX_HDR 9
+#define LUCENT_TEX_VPL_POSITION 10
+#define LUCENT_TEX_VPL_NORMAL 11
+#define LUCENT_TEX_VPL_DEPTH 12
 #define LUCENT_IMAGE_RADIOSITY 0
 #define LUCENT_IMAGE_HDR 1
 #define LUCENT_IMAGE_LDR 2
 
-#define LUCENT_MAX_LIGHTS 8
+#define LUCENT_MAX_LIGHTS 16       // directional, point and spot lights together
+#define LUCENT_MAX_LIGHT_VIEWS 64  // light G-buffer layers (directional: 2, point and spot: 6 or 7)
 #define LUCENT_MAX_MAPS 64
+
+// Light types (LightGPU.position.w).
+#define LUCENT_LIGHT_DIRECTIONAL 0
+#define LUCENT_LIGHT_POINT 1
+#define LUCENT_LIGHT_SPOT 2
 
 // Debug views written by the combine pass (FrameGPU.options.y).
 #define LUCENT_VIEW_SHADED 0
@@ -48,12 +59,25 @@ struct ObjectGPU {
   ivec4 info;   // x: material index, -1 for an opaque object; yzw: unused
 };
 
-// An orthographic view: a directional light's G-buffer or a scattered-radiosity map (std140, 96 bytes).
+// One view of a light G-buffer layer or of a scattered-radiosity map (std140, 96 bytes). Orthographic views
+// (directional lights, maps) or perspective ones (the faces of a point light's cube map, or one frustum framing
+// the translucent objects); texture coordinates are 0.5 * clip / clip.w + 0.5.
 struct ViewGPU {
-  mat4 clip_from_world;  // orthographic; texture coordinates are 0.5 * clip + 0.5
-  vec4 direction;        // xyz: unit direction (light: the way it travels; map: from the object toward the
-                         // map's camera, d_k); w: width of the square view [scene units]
-  vec4 radiance;         // light: rgb radiance, w: depth range [scene units]; map: unused
+  mat4 clip_from_world;
+  vec4 direction;        // orthographic: xyz unit direction (light: the way it travels; map: from the object
+                         // toward the map's camera, d_k); w: width of the square view [scene units]
+  vec4 radiance;         // w: orthographic: depth range [scene units]; perspective: texel angle [radians]
+};
+
+// One light (std140, 64 bytes). Irradiance on a surface facing it: directional `power.rgb`; point and spot
+// `power.rgb / d^2` with d in scene units (the CPU folds scale_mm into power).
+struct LightGPU {
+  vec4 position;  // xyz: position [scene units] (point, spot) or unit direction travelled (directional);
+                  // w: type (LUCENT_LIGHT_*)
+  vec4 power;     // rgb: irradiance (directional) or intensity per scene unit^2 (point, spot); w: cos inner cone
+  vec4 axis;      // spot: xyz unit direction travelled along the axis, w: cos outer cone
+  ivec4 views;    // x: first light-G-buffer layer framing the translucent objects, y: its layer count (1 view,
+                  // or 6 cube faces +X -X +Y -Y +Z -Z), z: first layer of the scene-wide shadow view(s), w: count
 };
 
 // One vertex of the world-space scene vertex buffer (32 bytes).
@@ -72,9 +96,27 @@ struct FrameGPU {
   uvec4 seeds;           // x: user seed, y: frame counter (never repeats), z: 1 = restart accumulation
   vec4 biases;           // x: eps_bias [map texels], y: eps_comb [map texels], z: filter lod, w: roughness
   vec4 options;          // x: exposure scale 2^stops, y: debug view, z: specular on, w: tone-map operator
-  ViewGPU lights[LUCENT_MAX_LIGHTS];   // light G-buffer views framing the translucent objects (step 1)
-  ViewGPU shadows[LUCENT_MAX_LIGHTS];  // the same lights framing the whole scene: shadows of opaque objects
-  ViewGPU maps[LUCENT_MAX_MAPS];
+  ivec4 extra_counts;    // x: light G-buffer layers, y: VPLs N_vpl (0: off), z: VPL cube map size, w: unused
+  vec4 vpl_center;       // xyz: centre of the VPL cube map [scene units]; w: unused
+  LightGPU lights[LUCENT_MAX_LIGHTS];
+  ViewGPU light_views[LUCENT_MAX_LIGHT_VIEWS];  // step 1: the light G-buffer layers
+  ViewGPU maps[LUCENT_MAX_MAPS];                // step 2: the scattered-radiosity map views
+  ViewGPU vpl_views[6];                         // cube map of the translucent objects' outermost surface
+};
+
+// A virtual point light on a translucent object's outer surface (Dal Corso et al. 2015, Section 3.4; std430).
+// It emits L(w) = F_t(w) B / pi over its area, so its intensity toward w is F_t(w) B A cos(theta) / pi (eq. 16).
+struct VplGPU {
+  vec4 position;   // xyz [scene units]; w: surface area A_v it stands for [scene units^2], 0 when inactive
+  vec4 normal;     // xyz: outward unit normal; w: eta of its material
+  vec4 radiosity;  // rgb: scattered radiosity B(x_v) from the maps (Algorithm 1); w: unused
+};
+
+// A point where a diagnostic asks for the scattered radiosity from the maps (std430).
+struct ProbeGPU {
+  vec4 position;   // xyz [scene units]; w: object index
+  vec4 normal;     // xyz: unit normal
+  vec4 radiosity;  // out: rgb B(x) (Algorithm 1), w: 1 when a map sees x, else 0
 };
 
 // One configuration of the GPU parity test (std430, 128 bytes): shaders/tests/bssrdf_parity.comp evaluates
@@ -99,10 +141,19 @@ static_assert(sizeof(lucent::shader::ViewGPU) == 96);
 static_assert(sizeof(lucent::shader::VertexGPU) == 32);
 static_assert(sizeof(lucent::shader::ParityCaseGPU) == 128);
 static_assert(offsetof(lucent::shader::FrameGPU, counts) == 96);
-static_assert(offsetof(lucent::shader::FrameGPU, lights) == 176);
-static_assert(offsetof(lucent::shader::FrameGPU, shadows) == 176 + 96 * LUCENT_MAX_LIGHTS);
-static_assert(offsetof(lucent::shader::FrameGPU, maps) == 176 + 96 * 2 * LUCENT_MAX_LIGHTS);
-static_assert(sizeof(lucent::shader::FrameGPU) == 176 + 96 * (2 * LUCENT_MAX_LIGHTS + LUCENT_MAX_MAPS));
+static_assert(sizeof(lucent::shader::LightGPU) == 64);
+static_assert(sizeof(lucent::shader::VplGPU) == 48);
+static_assert(sizeof(lucent::shader::ProbeGPU) == 48);
+static_assert(offsetof(lucent::shader::FrameGPU, extra_counts) == 176);
+static_assert(offsetof(lucent::shader::FrameGPU, vpl_center) == 192);
+static_assert(offsetof(lucent::shader::FrameGPU, lights) == 208);
+static_assert(offsetof(lucent::shader::FrameGPU, light_views) == 208 + 64 * LUCENT_MAX_LIGHTS);
+static_assert(offsetof(lucent::shader::FrameGPU, maps) == 208 + 64 * LUCENT_MAX_LIGHTS + 96 * LUCENT_MAX_LIGHT_VIEWS);
+static_assert(offsetof(lucent::shader::FrameGPU, vpl_views) ==
+              208 + 64 * LUCENT_MAX_LIGHTS + 96 * (LUCENT_MAX_LIGHT_VIEWS + LUCENT_MAX_MAPS));
+static_assert(sizeof(lucent::shader::FrameGPU) ==
+              208 + 64 * LUCENT_MAX_LIGHTS + 96 * (LUCENT_MAX_LIGHT_VIEWS + LUCENT_MAX_MAPS + 6));
+static_assert(sizeof(lucent::shader::FrameGPU) <= 16384, "GL guarantees uniform blocks of 16 KiB only");
 #endif
 
 #endif

@@ -56,8 +56,8 @@ TEST(Cli, UnknownKey) {
   std::string scene = write_file("unknown_key.json", R"({"objects": [{"shape": "sphere", "colour": [1, 0, 0]}]})");
   expect_one_line_error(
       run("render " + scene),
-      "lucent: " + scene + ": /objects/0/colour: unknown key; known keys: name, shape, mesh, radius, major_radius, "
-      "minor_radius, size, extent, segments, translate, rotate_deg, scale, albedo, material");
+      "lucent: " + scene + ": /objects/0/colour: unknown key; known keys: name, shape, mesh, radius, inner_radius, "
+      "major_radius, minor_radius, size, extent, segments, translate, rotate_deg, scale, albedo, material, profile");
 }
 
 TEST(Cli, NegativeSigma) {

@@ -10,11 +10,13 @@
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
+#include "render/light_views.h"
 
 namespace lucent::methods {
 namespace {
 
 using shader::FrameGPU;
+using shader::LightGPU;
 using shader::ViewGPU;
 
 // Defaults follow Dal Corso et al. 2015, Section 5 (512x512 maps and light map, K = 16) and the issue's
@@ -31,6 +33,8 @@ constexpr ParamDecl kParams[] = {
     {"progressive", ParamType::Bool, "true", "", 0, 1, "", "accumulate maps over frames while only the camera moves"},
     {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights"},
     {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection"},
+    {"vpls", ParamType::Int, "64", "VPLs", 0, 4096, "", "virtual point lights carrying emergent light to diffuse objects (0: off)"},
+    {"vpl_map_size", ParamType::Int, "256", "texels", 8, 4096, "", "resolution of each face of the VPL placement cube map"},
     {"view", ParamType::Enum, "\"shaded\"", "", 0, 0, "shaded|coverage", "debug view: coverage shows unmapped areas in magenta"},
 };
 
@@ -40,7 +44,7 @@ float radical_inverse(int index, int base) {
   return result;
 }
 
-glm::vec3 any_perpendicular_up(glm::vec3 d) {
+glm::vec3 map_up(glm::vec3 d) {
   return std::abs(d.y) > 0.99f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
@@ -48,7 +52,7 @@ glm::vec3 any_perpendicular_up(glm::vec3 d) {
 glm::mat4 orthographic_view(glm::vec3 center, glm::vec3 toward_eye, float half_width, float eye_distance,
                             float depth_range) {
   glm::vec3 eye = center + toward_eye * eye_distance;
-  glm::mat4 view = glm::lookAt(eye, center, any_perpendicular_up(toward_eye));
+  glm::mat4 view = glm::lookAt(eye, center, map_up(toward_eye));
   return glm::ortho(-half_width, half_width, -half_width, half_width, 0.0f, depth_range) * view;
 }
 
@@ -72,20 +76,30 @@ class RadiosityMaps final : public Method {
         K_(params_.integer("K")),
         map_size_(params_.integer("map_size")),
         light_map_size_(params_.integer("light_map_size")),
-        light_count_(static_cast<int>(scene.lights.size())),
-        light_gbuffer_(light_map_size_, light_map_size_, 2 * std::max(1, light_count_), "light G-buffer"),
+        light_setup_(render::build_light_views(scene, scene_gpu.translucent_bounds(), scene_gpu.scene_bounds(),
+                                               light_map_size_)),
+        light_count_(static_cast<int>(light_setup_.lights.size())),
+        light_gbuffer_(light_map_size_, light_map_size_, std::max<int>(1, static_cast<int>(light_setup_.views.size())),
+                       "light G-buffer"),
         map_gbuffer_(map_size_, map_size_, K_, "radiosity-map G-buffer"),
+        vpl_count_(params_.integer("vpls")),
+        vpl_map_size_(params_.integer("vpl_map_size")),
+        vpl_gbuffer_(vpl_count_ > 0 ? vpl_map_size_ : 1, vpl_count_ > 0 ? vpl_map_size_ : 1, 6, "VPL cube map"),
         gbuffer_program_(gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "gbuffer/layered_views.geom",
                                                       "gbuffer/gbuffer.frag")),
         integrate_program_(gpu::ShaderProgram::compute("radiosity_maps/integrate.comp")),
-        combine_program_(gpu::ShaderProgram::compute("radiosity_maps/combine.comp")) {
-    if (light_count_ > LUCENT_MAX_LIGHTS)
-      throw Error(fmt_lights_error(scene.source, light_count_));
+        combine_program_(gpu::ShaderProgram::compute("radiosity_maps/combine.comp")),
+        vpl_program_(gpu::ShaderProgram::compute("radiosity_maps/vpl.comp")),
+        probe_program_(gpu::ShaderProgram::compute("radiosity_maps/probe.comp")) {
     radiosity_ = make_radiosity_texture(map_size_, K_);
     glCreateBuffers(1, &counter_buffer_);
     glNamedBufferStorage(counter_buffer_, sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, counter_buffer_, "covered texel counter");
-    build_views(scene, scene_gpu);
+    glCreateBuffers(1, &vpl_buffer_);
+    glNamedBufferStorage(vpl_buffer_, static_cast<GLsizeiptr>(sizeof(shader::VplGPU)) * std::max(1, vpl_count_), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    gpu::label_object(GL_BUFFER, vpl_buffer_, "virtual point lights");
+    build_views(scene_gpu);
     warn_about_pearling(scene);
     warn_about_low_albedo(scene);
   }
@@ -93,6 +107,7 @@ class RadiosityMaps final : public Method {
   ~RadiosityMaps() override {
     glDeleteTextures(1, &radiosity_);
     glDeleteBuffers(1, &counter_buffer_);
+    glDeleteBuffers(1, &vpl_buffer_);
   }
 
   void prepare_frame(FrameGPU& frame, bool restart) override {
@@ -106,8 +121,13 @@ class RadiosityMaps final : public Method {
                              params_.number("roughness"));
     frame.options.y = params_.text("view") == "coverage" ? LUCENT_VIEW_COVERAGE : LUCENT_VIEW_SHADED;
     frame.options.z = params_.boolean("specular") ? 1.0f : 0.0f;
-    std::copy(lights_.begin(), lights_.end(), frame.lights);
-    std::copy(shadows_.begin(), shadows_.end(), frame.shadows);
+    frame.extra_counts.x = static_cast<int>(light_setup_.views.size());
+    frame.extra_counts.y = vpl_count_;
+    frame.extra_counts.z = vpl_map_size_;
+    frame.vpl_center = glm::vec4(vpl_center_, 0.0f);
+    std::copy(vpl_views_.begin(), vpl_views_.end(), frame.vpl_views);
+    std::copy(light_setup_.lights.begin(), light_setup_.lights.end(), frame.lights);
+    std::copy(light_setup_.views.begin(), light_setup_.views.end(), frame.light_views);
     std::copy(maps_.begin(), maps_.end(), frame.maps);
   }
 
@@ -116,6 +136,7 @@ class RadiosityMaps final : public Method {
     render_map_gbuffers(context);
     integrate(context);
     generate_mipmaps(context);
+    place_vpls(context);
     combine(context);
   }
 
@@ -128,7 +149,32 @@ class RadiosityMaps final : public Method {
     };
     std::size_t maps = static_cast<std::size_t>(map_size_) * static_cast<std::size_t>(map_size_) *
                        static_cast<std::size_t>(K_) * 16 * 4 / 3;  // RGBA32F with its mip chain
-    return gbuffer(light_gbuffer_) + gbuffer(map_gbuffer_) + maps;
+    return gbuffer(light_gbuffer_) + gbuffer(map_gbuffer_) + (vpl_count_ > 0 ? gbuffer(vpl_gbuffer_) : 0) + maps +
+           sizeof(shader::VplGPU) * static_cast<std::size_t>(vpl_count_);
+  }
+
+  std::vector<shader::ProbeGPU> scattered_radiosity(std::vector<shader::ProbeGPU> probes) const override {
+    if (probes.empty()) return probes;
+    GLuint buffer = 0;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(probes.size() * sizeof(shader::ProbeGPU)), probes.data(),
+                         GL_DYNAMIC_STORAGE_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_PROBES, buffer);
+    bind_map_textures();
+    glUseProgram(probe_program_.id());
+    glUniform1i(glGetUniformLocation(probe_program_.id(), "u_count"), static_cast<GLint>(probes.size()));
+    glDispatchCompute(static_cast<GLuint>((probes.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(probes.size() * sizeof(shader::ProbeGPU)), probes.data());
+    glDeleteBuffers(1, &buffer);
+    return probes;
+  }
+
+  std::vector<shader::VplGPU> virtual_point_lights() const override {
+    std::vector<shader::VplGPU> vpls(static_cast<std::size_t>(vpl_count_));
+    if (!vpls.empty())
+      glGetNamedBufferSubData(vpl_buffer_, 0, static_cast<GLsizeiptr>(vpls.size() * sizeof(shader::VplGPU)), vpls.data());
+    return vpls;
   }
   std::uint64_t bssrdf_samples_last_frame() const override {
     std::uint32_t covered = 0;
@@ -138,16 +184,11 @@ class RadiosityMaps final : public Method {
   }
 
  private:
-  static std::string fmt_lights_error(const std::string& source, int count) {
-    return source + ": " + std::to_string(count) + " directional lights; radiosity-maps supports at most " +
-           std::to_string(LUCENT_MAX_LIGHTS);
-  }
-
   // Dal Corso et al., Section 5: when the scattering length 1/sigma_tr is under about two light-map texels the
   // contributions cluster ("pearling"). Say so once, with the light-map size that would avoid it.
   void warn_about_pearling(const Scene& scene) const {
-    if (lights_.empty()) return;
-    float texel_mm = lights_[0].direction.w / static_cast<float>(light_map_size_) * scene.scale_mm;
+    if (scene.lights.empty()) return;
+    float texel_mm = light_setup_.views[0].direction.w / static_cast<float>(light_map_size_) * scene.scale_mm;
     for (const SceneObject& object : scene.objects) {
       if (!object.material) continue;
       glm::vec3 sigma_tr = object.material->sigma_tr();
@@ -177,27 +218,9 @@ class RadiosityMaps final : public Method {
     }
   }
 
-  void build_views(const Scene& scene, const render::SceneGpu& scene_gpu) {
+  void build_views(const render::SceneGpu& scene_gpu) {
     render::BoundingSphere object = scene_gpu.translucent_bounds();
-    render::BoundingSphere all = scene_gpu.scene_bounds();
     float half_width = 1.02f * object.radius + 1e-6f;
-    // Step 1 views: cover the translucent objects; depth covers the whole scene so occluders cast shadows.
-    float eye_distance = glm::length(all.center - object.center) + all.radius + half_width;
-    for (const DirectionalLight& light : scene.lights) {
-      ViewGPU view;
-      view.clip_from_world =
-          orthographic_view(object.center, -light.direction, half_width, eye_distance, 2.0f * eye_distance);
-      view.direction = glm::vec4(light.direction, 2.0f * half_width);
-      view.radiance = glm::vec4(light.radiance, 2.0f * eye_distance);
-      lights_.push_back(view);
-      // Scene-wide view of the same light for the shadows of opaque objects.
-      float scene_half_width = 1.02f * all.radius + 1e-6f;
-      view.clip_from_world = orthographic_view(all.center, -light.direction, scene_half_width, scene_half_width,
-                                               2.0f * scene_half_width);
-      view.direction.w = 2.0f * scene_half_width;
-      view.radiance.w = 2.0f * scene_half_width;
-      shadows_.push_back(view);
-    }
     // Step 2 views: K directions from a Halton sequence on the bounding sphere, looking at its centre.
     for (glm::vec3 d : halton_sphere_directions(K_)) {
       ViewGPU view;
@@ -206,6 +229,9 @@ class RadiosityMaps final : public Method {
       view.radiance = glm::vec4(0.0f, 0.0f, 0.0f, 2.0f * half_width);
       maps_.push_back(view);
     }
+    // The VPL cube map about the translucent objects' centre (the paper uses the bounding box centre).
+    vpl_center_ = object.center;
+    render::append_cube_views(vpl_views_, vpl_center_, 1e-4f * half_width, 2.0f * half_width, vpl_map_size_);
   }
 
   void render_light_gbuffer(const FrameContext& context) {
@@ -245,6 +271,30 @@ class RadiosityMaps final : public Method {
     context.timer.end();
   }
 
+  void bind_map_textures() const {
+    map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
+    glBindTextureUnit(LUCENT_TEX_RADIOSITY, radiosity_);
+  }
+
+  // Section 3.4: VPLs on the outermost surface (cube map, farthest depth), their radiosity from the maps.
+  void place_vpls(const FrameContext& context) {
+    if (vpl_count_ == 0) return;
+    gpu::DebugGroup group("vpls");
+    context.timer.begin("vpls");
+    vpl_gbuffer_.begin_pass(/*farthest=*/true);
+    glUseProgram(gbuffer_program_.id());
+    glUniform1i(glGetUniformLocation(gbuffer_program_.id(), "u_view_set"), 2);
+    context.scene_gpu.draw_translucent();
+    glDepthFunc(GL_LESS);
+    vpl_gbuffer_.bind_textures(LUCENT_TEX_VPL_POSITION, LUCENT_TEX_VPL_NORMAL, LUCENT_TEX_VPL_DEPTH);
+    bind_map_textures();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_VPLS, vpl_buffer_);
+    glUseProgram(vpl_program_.id());
+    glDispatchCompute(static_cast<GLuint>((vpl_count_ + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    context.timer.end();
+  }
+
   void generate_mipmaps(const FrameContext& context) {
     gpu::DebugGroup group("mipmaps");
     context.timer.begin("mipmaps");
@@ -255,9 +305,9 @@ class RadiosityMaps final : public Method {
   void combine(const FrameContext& context) {
     gpu::DebugGroup group("combine");
     context.timer.begin("combine");
-    map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
+    bind_map_textures();
     light_gbuffer_.bind_textures(LUCENT_TEX_LIGHT_POSITION, LUCENT_TEX_LIGHT_NORMAL, LUCENT_TEX_LIGHT_DEPTH);
-    glBindTextureUnit(LUCENT_TEX_RADIOSITY, radiosity_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_VPLS, vpl_buffer_);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(combine_program_.id());
     int width = context.camera_gbuffer.size_x(), height = context.camera_gbuffer.size_y();
@@ -267,12 +317,17 @@ class RadiosityMaps final : public Method {
   }
 
   const ParamValues& params_;
-  int K_, map_size_, light_map_size_, light_count_;
+  int K_, map_size_, light_map_size_;
+  render::LightViews light_setup_;
+  int light_count_;
   int accumulated_ = 0;
   gpu::GBuffer light_gbuffer_, map_gbuffer_;
-  gpu::ShaderProgram gbuffer_program_, integrate_program_, combine_program_;
-  GLuint radiosity_ = 0, counter_buffer_ = 0;
-  std::vector<ViewGPU> lights_, shadows_, maps_;
+  int vpl_count_, vpl_map_size_;
+  gpu::GBuffer vpl_gbuffer_;
+  gpu::ShaderProgram gbuffer_program_, integrate_program_, combine_program_, vpl_program_, probe_program_;
+  GLuint radiosity_ = 0, counter_buffer_ = 0, vpl_buffer_ = 0;
+  std::vector<ViewGPU> maps_, vpl_views_;
+  glm::vec3 vpl_center_{0.0f};
 };
 
 }  // namespace

@@ -1,0 +1,78 @@
+// light_sampling.glsl: the Monte Carlo estimator of Dal Corso et al.'s eq. 9 for the scattered radiosity B(x_o)
+// of one colour band from one light, with N samples drawn from p_exp (eqs. 10-12) and x_i, n_i looked up in the
+// light's G-buffer. Shared by the radiosity-maps integration (per map texel) and the per-pixel baseline.
+//
+// Directional lights: samples are uniform over the light's orthographic view plane, where dA_plane =
+// cos(theta_i) dA_i, so eq. 7's cos(theta_l) cancels against the Jacobian (eq. 9's extra cosine is not applied;
+// see docs/methods/radiosity-maps.md). Point and spot lights: samples lie in the plane through x_o
+// perpendicular to the light and are mapped to directions by the stereographic correction (eqs. 13-14); dividing
+// by dA_plane / d omega cancels the irradiance's cos(theta_i) / d^2 in the same way (lights/point_light.h).
+#include "bssrdf/model.h"
+#include "shared/random.h"
+
+// B for one band from light l, without the factor pi * power[band] (and, for point lights, per unit intensity).
+float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o, vec3 n_o, uint state) {
+  LightGPU light = frame.lights[l];
+  BandMedium m = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
+  float eta = material.sigma_a.w;
+  int model = int(material.sigma_s.w);
+  int size = frame.sizes.y;
+  bool directional = int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL;
+  // Sampling plane: directional, the light's view plane; point, the plane through x_o perpendicular to the light.
+  ViewGPU view = frame.light_views[light.views.x];
+  vec2 uv_o = directional ? view_coords(view, x_o).xy : vec2(0.0f);
+  vec3 axis = directional ? -light.position.xyz : normalize(light.position.xyz - x_o);
+  vec3 t1 = normalize(abs(axis.x) > 0.9f ? cross(axis, vec3(0.0f, 1.0f, 0.0f)) : cross(axis, vec3(1.0f, 0.0f, 0.0f)));
+  vec3 t2 = cross(axis, t1);
+  float sum = 0.0f;
+  for (int j = 0; j < frame.counts.z; ++j) {
+    // Sample (r, alpha) from p_exp (eq. 12) around x_o.
+    float xi_1 = next_float(state + uint(2 * j));
+    float xi_2 = next_float(state + uint(2 * j + 1));
+    float r = -log(xi_1) / m.sigma_tr;
+    float alpha = kTwoPi * xi_2;
+    // 1 / p_exp(r, alpha) in area measure: p = sigma_tr e^{-sigma_tr r} / (2 pi r), with e^{-sigma_tr r} = xi_1.
+    float weight = kTwoPi * r / (m.sigma_tr * xi_1);
+    int layer;
+    vec2 uv;
+    vec3 w_i;
+    if (directional) {
+      layer = light.views.x;
+      uv = uv_o + r * vec2(cos(alpha), sin(alpha)) / view.direction.w;
+      if (any(lessThan(uv, vec2(0.0f))) || any(greaterThanEqual(uv, vec2(1.0f)))) continue;
+      w_i = axis;
+    } else {
+      vec3 x_j = x_o + r * (cos(alpha) * t1 + sin(alpha) * t2);
+      StereographicSample s = stereographic_sample(light.position.xyz, x_o, x_j);
+      if (!point_light_lookup(light, light.views.x, light.views.y, s.direction, layer, uv)) continue;
+      weight /= s.plane_area_per_solid_angle;
+      if (int(light.position.w) == LUCENT_LIGHT_SPOT)
+        weight *= spot_falloff(dot(s.direction, light.axis.xyz), light.power.w, light.axis.w);
+    }
+    // Look up x_i, n_i; only this object's directly lit surface contributes.
+    ivec3 texel = ivec3(ivec2(uv * float(size)), layer);
+    vec4 p_i = texelFetch(light_position, texel, 0);
+    if (int(p_i.w) - 1 != object) continue;
+    if (!directional) w_i = normalize(light.position.xyz - p_i.xyz);
+    vec3 n_i = texelFetch(light_normal, texel, 0).xyz;
+    float cos_i = dot(n_i, w_i);
+    if (cos_i <= 0.0f) continue;
+    float S_d = bssrdf_Sd(model, m, eta, p_i.xyz, w_i, n_i, x_o, n_o);
+    sum += S_d * fresnel_transmittance(eta, cos_i) * weight;
+  }
+  return sum / float(frame.counts.z);
+}
+
+// Scattered radiosity B(x_o) in all bands from all lights; `stream` separates independent estimates (map texels).
+vec3 scattered_radiosity(int object, vec3 x_o, vec3 n_o, uint point_index, uint stream_base) {
+  MaterialGPU material = materials[objects[object].info.x];
+  vec3 B = vec3(0.0f);
+  for (int l = 0; l < frame.counts.x; ++l) {
+    for (int band = 0; band < 3; ++band) {
+      uint stream = uint((int(stream_base) * LUCENT_MAX_LIGHTS + l) * 3 + band);
+      uint state = seed_from(frame.seeds.x, point_index, stream, frame.seeds.y);
+      B[band] += kPi * frame.lights[l].power[band] * band_radiosity(band, l, object, material, x_o, n_o, state);
+    }
+  }
+  return B;
+}
