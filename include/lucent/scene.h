@@ -38,6 +38,13 @@ struct PointLight {
   float outer_deg = 45.0f;                  // spot: no light beyond this half-angle [degrees]
 };
 
+// A point light's intensity in scene units: the irradiance on a surface facing it at distance d (scene units)
+// is intensity_in_scene_units(light, scale_mm) / d^2.
+inline glm::vec3 intensity_in_scene_units(const PointLight& light, float scale_mm) {
+  float units_per_metre = 1000.0f / scale_mm;
+  return light.intensity * (units_per_metre * units_per_metre);
+}
+
 struct SceneObject {
   std::string name;
   TriangleMesh mesh;                  // object space

@@ -88,6 +88,20 @@ glm::dvec3 integrand(const ReferenceScene& s, const ObjectData& o, const shader:
       sum[c] += light.radiance[c] * S_d * T12 * cos_i;
     }
   }
+  for (const PointLight& light : s.scene.point_lights) {
+    glm::dvec3 w_i = glm::dvec3(light.position) - x_i;
+    double d = glm::length(w_i);
+    w_i /= d;
+    double cos_i = glm::dot(n_i, w_i);
+    if (cos_i <= 0.0 || s.rt.occluded(x_i + s.rt.ray_epsilon() * n_i, w_i, d - 2.0 * s.rt.ray_epsilon())) continue;
+    double T12 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_i));
+    glm::dvec3 E = point_light_intensity(s, light, -w_i) * cos_i / (d * d);
+    for (int c = 0; c < 3; ++c) {
+      double S_d = shader::bssrdf_Sd(o.model, media[c], static_cast<float>(o.eta), glm::vec3(x_i), glm::vec3(w_i),
+                                     glm::vec3(n_i), glm::vec3(x_o), glm::vec3(n_o));
+      sum[c] += E[c] * S_d * T12;
+    }
+  }
   return sum;
 }
 
@@ -119,6 +133,31 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
   return f / pdf;
 }
 
+// Irradiance at an opaque point from the light emerging from the translucent objects (what the real-time
+// method carries with VPLs), one sample: a translucent object chosen uniformly, a point x_v uniform on its
+// area, a shadow ray, and the emergent radiance T21 B(x_v) / pi estimated by one nested sample.
+glm::dvec3 emergent_irradiance(const ReferenceScene& s, const SurfaceHit& hit, glm::dvec3 n, Rng& rng) {
+  std::vector<int> translucent;
+  for (int i = 0; i < s.rt.object_count(); ++i)
+    if (s.rt.object(i).translucent) translucent.push_back(i);
+  if (translucent.empty()) return glm::dvec3(0.0);
+  int object = translucent[std::min(translucent.size() - 1,
+                                    static_cast<std::size_t>(rng.uniform() * static_cast<double>(translucent.size())))];
+  const ObjectData& o = s.rt.object(object);
+  SurfaceSample v = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform());
+  glm::dvec3 to_v = v.position - hit.position;
+  double d = glm::length(to_v);
+  glm::dvec3 w = to_v / d;
+  double cos_x = glm::dot(n, w), cos_v = -glm::dot(v.normal, w);
+  if (cos_x <= 0.0 || cos_v <= 0.0) return glm::dvec3(0.0);
+  double eps = s.rt.ray_epsilon();
+  if (s.rt.occluded(hit.position + eps * n, w, d - 3.0 * eps)) return glm::dvec3(0.0);
+  double T21 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_v));
+  glm::dvec3 L_v = T21 * scattered_radiosity_over_pi(s, object, v.position, v.normal, rng);
+  double pdf = 1.0 / (o.area * static_cast<double>(translucent.size()));
+  return L_v * cos_v * cos_x / (d * d) / pdf;
+}
+
 }  // namespace
 
 glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng) {
@@ -128,7 +167,7 @@ glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec
   glm::dvec3 n = hit.normal;
   if (!o.translucent) {
     if (glm::dot(n, direction) > 0.0) n = -n;
-    return direct_light_lambertian(s, hit, n);
+    return direct_light_lambertian(s, hit, n) + o.albedo / M_PI * emergent_irradiance(s, hit, n, rng);
   }
   double cos_o = std::max(0.0, -glm::dot(n, direction));
   double T21 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_o));

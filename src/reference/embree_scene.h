@@ -49,6 +49,7 @@ class EmbreeScene {
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
 
   const ObjectData& object(int index) const { return objects_[static_cast<std::size_t>(index)]; }
+  int object_count() const { return static_cast<int>(objects_.size()); }
   SurfaceSample sample_surface(int object, double u0, double u1, double u2) const;
   double ray_epsilon() const { return epsilon_; }  // self-intersection offset [scene units]
   double radius() const { return radius_; }        // bounding radius of the scene [scene units]

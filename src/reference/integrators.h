@@ -3,10 +3,11 @@
 // volpath (the physics): brute-force volumetric path tracing. Translucent interiors are homogeneous media
 // (sigma_a, sigma_s, per-band Henyey-Greenstein g) behind a smooth dielectric boundary (Fresnel reflection and
 // refraction, total internal reflection, eta); opaque objects are Lambertian with full global illumination.
-// Directional lights are deltas, so light reaches a medium vertex only through a refracting boundary point:
-// next-event estimation finds that point by fixed-point iteration on the refraction direction and weights the
-// refracted beam by its Fresnel transmittance, its compression at a locally flat boundary (cos theta_i /
-// cos theta_t) and the attenuation to the vertex. Russian roulette keeps it unbiased.
+// Directional and point lights are deltas, so light reaches a medium vertex only through a refracting boundary
+// point: next-event estimation finds that point by fixed-point iteration on the refraction direction and weights
+// the refracted beam by its Fresnel transmittance, its compression at a locally flat boundary (cos theta_i /
+// cos theta_t; for a point light the pencil's footprint, see volpath.cpp) and the attenuation to the vertex.
+// Point lights must be outside the media (in air, e.g. in a candle's hollow). Russian roulette keeps it unbiased.
 // Known limits: one entry point per medium vertex (the nearest along the refracted direction; thin parts with
 // several entry points miss the others); focusing by the boundary's curvature is neglected (exact on flat
 // boundaries, a bias of the order of depth / focal length on curved ones); nested or touching translucent objects
@@ -17,7 +18,8 @@
 // from uniform area sampling combined by multiple importance sampling with exponential probes around x_o (the
 // paper's reference uses area sampling with a Russian roulette on exp(-sigma_tr r); that misses the directional
 // dipole's near-field peak too often to converge in useful time, see bssrdf_integrator.cpp). Opaque objects get
-// direct light only, as in the real-time methods.
+// direct light plus the light emerging from the translucent objects (one area sample of a translucent surface
+// with a shadow ray and a nested estimate of its B), as the real-time method's VPLs carry it; no other bounces.
 //
 // Both: camera rays that miss show the background radiance; rays that escape later carry nothing (the
 // background does not light the scene, as in the real-time methods).
@@ -38,7 +40,10 @@ struct ReferenceScene {
 glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng);
 glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng);
 
-// Direct light on an opaque Lambertian surface point (shadow rays to every directional light).
+// A point or spot light's intensity toward `direction` (unit, from the light), in scene units (E = I / d^2).
+glm::dvec3 point_light_intensity(const ReferenceScene& s, const PointLight& light, glm::dvec3 direction);
+
+// Direct light on an opaque Lambertian surface point (shadow rays to every light).
 glm::dvec3 direct_light_lambertian(const ReferenceScene& s, const SurfaceHit& hit, glm::dvec3 normal);
 
 }  // namespace lucent::reference

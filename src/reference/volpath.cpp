@@ -65,6 +65,45 @@ RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec
   return beam;
 }
 
+// The refracted path from a point light at x_l (outside) to medium point x: the entry point y solves, by
+// fixed-point iteration, "the light's ray x_l -> y refracts toward x". Irradiance factor: flux conservation in
+// the pencil through a locally flat boundary, with the light at height D = |y - x_l| cos(theta_i) above the
+// tangent plane and x at depth d = |x - y| cos(theta_t) below it (refracted_point_irradiance: T12 I / (D + d /
+// eta)^2 at normal incidence, the light's image seen from inside, and the directional light's cos(theta_i) /
+// cos(theta_t) compression as D grows). `irradiance_factor` holds E_perp / I.
+RefractedBeam find_refracted_point_beam(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 x_l) {
+  const ObjectData& o = s.rt.object(object);
+  RefractedBeam beam;
+  glm::dvec3 toward = glm::normalize(x_l - x);
+  SurfaceHit hit;
+  for (int iteration = 0; iteration < 32; ++iteration) {
+    hit = s.rt.intersect(x, toward);
+    if (!hit.hit() || hit.object != object) return beam;
+    glm::dvec3 light_dir = glm::normalize(hit.position - x_l);
+    if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;  // the boundary faces away from the light
+    glm::dvec3 next = -refract(light_dir, hit.normal, o.eta);
+    bool converged = glm::length(next - toward) < 1e-9;
+    toward = next;
+    if (converged) break;
+  }
+  hit = s.rt.intersect(x, toward);
+  if (!hit.hit() || hit.object != object) return beam;
+  glm::dvec3 light_dir = glm::normalize(hit.position - x_l);
+  if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;
+  glm::dvec3 inside = refract(light_dir, hit.normal, o.eta);
+  if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;  // not converged: no light path
+  double cos_i = -glm::dot(light_dir, hit.normal), cos_t = -glm::dot(inside, hit.normal);
+  if (cos_i <= 1e-9 || cos_t <= 1e-9) return beam;
+  double D = glm::length(hit.position - x_l) * cos_i, d = hit.t * cos_t;
+  beam.entry = hit.position;
+  beam.direction = inside;
+  beam.distance = hit.t;
+  beam.irradiance_factor = (1.0 - dielectric_reflectance(light_dir, hit.normal, o.eta)) *
+                          refracted_point_irradiance(D, d, cos_i, cos_t, o.eta);
+  beam.found = true;
+  return beam;
+}
+
 // Next-event estimation at a medium scattering vertex: light in-scattered toward -path_dir.
 glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 path_dir) {
   const ObjectData& o = s.rt.object(object);
@@ -78,6 +117,18 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, 
     glm::dvec3 transmittance = exp_neg((o.sigma_a + o.sigma_s) * beam.distance);
     glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
     L += glm::dvec3(light.radiance) * beam.irradiance_factor * transmittance * phase;
+  }
+  for (const PointLight& light : s.scene.point_lights) {
+    glm::dvec3 x_l(light.position);
+    RefractedBeam beam = find_refracted_point_beam(s, object, x, x_l);
+    if (!beam.found) continue;
+    glm::dvec3 light_dir = glm::normalize(beam.entry - x_l);
+    glm::dvec3 entry_outside = beam.entry - s.rt.ray_epsilon() * light_dir * 2.0;
+    double to_light = glm::length(x_l - entry_outside);
+    if (s.rt.occluded(entry_outside, -light_dir, to_light - s.rt.ray_epsilon())) continue;
+    glm::dvec3 transmittance = exp_neg((o.sigma_a + o.sigma_s) * beam.distance);
+    glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
+    L += point_light_intensity(s, light, light_dir) * beam.irradiance_factor * transmittance * phase;
   }
   return L;
 }

@@ -65,12 +65,10 @@ LightViews build_light_views(const Scene& scene, BoundingSphere translucent, Bou
     out.views.push_back(orthographic(all.center, -light.direction, scene_half_width, scene_half_width, 2.0f * scene_half_width));
     out.lights.push_back(g);
   }
-  // E = I / d_m^2 with d_m = d * scale_mm / 1000: fold the scale into the intensity so shaders use scene units.
-  float units_per_metre = 1000.0f / scene.scale_mm;
   for (const PointLight& light : scene.point_lights) {
     LightGPU g{};
     g.position = glm::vec4(light.position, static_cast<float>(light.spot ? LUCENT_LIGHT_SPOT : LUCENT_LIGHT_POINT));
-    g.power = glm::vec4(light.intensity * (units_per_metre * units_per_metre),
+    g.power = glm::vec4(intensity_in_scene_units(light, scene.scale_mm),
                         std::cos(glm::radians(light.inner_deg)));
     g.axis = glm::vec4(light.direction, std::cos(glm::radians(light.outer_deg)));
     float reach = glm::length(light.position - all.center) + all.radius;

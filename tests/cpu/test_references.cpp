@@ -123,3 +123,49 @@ TEST(BssrdfIntegrator, FlatSlabReproducesModelTotalReflectance) {
 }
 
 }  // namespace
+
+namespace {
+
+// The irradiance a point light delivers through a flat boundary (volpath's next-event estimation for point
+// lights), against brute force: a bundle of rays from the light in a small cone, refracted by Snell's law
+// (reference/random_walk.h), counted where they cross the receiver's plane at depth d.
+double bundle_irradiance(double D, double d, double theta_i, double eta, std::uint64_t seed) {
+  const double alpha = 0.02;  // cone half-angle [rad]
+  const int rays = 1000000;
+  glm::dvec3 light(0.0, D, 0.0), axis(std::sin(theta_i), -std::cos(theta_i), 0.0), up(0.0, 1.0, 0.0);
+  glm::dvec3 t_axis = refract(axis, up, eta);
+  glm::dvec3 target = light + axis * (D / std::cos(theta_i)) + t_axis * (d / -t_axis.y);
+  glm::dvec3 u, v;
+  orthonormal_basis(axis, u, v);
+  Rng rng(seed, 0);
+  const double radius = 0.01;
+  int inside = 0;
+  for (int i = 0; i < rays; ++i) {
+    double cos_a = 1.0 - rng.uniform() * (1.0 - std::cos(alpha)), phi = 2.0 * M_PI * rng.uniform();
+    double sin_a = std::sqrt(1.0 - cos_a * cos_a);
+    glm::dvec3 w = cos_a * axis + sin_a * (std::cos(phi) * u + std::sin(phi) * v);
+    glm::dvec3 y = light + w * (D / -w.y);
+    glm::dvec3 t = refract(w, up, eta);
+    glm::dvec3 x = y + t * (d / -t.y);
+    inside += glm::length(glm::dvec2(x.x - target.x, x.z - target.z)) < radius;
+  }
+  double solid_angle = 2.0 * M_PI * (1.0 - std::cos(alpha));
+  double E_horizontal = inside / double(rays) * solid_angle / (M_PI * radius * radius);
+  return E_horizontal / -t_axis.y;  // on a surface facing the refracted ray
+}
+
+TEST(Volpath, PointLightIrradianceThroughFlatBoundaryMatchesRayBundle) {
+  // Tolerance 2%: about 4e4 rays land in the counting disk (0.5% noise) and the footprint's density varies
+  // linearly across it; the normal-incidence image formula 1 / (D + d / eta)^2 alone is off by 20-40% at 40-60
+  // degrees, so a wrong footprint cannot pass.
+  const double eta = 1.4;
+  for (double theta_deg : {0.0, 25.0, 40.0, 60.0}) {
+    double theta = glm::radians(theta_deg);
+    double cos_t = std::sqrt(1.0 - std::pow(std::sin(theta) / eta, 2.0));
+    double formula = refracted_point_irradiance(1.0, 0.5, std::cos(theta), cos_t, eta);
+    double brute = bundle_irradiance(1.0, 0.5, theta, eta, 17 + static_cast<std::uint64_t>(theta_deg));
+    EXPECT_NEAR(brute / formula, 1.0, 0.02) << theta_deg << " degrees: formula " << formula << ", bundle " << brute;
+  }
+}
+
+}  // namespace
