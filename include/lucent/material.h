@@ -10,9 +10,9 @@
 namespace lucent {
 
 // Diffusion model used as S_d (shared C++/GLSL code in src/bssrdf/).
-enum class BssrdfModel { StandardDipole = 0, DirectionalDipole = 1 };
+enum class BssrdfModel { StandardDipole = 0, DirectionalDipole = 1, PhotonBeamDiffusion = 2 };
 std::string_view to_string(BssrdfModel model);
-std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional"
+std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam"
 
 // A homogeneous translucent material. Coefficients in mm^-1; the scene's scale_mm maps them to scene units.
 struct Material {

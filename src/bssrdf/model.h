@@ -1,13 +1,16 @@
 // model.h: selects the diffusion model S_d per material, one switch shared by C++ and the shaders.
-// Adding a model: one header with its S_d, one id here, one case below, one name in bssrdf/model_names.cpp.
+// Adding a model: one header with its S_d, one id here, one case below, one enum value in
+// include/lucent/material.h and its name in src/materials/material.cpp (to_string, parse_bssrdf_model).
 #ifndef LUCENT_BSSRDF_MODEL_H
 #define LUCENT_BSSRDF_MODEL_H
 #include "shared/bridge.h"
 #include "bssrdf/directional_dipole.h"
+#include "bssrdf/photon_beam_diffusion.h"
 #include "bssrdf/standard_dipole.h"
 
 #define LUCENT_MODEL_STANDARD_DIPOLE 0
 #define LUCENT_MODEL_DIRECTIONAL_DIPOLE 1
+#define LUCENT_MODEL_PHOTON_BEAM_DIFFUSION 2
 
 LUCENT_SHADER_BEGIN
 
@@ -15,6 +18,7 @@ LUCENT_SHADER_BEGIN
 LUCENT_INLINE float bssrdf_Sd(int model, BandMedium m, float eta, vec3 x_i, vec3 w_i, vec3 n_i, vec3 x_o,
                               vec3 n_o) {
   if (model == LUCENT_MODEL_STANDARD_DIPOLE) return standard_dipole_Sd(m, eta, x_i, x_o);
+  if (model == LUCENT_MODEL_PHOTON_BEAM_DIFFUSION) return photon_beam_diffusion_Sd(m, eta, x_i, x_o);
   return directional_dipole_Sd(m, eta, x_i, w_i, n_i, x_o, n_o);
 }
 

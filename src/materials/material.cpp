@@ -14,6 +14,7 @@ std::string_view to_string(BssrdfModel model) {
   switch (model) {
     case BssrdfModel::StandardDipole: return "standard";
     case BssrdfModel::DirectionalDipole: return "directional";
+    case BssrdfModel::PhotonBeamDiffusion: return "photon-beam";
   }
   return "unknown";
 }
@@ -21,6 +22,7 @@ std::string_view to_string(BssrdfModel model) {
 std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name) {
   if (name == "standard") return BssrdfModel::StandardDipole;
   if (name == "directional") return BssrdfModel::DirectionalDipole;
+  if (name == "photon-beam") return BssrdfModel::PhotonBeamDiffusion;
   return std::nullopt;
 }
 

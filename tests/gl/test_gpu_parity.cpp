@@ -29,7 +29,7 @@ std::vector<ParityCaseGPU> make_cases() {
   std::vector<ParityCaseGPU> cases;
   for (const char* name : {"Potato", "Marble", "Skimmilk", "Ketchup", "White Grapefruit Juice", "Skin1"}) {
     lucent::Material m = lucent::material_from_preset(*lucent::find_material_preset(name));
-    for (int model = 0; model < 2; ++model)
+    for (int model = LUCENT_MODEL_STANDARD_DIPOLE; model <= LUCENT_MODEL_PHOTON_BEAM_DIFFUSION; ++model)
       for (int k = 0; k < 40; ++k) {
         ParityCaseGPU c{};
         glm::vec3 n_i = k == 0 ? glm::vec3(0, 0, 1) : random_unit(rng);
@@ -38,7 +38,9 @@ std::vector<ParityCaseGPU> make_cases() {
         c.x_i = glm::vec4(0.0f);
         c.n_i = glm::vec4(n_i, 0.0f);
         c.w_i = glm::vec4(w_i, 0.0f);
-        c.x_o = glm::vec4(offset(rng), offset(rng), offset(rng), 0.0f);
+        glm::vec3 x_o(offset(rng), offset(rng), offset(rng));
+        if (k < 4) x_o *= 0.05f;  // within 0.35 mm of x_i: where photon beam diffusion's d_r clamp acts
+        c.x_o = glm::vec4(x_o, 0.0f);
         c.n_o = glm::vec4(random_unit(rng), 0.0f);
         c.sigma_a = glm::vec4(m.sigma_a, m.eta);
         c.sigma_s = glm::vec4(m.sigma_s, static_cast<float>(model));
