@@ -6,8 +6,8 @@
 #include "common/frame.glsl"
 #include "common/lights.glsl"
 #include "radiosity_maps/map_lookup.glsl"
+#include "common/direct_shading.glsl"
 #include "radiosity_maps/vpl_gather.glsl"
-#include "brdf/ggx.h"
 #include "bssrdf/fresnel.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -16,32 +16,11 @@ layout(binding = LUCENT_TEX_CAMERA_POSITION) uniform sampler2D camera_position;
 layout(binding = LUCENT_TEX_CAMERA_NORMAL) uniform sampler2D camera_normal;
 layout(rgba32f, binding = LUCENT_IMAGE_HDR) uniform writeonly image2D hdr;
 
-vec3 shade_opaque(vec3 x, vec3 n, vec3 albedo) {
-  vec3 L = vec3(0.0f);
-  for (int l = 0; l < frame.counts.x; ++l) {
-    vec3 w_l;
-    vec3 E = light_incidence(frame.lights[l], x, w_l);
-    float cos_l = dot(n, w_l);
-    if (cos_l <= 0.0f) continue;
-    L += albedo * kInvPi * E * cos_l * light_visibility(l, x, n);
-  }
-  return L + albedo * kInvPi * vpl_irradiance(x, n);
-}
-
 vec3 shade_translucent(vec3 x, vec3 n, vec3 w_o, MaterialGPU material) {
   float eta = material.sigma_a.w;
   vec4 B = combine_maps(x, n);
   if (int(frame.options.y) == LUCENT_VIEW_COVERAGE) return B.w > 0.0f ? vec3(0.2f) : vec3(1.0f, 0.0f, 1.0f);
-  vec3 L = fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * B.rgb;
-  if (frame.options.z > 0.5f) {
-    for (int l = 0; l < frame.counts.x; ++l) {
-      vec3 w_l;
-      vec3 E = light_incidence(frame.lights[l], x, w_l);
-      float f_r = ggx_dielectric_brdf(n, w_l, w_o, frame.biases.w, eta);
-      L += f_r * max(dot(n, w_l), 0.0f) * E * light_visibility(l, x, n);
-    }
-  }
-  return L;
+  return fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * B.rgb + specular_direct(x, n, w_o, eta);
 }
 
 void main() {
@@ -58,7 +37,7 @@ void main() {
   vec3 L;
   if (object.info.x < 0) {
     if (dot(n, w_o) < 0.0f) n = -n;  // two-sided opaque surfaces (planes seen from below)
-    L = shade_opaque(p.xyz, n, object.albedo.rgb);
+    L = lambertian_direct(p.xyz, n, object.albedo.rgb) + object.albedo.rgb * kInvPi * vpl_irradiance(p.xyz, n);
   } else {
     L = shade_translucent(p.xyz, n, w_o, materials[object.info.x]);
   }

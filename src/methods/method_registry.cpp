@@ -1,5 +1,6 @@
 // method_registry.cpp: the rendering methods lucent knows, by name.
 #include "methods/method.h"
+#include "methods/per_pixel/per_pixel.h"
 #include "methods/radiosity_maps/radiosity_maps.h"
 
 namespace lucent::methods {
@@ -9,6 +10,9 @@ std::span<const MethodInfo> method_registry() {
       {"radiosity-maps",
        "directional subsurface scattering cached in scattered-radiosity maps (Dal Corso et al. 2015)",
        radiosity_maps_params(), create_radiosity_maps},
+      {"per-pixel",
+       "caching-free baseline: the same light-space sampling per screen pixel every frame (Dal Corso et al. Fig. 11)",
+       per_pixel_params(), create_per_pixel},
   };
   return methods;
 }

@@ -191,6 +191,7 @@ TriangleMesh read_geometry(const ParamValues& v, const std::vector<glm::vec2>& p
   const std::string& mesh = v.text("mesh");
   if (shape.empty() == mesh.empty()) fail(where, "give exactly one of shape and mesh");
   int segments = v.integer("segments");
+  if (!profile.empty() && shape != "lathe") fail(where.child("profile"), "only used by shape lathe");
   if (shape == "sphere") return make_sphere(static_cast<float>(v.number("radius")), segments / 2, segments);
   if (shape == "torus")
     return make_torus(static_cast<float>(v.number("major_radius")), static_cast<float>(v.number("minor_radius")),
@@ -204,7 +205,6 @@ TriangleMesh read_geometry(const ParamValues& v, const std::vector<glm::vec2>& p
     if (profile.size() < 3) fail(where.child("profile"), "lathe needs a profile of at least 3 [r, y] points");
     return make_lathe(profile, segments);
   }
-  if (!profile.empty()) fail(where.child("profile"), "only used by shape lathe");
   if (shape == "box") return make_box(v.vec3("size"));
   if (shape == "plane") return make_plane(glm::vec2(v.vec3("extent")));
   std::filesystem::path path = mesh;

@@ -106,6 +106,49 @@ TEST(ProceduralShapes, TorusAreaConvergesTo4Pi2Rr) {
   EXPECT_LT(previous_error, 0.005f);
 }
 
+// Signed volume by the divergence theorem: positive when triangles wind counter-clockwise seen from outside.
+double signed_volume(const TriangleMesh& m) {
+  double v = 0.0;
+  for (std::size_t t = 0; t < triangle_count(m); ++t) {
+    glm::dvec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+               c = m.positions[m.indices[3 * t + 2]];
+    v += glm::dot(a, glm::cross(b, c)) / 6.0;
+  }
+  return v;
+}
+
+// Lathes: a closed cylinder (profile given counter-clockwise: the orientation is fixed automatically), a candle
+// with a hollow, a lamp shade (a thick open cone: no point on the axis) and a hollow sphere are watertight, wind
+// outward, and have their closed-form volumes within the polygonal approximation's error.
+TEST(ProceduralShapes, LathesAreWatertightWithOutwardWinding) {
+  const std::vector<glm::vec2> cylinder = {{0, 0}, {1, 0}, {1, 2}, {0, 2}};
+  const std::vector<glm::vec2> candle = {{0, 0}, {2.5f, 0}, {2.5f, 6}, {1.6f, 6}, {1.6f, 2.5f}, {0, 2.5f}};
+  const std::vector<glm::vec2> shade = {{6, 10}, {6.15f, 10}, {3.65f, 15}, {3.5f, 15}};
+  struct Case {
+    TriangleMesh mesh;
+    double volume;
+  } cases[] = {
+      {lucent::make_lathe(cylinder, 256), kPi * 2.0},
+      {lucent::make_lathe(candle, 256), kPi * (2.5 * 2.5 * 6.0 - 1.6 * 1.6 * 3.5)},
+      {lucent::make_lathe(shade, 256), 0.0},  // Pappus below
+      {lucent::make_shell(1.0f, 0.85f, 256), 4.0 / 3.0 * kPi * (1.0 - 0.85 * 0.85 * 0.85)},
+  };
+  // Pappus: the profile's area times the distance its centroid travels.
+  double area = 0.0, centroid_r = 0.0;
+  for (std::size_t i = 0; i < shade.size(); ++i) {
+    glm::dvec2 a = shade[i], b = shade[(i + 1) % shade.size()];
+    double cross = a.x * b.y - b.x * a.y;
+    area += 0.5 * cross, centroid_r += (a.x + b.x) * cross / 6.0;
+  }
+  cases[2].volume = 2.0 * kPi * std::abs(centroid_r);
+  for (const Case& c : cases) {
+    expect_watertight(c.mesh);
+    EXPECT_NO_THROW(lucent::validate_mesh(c.mesh, "lathe"));
+    EXPECT_GT(signed_volume(c.mesh), 0.0);
+    EXPECT_NEAR(signed_volume(c.mesh) / c.volume, 1.0, 0.002);  // 256 segments: cos(pi/256) polygon factor
+  }
+}
+
 TEST(ProceduralShapes, BoxAreaIsExact) {
   TriangleMesh box = lucent::make_box({1.0f, 2.0f, 3.0f});
   EXPECT_EQ(box.positions.size(), 24u);

@@ -250,7 +250,7 @@ TEST(SceneLoader, UnknownMethodKey) {
   doc["method"] = {{"KK", 8}};
   EXPECT_EQ(parse_error(doc),
             "test.json: /method/KK: unknown key; known keys: K, N, map_size, light_map_size, eps_bias, eps_comb, "
-            "visibility_taps, filter_lod, progressive, specular, roughness, view, name");
+            "visibility_taps, filter_lod, progressive, specular, roughness, vpls, vpl_map_size, view, name");
 }
 
 TEST(SceneLoader, NegativeSigmaA) {
@@ -318,7 +318,49 @@ TEST(SceneLoader, LightWithoutDirection) {
   json doc = minimal_scene();
   doc["lights"][0] = {{"radiance", {1, 1, 1}}};
   EXPECT_EQ(parse_error(doc),
-            "test.json: /lights/0/direction: missing; the direction the light travels, e.g. [0, -1, 0]");
+            "test.json: /lights/0/direction: missing; a directional light needs it, e.g. [0, -1, 0] (the direction the "
+            "light travels)");
+}
+
+TEST(SceneLoader, PointAndSpotLights) {
+  json doc = minimal_scene();
+  doc["scale_mm"] = 10;
+  doc["lights"] = json::array({{{"type", "point"}, {"position", {0, 1, 0}}, {"intensity", {2e-3, 1e-3, 0}}},
+                               {{"type", "spot"}, {"position", {0, 2, 0}}, {"direction", {0, -2, 0}},
+                                {"inner_deg", 10}, {"outer_deg", 20}}});
+  Scene scene = parse_scene(doc.dump(), "test.json", ".");
+  ASSERT_EQ(scene.lights.size(), 0u);
+  ASSERT_EQ(scene.point_lights.size(), 2u);
+  EXPECT_FALSE(scene.point_lights[0].spot);
+  EXPECT_TRUE(scene.point_lights[1].spot);
+  EXPECT_FLOAT_EQ(scene.point_lights[1].direction.y, -1.0f);
+  // 1 unit = 10 mm: 100 units per metre, so E = I / d_m^2 = I * 100^2 / d_units^2.
+  EXPECT_FLOAT_EQ(intensity_in_scene_units(scene.point_lights[0], scene.scale_mm).x, 20.0f);
+}
+
+TEST(SceneLoader, LightKeysOfAnotherType) {
+  json doc = minimal_scene();
+  doc["lights"][0] = {{"direction", {0, -1, 0}}, {"position", {0, 1, 0}}};
+  EXPECT_EQ(parse_error(doc), "test.json: /lights/0/position: not used by a directional light");
+  doc["lights"][0] = {{"type", "point"}};
+  EXPECT_EQ(parse_error(doc), "test.json: /lights/0/position: missing; a point light needs it, e.g. [0, 1, 0]");
+  doc["lights"][0] = {{"type", "point"}, {"position", {0, 1, 0}}, {"direction", {0, -1, 0}}};
+  EXPECT_EQ(parse_error(doc), "test.json: /lights/0/direction: not used by a point light");
+  doc["lights"][0] = {{"type", "spot"}, {"position", {0, 1, 0}}, {"direction", {0, -1, 0}}, {"inner_deg", 50},
+                      {"outer_deg", 40}};
+  EXPECT_EQ(parse_error(doc), "test.json: /lights/0/inner_deg: 50 exceeds outer_deg 40");
+}
+
+TEST(SceneLoader, LatheProfileErrors) {
+  json doc = minimal_scene();
+  doc["objects"][0] = {{"shape", "lathe"}, {"profile", {{0, 0}, {1, 0}}}, {"material", "Marble"}};
+  EXPECT_EQ(parse_error(doc), "test.json: /objects/0/profile: lathe needs a profile of at least 3 [r, y] points");
+  doc["objects"][0]["profile"] = {{0, 0}, {-1, 0}, {1, 1}};
+  EXPECT_EQ(parse_error(doc), "test.json: /objects/0/profile/1: [-1, 0]: r must be >= 0 and both finite");
+  doc["objects"][0] = {{"shape", "sphere"}, {"profile", {{0, 0}, {1, 0}, {1, 1}}}, {"material", "Marble"}};
+  EXPECT_EQ(parse_error(doc), "test.json: /objects/0/profile: only used by shape lathe");
+  doc["objects"][0] = {{"shape", "shell"}, {"radius", 1}, {"inner_radius", 1.5}, {"material", "Marble"}};
+  EXPECT_EQ(parse_error(doc), "test.json: /objects/0/inner_radius: 1.5 must be smaller than radius 1");
 }
 
 TEST(SceneLoader, LightZeroDirection) {
@@ -330,7 +372,7 @@ TEST(SceneLoader, LightZeroDirection) {
 TEST(SceneLoader, UnknownMethod) {
   json doc = minimal_scene();
   doc["method"] = {{"name", "photon-beams"}};
-  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps");
+  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps, per-pixel");
 }
 
 TEST(SceneLoader, WrongType) {

@@ -10,7 +10,7 @@
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
-#include "render/light_views.h"
+#include "render/light_gbuffer.h"
 
 namespace lucent::methods {
 namespace {
@@ -76,11 +76,7 @@ class RadiosityMaps final : public Method {
         K_(params_.integer("K")),
         map_size_(params_.integer("map_size")),
         light_map_size_(params_.integer("light_map_size")),
-        light_setup_(render::build_light_views(scene, scene_gpu.translucent_bounds(), scene_gpu.scene_bounds(),
-                                               light_map_size_)),
-        light_count_(static_cast<int>(light_setup_.lights.size())),
-        light_gbuffer_(light_map_size_, light_map_size_, std::max<int>(1, static_cast<int>(light_setup_.views.size())),
-                       "light G-buffer"),
+        light_gbuffer_(scene, scene_gpu, light_map_size_),
         map_gbuffer_(map_size_, map_size_, K_, "radiosity-map G-buffer"),
         vpl_count_(params_.integer("vpls")),
         vpl_map_size_(params_.integer("vpl_map_size")),
@@ -113,26 +109,23 @@ class RadiosityMaps final : public Method {
   void prepare_frame(FrameGPU& frame, bool restart) override {
     restart = restart || !params_.boolean("progressive");
     accumulated_ = restart ? 1 : accumulated_ + 1;
-    frame.counts = glm::ivec4(light_count_, K_, params_.integer("N"), params_.integer("visibility_taps"));
+    frame.counts = glm::ivec4(0, K_, params_.integer("N"), params_.integer("visibility_taps"));
+    light_gbuffer_.fill_frame(frame);
     frame.sizes.x = map_size_;
-    frame.sizes.y = light_map_size_;
     frame.seeds.z = restart ? 1u : 0u;
     frame.biases = glm::vec4(params_.number("eps_bias"), params_.number("eps_comb"), params_.number("filter_lod"),
                              params_.number("roughness"));
     frame.options.y = params_.text("view") == "coverage" ? LUCENT_VIEW_COVERAGE : LUCENT_VIEW_SHADED;
     frame.options.z = params_.boolean("specular") ? 1.0f : 0.0f;
-    frame.extra_counts.x = static_cast<int>(light_setup_.views.size());
     frame.extra_counts.y = vpl_count_;
     frame.extra_counts.z = vpl_map_size_;
     frame.vpl_center = glm::vec4(vpl_center_, 0.0f);
     std::copy(vpl_views_.begin(), vpl_views_.end(), frame.vpl_views);
-    std::copy(light_setup_.lights.begin(), light_setup_.lights.end(), frame.lights);
-    std::copy(light_setup_.views.begin(), light_setup_.views.end(), frame.light_views);
     std::copy(maps_.begin(), maps_.end(), frame.maps);
   }
 
   void render(const FrameContext& context) override {
-    render_light_gbuffer(context);
+    light_gbuffer_.render(context.scene_gpu, context.timer);
     render_map_gbuffers(context);
     integrate(context);
     generate_mipmaps(context);
@@ -149,7 +142,7 @@ class RadiosityMaps final : public Method {
     };
     std::size_t maps = static_cast<std::size_t>(map_size_) * static_cast<std::size_t>(map_size_) *
                        static_cast<std::size_t>(K_) * 16 * 4 / 3;  // RGBA32F with its mip chain
-    return gbuffer(light_gbuffer_) + gbuffer(map_gbuffer_) + (vpl_count_ > 0 ? gbuffer(vpl_gbuffer_) : 0) + maps +
+    return light_gbuffer_.gpu_memory_bytes() + gbuffer(map_gbuffer_) + (vpl_count_ > 0 ? gbuffer(vpl_gbuffer_) : 0) + maps +
            sizeof(shader::VplGPU) * static_cast<std::size_t>(vpl_count_);
   }
 
@@ -180,7 +173,7 @@ class RadiosityMaps final : public Method {
     std::uint32_t covered = 0;
     glGetNamedBufferSubData(counter_buffer_, 0, sizeof(covered), &covered);
     return static_cast<std::uint64_t>(covered) * 3u * static_cast<std::uint64_t>(params_.integer("N")) *
-           static_cast<std::uint64_t>(light_count_);
+           static_cast<std::uint64_t>(light_gbuffer_.light_count());
   }
 
  private:
@@ -188,7 +181,7 @@ class RadiosityMaps final : public Method {
   // contributions cluster ("pearling"). Say so once, with the light-map size that would avoid it.
   void warn_about_pearling(const Scene& scene) const {
     if (scene.lights.empty()) return;
-    float texel_mm = light_setup_.views[0].direction.w / static_cast<float>(light_map_size_) * scene.scale_mm;
+    float texel_mm = light_gbuffer_.views().views[0].direction.w / static_cast<float>(light_map_size_) * scene.scale_mm;
     for (const SceneObject& object : scene.objects) {
       if (!object.material) continue;
       glm::vec3 sigma_tr = object.material->sigma_tr();
@@ -234,16 +227,6 @@ class RadiosityMaps final : public Method {
     render::append_cube_views(vpl_views_, vpl_center_, 1e-4f * half_width, 2.0f * half_width, vpl_map_size_);
   }
 
-  void render_light_gbuffer(const FrameContext& context) {
-    gpu::DebugGroup group("light_gbuffer");
-    context.timer.begin("light_gbuffer");
-    light_gbuffer_.begin_pass();
-    glUseProgram(gbuffer_program_.id());
-    glUniform1i(glGetUniformLocation(gbuffer_program_.id(), "u_view_set"), 0);
-    if (light_count_ > 0) context.scene_gpu.draw_all();
-    context.timer.end();
-  }
-
   void render_map_gbuffers(const FrameContext& context) {
     gpu::DebugGroup group("map_gbuffers");
     context.timer.begin("map_gbuffers");
@@ -261,7 +244,7 @@ class RadiosityMaps final : public Method {
     glNamedBufferSubData(counter_buffer_, 0, sizeof(zero), &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_COUNTERS, counter_buffer_);
     map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
-    light_gbuffer_.bind_textures(LUCENT_TEX_LIGHT_POSITION, LUCENT_TEX_LIGHT_NORMAL, LUCENT_TEX_LIGHT_DEPTH);
+    light_gbuffer_.bind_textures();
     glBindImageTexture(LUCENT_IMAGE_RADIOSITY, radiosity_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     glUseProgram(integrate_program_.id());
     auto groups = static_cast<GLuint>((map_size_ + 7) / 8);
@@ -306,7 +289,7 @@ class RadiosityMaps final : public Method {
     gpu::DebugGroup group("combine");
     context.timer.begin("combine");
     bind_map_textures();
-    light_gbuffer_.bind_textures(LUCENT_TEX_LIGHT_POSITION, LUCENT_TEX_LIGHT_NORMAL, LUCENT_TEX_LIGHT_DEPTH);
+    light_gbuffer_.bind_textures();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_VPLS, vpl_buffer_);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(combine_program_.id());
@@ -318,10 +301,9 @@ class RadiosityMaps final : public Method {
 
   const ParamValues& params_;
   int K_, map_size_, light_map_size_;
-  render::LightViews light_setup_;
-  int light_count_;
   int accumulated_ = 0;
-  gpu::GBuffer light_gbuffer_, map_gbuffer_;
+  render::LightGBuffer light_gbuffer_;
+  gpu::GBuffer map_gbuffer_;
   int vpl_count_, vpl_map_size_;
   gpu::GBuffer vpl_gbuffer_;
   gpu::ShaderProgram gbuffer_program_, integrate_program_, combine_program_, vpl_program_, probe_program_;

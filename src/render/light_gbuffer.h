@@ -1,0 +1,34 @@
+// light_gbuffer.h: step 1 shared by the methods that sample light space (radiosity-maps, per-pixel): the lights
+// as the GPU sees them, the layered light G-buffer (render/light_views.h) and the pass that renders it.
+#pragma once
+#include "gpu/gbuffer.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/shader_program.h"
+#include "render/light_views.h"
+
+namespace lucent::render {
+
+class LightGBuffer {
+ public:
+  LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int size);
+
+  // Fills frame.counts.x, frame.sizes.y, frame.extra_counts.x, frame.lights and frame.light_views.
+  void fill_frame(shader::FrameGPU& frame) const;
+  // Renders every light layer in one layered pass ("light_gbuffer" timer step).
+  void render(const SceneGpu& scene_gpu, gpu::GpuTimer& timer) const;
+  // Binds position, normal and depth to LUCENT_TEX_LIGHT_*.
+  void bind_textures() const;
+
+  int light_count() const { return static_cast<int>(views_.lights.size()); }
+  int size() const { return size_; }
+  const LightViews& views() const { return views_; }
+  std::size_t gpu_memory_bytes() const;
+
+ private:
+  int size_;
+  LightViews views_;
+  gpu::GBuffer gbuffer_;
+  gpu::ShaderProgram program_;
+};
+
+}  // namespace lucent::render
