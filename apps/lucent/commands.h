@@ -12,5 +12,6 @@ void add_reference_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_tonemap_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_envmap_command(CLI::App& app);
 
 }  // namespace lucent::cli

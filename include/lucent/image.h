@@ -1,4 +1,4 @@
-// image.h: images in memory and their files (PNG through stb, EXR through OpenEXR).
+// image.h: images in memory and their files (PNG and Radiance HDR through stb, EXR through OpenEXR).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -29,5 +29,9 @@ void write_png(const std::string& path, const ImageRGBA8& image);
 void write_exr(const std::string& path, const ImageRGBA32F& image);  // RGBA, 32-bit float channels
 ImageRGBA8 read_png(const std::string& path);
 ImageRGBA32F read_exr(const std::string& path);
+// Radiance RGBE (.hdr) through stb: RGB with shared 8-bit exponent (about 1% precision, non-negative values);
+// alpha is dropped on write and reads as 1.
+void write_hdr(const std::string& path, const ImageRGBA32F& image);
+ImageRGBA32F read_hdr(const std::string& path);
 
 }  // namespace lucent

@@ -1,6 +1,7 @@
 // lucent.h: the public API in one include.
 #pragma once
 #include "lucent/context.h"
+#include "lucent/environment.h"
 #include "lucent/error.h"
 #include "lucent/image.h"
 #include "lucent/material.h"

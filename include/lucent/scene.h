@@ -1,5 +1,6 @@
 // scene.h: a scene in memory and how to load one. Scene files are JSON (see docs/scene-format.md).
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@ struct Camera {
 struct DirectionalLight {
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit direction the light travels (world)
   glm::vec3 radiance{1.0f};                // RGB radiance-times-solid-angle, i.e. irradiance on a surface facing it
+  bool specular = true;                    // GGX highlight (off for lights standing in for an environment map,
+                                           // whose specular reflection is looked up in the map itself)
 };
 
 // A point light, or a spot light when `spot` is set. Radiant intensity in W/sr: a surface facing the light at
@@ -44,6 +47,19 @@ inline glm::vec3 intensity_in_scene_units(const PointLight& light, float scale_m
   float units_per_metre = 1000.0f / scale_mm;
   return light.intensity * (units_per_metre * units_per_metre);
 }
+
+struct EnvironmentMap;  // lucent/environment.h
+
+// Environment lighting (Dal Corso et al. 2015, Section 4, Fig. 15): the map is importance-sampled into M
+// directional lights when the scene loads (appended to Scene::lights), and the renderer adds the specular
+// reflection of the map with Fresnel reflectance.
+struct EnvironmentLight {
+  std::string file;                          // the .hdr or .exr equirectangular map, as resolved
+  int light_count = 8;                       // M
+  float intensity = 1.0f;                    // scale applied to the map's radiance
+  bool background = true;                    // camera rays that miss everything see the map
+  std::shared_ptr<const EnvironmentMap> map; // the loaded map, already scaled
+};
 
 struct SceneObject {
   std::string name;
@@ -72,6 +88,7 @@ struct Scene {
   Camera camera;
   std::vector<DirectionalLight> lights;
   std::vector<PointLight> point_lights;         // point and spot lights
+  std::optional<EnvironmentLight> environment;
   std::vector<SceneObject> objects;
   std::string method = "radiosity-maps";
   ParamValues method_params;                    // declared by the method (see `lucent render --help`)

@@ -21,7 +21,7 @@ void main() {
   if (pixel.x >= frame.sizes.z || pixel.y >= frame.sizes.w) return;
   vec4 p = texelFetch(camera_position, pixel, 0);
   if (p.w < 0.5f) {
-    imageStore(hdr, pixel, vec4(frame.background.rgb, 0.0f));
+    imageStore(hdr, pixel, vec4(miss_radiance(pixel), 0.0f));
     return;
   }
   int object_index = int(p.w) - 1;
@@ -38,7 +38,7 @@ void main() {
     sum += vec4(scattered_radiosity(object_index, p.xyz, n, uint(pixel.y * frame.sizes.z + pixel.x), 0u), 1.0f);
     imageStore(accumulated, pixel, sum);
     float eta = materials[object.info.x].sigma_a.w;
-    L = fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * sum.rgb / sum.a + specular_direct(p.xyz, n, w_o, eta);
+    L = fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * sum.rgb / sum.a + specular_direct(p.xyz, n, w_o, eta) + environment_specular(n, w_o, eta);
   }
   imageStore(hdr, pixel, vec4(L, 1.0f));
 }

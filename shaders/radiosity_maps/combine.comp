@@ -20,7 +20,7 @@ vec3 shade_translucent(vec3 x, vec3 n, vec3 w_o, MaterialGPU material) {
   float eta = material.sigma_a.w;
   vec4 B = combine_maps(x, n);
   if (int(frame.options.y) == LUCENT_VIEW_COVERAGE) return B.w > 0.0f ? vec3(0.2f) : vec3(1.0f, 0.0f, 1.0f);
-  return fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * B.rgb + specular_direct(x, n, w_o, eta);
+  return fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * B.rgb + specular_direct(x, n, w_o, eta) + environment_specular(n, w_o, eta);
 }
 
 void main() {
@@ -28,7 +28,7 @@ void main() {
   if (pixel.x >= frame.sizes.z || pixel.y >= frame.sizes.w) return;
   vec4 p = texelFetch(camera_position, pixel, 0);
   if (p.w < 0.5f) {
-    imageStore(hdr, pixel, vec4(frame.background.rgb, 0.0f));
+    imageStore(hdr, pixel, vec4(miss_radiance(pixel), 0.0f));
     return;
   }
   ObjectGPU object = objects[int(p.w) - 1];

@@ -1,5 +1,6 @@
-// image.cpp: image files. PNG (8-bit RGBA) through stb_image / stb_image_write, EXR (RGBA, 32-bit float
-// channels, so values round-trip exactly) through OpenEXR 3. Failures throw lucent::Error naming the path.
+// image.cpp: image files. PNG (8-bit RGBA) and Radiance HDR (RGBE) through stb_image / stb_image_write, EXR
+// (RGBA, 32-bit float channels, so values round-trip exactly) through OpenEXR 3. Failures throw lucent::Error
+// naming the path.
 #include "lucent/image.h"
 
 #include <cstddef>
@@ -27,6 +28,7 @@
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
+#define STBI_ONLY_HDR
 #include <stb/stb_image.h>
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -135,6 +137,33 @@ ImageRGBA32F read_exr(const std::string& path) {
   } catch (const std::exception& e) {
     throw Error(fmt::format("{}: cannot read EXR: {}", path, e.what()));
   }
+}
+
+void write_hdr(const std::string& path, const ImageRGBA32F& image) {
+  try {
+    check_pixel_count(image);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("{}: cannot write HDR: {}", path, e.what()));
+  }
+  std::vector<float> rgb(3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  for (std::size_t i = 0; i < rgb.size() / 3; ++i)
+    for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = image.pixels[kChannels * i + c];
+  if (stbi_write_hdr(path.c_str(), image.width, image.height, 3, rgb.data()) == 0) {
+    throw Error(fmt::format("{}: cannot write HDR", path));
+  }
+}
+
+ImageRGBA32F read_hdr(const std::string& path) {
+  int width = 0, height = 0, channels_in_file = 0;
+  const std::unique_ptr<float, decltype(&stbi_image_free)> data(
+      stbi_loadf(path.c_str(), &width, &height, &channels_in_file, kChannels), &stbi_image_free);
+  if (!data) throw Error(fmt::format("{}: cannot read HDR: {}", path, stbi_failure_reason()));
+  if (!stbi_is_hdr(path.c_str())) throw Error(fmt::format("{}: cannot read HDR: not a Radiance HDR file", path));
+  ImageRGBA32F image;
+  image.width = width;
+  image.height = height;
+  image.pixels.assign(data.get(), data.get() + value_count(width, height));
+  return image;
 }
 
 }  // namespace lucent

@@ -58,6 +58,7 @@ LightViews build_light_views(const Scene& scene, BoundingSphere translucent, Bou
     LightGPU g{};
     g.position = glm::vec4(light.direction, static_cast<float>(LUCENT_LIGHT_DIRECTIONAL));
     g.power = glm::vec4(light.radiance, 0.0f);
+    g.axis = glm::vec4(0.0f, 0.0f, 0.0f, light.specular ? 1.0f : 0.0f);
     // Object view: covers the translucent objects; depth covers the whole scene so occluders cast shadows.
     float eye_distance = glm::length(all.center - translucent.center) + all.radius + half_width;
     g.views = glm::ivec4(static_cast<int>(out.views.size()), 1, static_cast<int>(out.views.size()) + 1, 1);

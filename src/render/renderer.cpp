@@ -10,6 +10,7 @@
 #include "lucent/error.h"
 #include "methods/method.h"
 #include "platform/gl_capabilities.h"
+#include "render/environment_texture.h"
 #include "render/scene_gpu.h"
 #include "shared/shader_io.h"
 
@@ -66,6 +67,7 @@ struct Renderer::Impl {
   Scene scene;
   std::unique_ptr<render::SceneGpu> scene_gpu;
   std::unique_ptr<methods::Method> method;
+  std::unique_ptr<render::EnvironmentTexture> environment;
   gpu::ShaderProgram camera_program, tonemap_program;
   gpu::GpuTimer timer;
   GLuint frame_buffer = 0;
@@ -92,6 +94,9 @@ struct Renderer::Impl {
     if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
     method.reset();
     scene_gpu = std::make_unique<render::SceneGpu>(scene);
+    environment.reset();
+    if (scene.environment && scene.environment->map)
+      environment = std::make_unique<render::EnvironmentTexture>(*scene.environment->map);
     method = info->create(scene, *scene_gpu);
     restart = true;
   }
@@ -109,6 +114,8 @@ struct Renderer::Impl {
     frame.seeds.y = ++frame_counter;
     frame.options.x = std::exp2(scene.render.exposure);
     frame.options.w = static_cast<float>(static_cast<int>(scene.render.tonemap));
+    if (environment)
+      frame.extra_counts.w = LUCENT_ENVIRONMENT_MAP | (scene.environment->background ? LUCENT_ENVIRONMENT_BACKGROUND : 0);
     method->prepare_frame(frame, restart);
     return frame;
   }
@@ -159,6 +166,7 @@ struct Renderer::Impl {
     glNamedBufferSubData(frame_buffer, 0, sizeof(frame), &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_FRAME, frame_buffer);
     scene_gpu->bind_buffers();
+    if (environment) environment->bind();
     camera_gbuffer_pass();
     method->render({scene, *scene_gpu, *output.camera_gbuffer, output.hdr, timer, frame.seeds.z != 0});
     tonemap_pass();

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "lucent/environment.h"
 #include "lucent/error.h"
 #include "lucent/scene.h"
 #include "methods/method.h"
@@ -39,6 +40,12 @@ constexpr ParamDecl kLightParams[] = {
     {"intensity", ParamType::Vec3, "", "W/sr (RGB)", 0, 1e9, "", "point, spot: radiant intensity (default 1e-3); irradiance I/d^2, d in m"},
     {"inner_deg", ParamType::Float, "", "degrees", 0, 90, "", "spot: full intensity within this half-angle (default 30)"},
     {"outer_deg", ParamType::Float, "", "degrees", 0, 90, "", "spot: no light beyond this half-angle (default 45)"},
+};
+constexpr ParamDecl kEnvironmentParams[] = {
+    {"file", ParamType::String, "", "", 0, 0, "", "equirectangular .hdr or .exr map, relative to the scene (required)"},
+    {"lights", ParamType::Int, "8", "lights", 1, 16, "", "M directional lights the map is sampled into"},
+    {"intensity", ParamType::Float, "1", "", 0, 1e9, "", "scale on the map's radiance"},
+    {"background", ParamType::Bool, "true", "", 0, 1, "", "camera rays that miss the scene see the map"},
 };
 constexpr ParamDecl kObjectParams[] = {
     {"name", ParamType::String, "\"\"", "", 0, 0, "", "name used in messages"},
@@ -133,6 +140,32 @@ void read_light(const json& j, const JsonLocation& where, Scene& scene) {
       fail(where.child("inner_deg"), fmt::format("{} exceeds outer_deg {}", light.inner_deg, light.outer_deg));
   }
   scene.point_lights.push_back(light);
+}
+
+// Loads the map, scales it and appends its M directional lights to the scene.
+void read_environment(const json& j, const JsonLocation& where, const std::string& base_dir, Scene& scene) {
+  ParamValues v = read_params(j, {"environment", kEnvironmentParams}, where);
+  if (!v.has("file") || v.text("file").empty()) fail(where.child("file"), "missing; an .hdr or .exr map");
+  EnvironmentLight env;
+  std::filesystem::path path = v.text("file");
+  if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+  env.file = path.lexically_normal().string();
+  env.light_count = v.integer("lights");
+  env.intensity = static_cast<float>(v.number("intensity"));
+  env.background = v.boolean("background");
+  auto map = std::make_shared<EnvironmentMap>();
+  try {
+    *map = load_environment_map(env.file);
+  } catch (const Error& e) {
+    fail(where.child("file"), e.what());
+  }
+  for (glm::vec3& L : map->radiance) L *= env.intensity;
+  for (DirectionalLight light : environment_to_directional_lights(*map, env.light_count)) {
+    light.specular = false;
+    scene.lights.push_back(light);
+  }
+  env.map = std::move(map);
+  scene.environment = std::move(env);
 }
 
 json normalized_material(const json& j) {
@@ -330,7 +363,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   }
   for (const std::string& assignment : overrides) apply_override(doc, assignment);
   JsonLocation root{source, ""};
-  ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "objects", "method", "render"});
+  ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "environment", "objects", "method", "render"});
   Scene scene;
   scene.source = source;
   scene.scale_mm = static_cast<float>(top.number("scale_mm"));
@@ -338,6 +371,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   const json lights = doc.value("lights", json::array());
   if (!lights.is_array()) fail(root.child("lights"), "expected an array of lights");
   for (std::size_t i = 0; i < lights.size(); ++i) read_light(lights[i], root.child("lights").child(i), scene);
+  if (doc.contains("environment")) read_environment(doc["environment"], root.child("environment"), base_dir, scene);
   const json objects = doc.value("objects", json::array());
   if (!objects.is_array() || objects.empty()) fail(root.child("objects"), "expected a non-empty array of objects");
   for (std::size_t i = 0; i < objects.size(); ++i)
@@ -358,7 +392,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 
 std::vector<ParamSection> scene_param_sections() {
   std::vector<ParamSection> sections = {{"scene", kSceneParams},       {"camera", kCameraParams},
-                                        {"lights[]", kLightParams},    {"objects[]", kObjectParams},
+                                        {"lights[]", kLightParams},    {"environment", kEnvironmentParams},
+                                        {"objects[]", kObjectParams},
                                         {"objects[].material", kMaterialParams}, {"render", kRenderParams}};
   for (const auto& m : methods::method_registry()) sections.push_back({m.name, m.params});
   return sections;

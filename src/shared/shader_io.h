@@ -27,6 +27,7 @@
 #define LUCENT_TEX_VPL_POSITION 10
 #define LUCENT_TEX_VPL_NORMAL 11
 #define LUCENT_TEX_VPL_DEPTH 12
+#define LUCENT_TEX_ENVIRONMENT 13
 #define LUCENT_IMAGE_RADIOSITY 0
 #define LUCENT_IMAGE_HDR 1
 #define LUCENT_IMAGE_LDR 2
@@ -34,6 +35,10 @@
 #define LUCENT_MAX_LIGHTS 16       // directional, point and spot lights together
 #define LUCENT_MAX_LIGHT_VIEWS 64  // light G-buffer layers (directional: 2, point and spot: 6 or 7)
 #define LUCENT_MAX_MAPS 64
+
+// FrameGPU.extra_counts.w bits.
+#define LUCENT_ENVIRONMENT_MAP 1         // an environment map is bound at LUCENT_TEX_ENVIRONMENT
+#define LUCENT_ENVIRONMENT_BACKGROUND 2  // camera rays that miss see it
 
 // Light types (LightGPU.position.w).
 #define LUCENT_LIGHT_DIRECTIONAL 0
@@ -75,7 +80,8 @@ struct LightGPU {
   vec4 position;  // xyz: position [scene units] (point, spot) or unit direction travelled (directional);
                   // w: type (LUCENT_LIGHT_*)
   vec4 power;     // rgb: irradiance (directional) or intensity per scene unit^2 (point, spot); w: cos inner cone
-  vec4 axis;      // spot: xyz unit direction travelled along the axis, w: cos outer cone
+  vec4 axis;      // spot: xyz unit direction travelled along the axis, w: cos outer cone;
+                  // directional: w = 1 with a GGX highlight, 0 without (environment lights)
   ivec4 views;    // x: first light-G-buffer layer framing the translucent objects, y: its layer count (1 view,
                   // or 6 cube faces +X -X +Y -Y +Z -Z), z: first layer of the scene-wide shadow view(s), w: count
 };
@@ -96,7 +102,8 @@ struct FrameGPU {
   uvec4 seeds;           // x: user seed, y: frame counter (never repeats), z: 1 = restart accumulation
   vec4 biases;           // x: eps_bias [map texels], y: eps_comb [map texels], z: filter lod, w: roughness
   vec4 options;          // x: exposure scale 2^stops, y: debug view, z: specular on, w: tone-map operator
-  ivec4 extra_counts;    // x: light G-buffer layers, y: VPLs N_vpl (0: off), z: VPL cube map size, w: unused
+  ivec4 extra_counts;    // x: light G-buffer layers, y: VPLs N_vpl (0: off), z: VPL cube map size,
+                         // w: environment flags (LUCENT_ENVIRONMENT_*)
   vec4 vpl_center;       // xyz: centre of the VPL cube map [scene units]; w: unused
   LightGPU lights[LUCENT_MAX_LIGHTS];
   ViewGPU light_views[LUCENT_MAX_LIGHT_VIEWS];  // step 1: the light G-buffer layers

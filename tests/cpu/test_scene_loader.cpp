@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lucent/error.h"
+#include "lucent/environment.h"
 #include "lucent/scene.h"
 
 namespace lucent {
@@ -361,6 +362,31 @@ TEST(SceneLoader, LatheProfileErrors) {
   EXPECT_EQ(parse_error(doc), "test.json: /objects/0/profile: only used by shape lathe");
   doc["objects"][0] = {{"shape", "shell"}, {"radius", 1}, {"inner_radius", 1.5}, {"material", "Marble"}};
   EXPECT_EQ(parse_error(doc), "test.json: /objects/0/inner_radius: 1.5 must be smaller than radius 1");
+}
+
+TEST(SceneLoader, EnvironmentBecomesDirectionalLights) {
+  json doc = minimal_scene();
+  doc["environment"] = {{"file", "env/sky.hdr"}, {"lights", 8}, {"intensity", 2.0}};
+  Scene scene = parse_scene(doc.dump(), "test.json", LUCENT_SCENES_DIR);
+  ASSERT_TRUE(scene.environment.has_value());
+  EXPECT_EQ(scene.lights.size(), 1u + 8u);  // the scene's own light, then the map's
+  EXPECT_TRUE(scene.lights[0].specular);
+  glm::vec3 total(0.0f);
+  for (std::size_t i = 1; i < scene.lights.size(); ++i) {
+    EXPECT_FALSE(scene.lights[i].specular);
+    total += scene.lights[i].radiance;
+  }
+  // The lights carry the (scaled) map's whole power.
+  glm::vec3 power = lucent::environment_power(*scene.environment->map);
+  EXPECT_NEAR(total.x / power.x, 1.0, 1e-4);
+  doc["environment"] = {{"file", "env/none.hdr"}};
+  std::string error;
+  try {
+    parse_scene(doc.dump(), "test.json", LUCENT_SCENES_DIR);
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  EXPECT_EQ(error.rfind("test.json: /environment/file: ", 0), 0u) << error;
 }
 
 TEST(SceneLoader, LightZeroDirection) {
