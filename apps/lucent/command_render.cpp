@@ -1,5 +1,6 @@
 // command_render.cpp: `lucent render [SCENE]`: headless render to PNG (and EXR) with per-step GPU timings.
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 
@@ -21,6 +22,8 @@ struct RenderOptions {
   std::optional<unsigned> seed;
   std::vector<std::string> sets;
   bool quiet = false;
+  bool animate = false;
+  int samples_per_frame = 1;
 };
 
 double median(std::vector<double> values) {
@@ -72,13 +75,48 @@ void warn_if_black(const ImageRGBA32F& image) {
   if (!(peak > 0.0f)) fmt::print(stderr, "lucent: warning: the image is black (no light reaches the camera)\n");
 }
 
+// `--animate`: frame f shows time f / fps, accumulated over `samples_per_frame` renders, written as
+// <stem>_0000.png, ...; with ffmpeg on the PATH also <stem>.mp4.
+void run_animation(const RenderOptions& o, const Scene& scene, const std::string& png) {
+  auto context = create_headless_context();
+  Renderer renderer(scene);
+  int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
+  OffscreenFramebuffer target(width, height);
+  std::filesystem::path base = std::filesystem::path(png).replace_extension("");
+  ensure_parent_directory(png);
+  ProgressBar progress("animating", o.quiet ? 1 : frames);
+  std::vector<FrameTimings> timings;
+  for (int f = 0; f < frames; ++f) {
+    renderer.set_time(f / static_cast<double>(scene.render.fps));
+    for (int s = 0; s < o.samples_per_frame; ++s) {
+      renderer.render(scene.camera, {target.id(), width, height});
+      timings.push_back(renderer.timings());
+    }
+    write_png(fmt::format("{}_{:04d}.png", base.string(), f), renderer.read_display());
+    progress.update(f + 1);
+  }
+  progress.finish();
+  std::string pattern = base.string() + "_%04d.png", mp4 = base.string() + ".mp4";
+  bool have_ffmpeg = std::system("command -v ffmpeg > /dev/null 2>&1") == 0;
+  if (have_ffmpeg) {
+    std::string command = fmt::format("ffmpeg -loglevel error -y -framerate {} -i '{}' -pix_fmt yuv420p '{}'",
+                                      scene.render.fps, pattern, mp4);
+    if (std::system(command.c_str()) != 0) throw Error(fmt::format("{}: ffmpeg failed: {}", mp4, command));
+  }
+  if (!o.quiet) {
+    fmt::print("{}: {} frames at {} fps, {} sample(s) each -> {}{}\n", scene.source, frames, scene.render.fps,
+               o.samples_per_frame, pattern, have_ffmpeg ? " and " + mp4 : " (no ffmpeg: no MP4)");
+    print_timings(timings, renderer.device());
+  }
+}
+
 void run(const RenderOptions& o) {
   std::vector<std::string> overrides = o.sets;
   if (o.frames) overrides.push_back(fmt::format("render.frames={}", *o.frames));
   if (o.seed) overrides.push_back(fmt::format("render.seed={}", *o.seed));
   Scene scene = o.scene_path.empty() ? default_scene(overrides) : load_scene(o.scene_path, overrides);
   std::string png = o.png.empty() ? default_png_path(o.scene_path) : o.png;
-
+  if (o.animate) return run_animation(o, scene, png);
   auto context = create_headless_context();
   Renderer renderer(scene);
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
@@ -126,6 +164,10 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--seed", options->seed, "random seed (render.seed)");
   cmd->add_option("--set", options->sets, "override a scene value, e.g. --set method.K=8 --set render.width=320");
   cmd->add_flag("-q,--quiet", options->quiet, "print nothing but errors");
+  cmd->add_flag("--animate", options->animate,
+                "render --frames animation frames (time f / render.fps) to <output>_NNNN.png, and an MP4 with ffmpeg");
+  cmd->add_option("--samples-per-frame", options->samples_per_frame, "--animate: frames accumulated per animation frame")
+      ->check(CLI::Range(1, 100000));
   cmd->footer(render_help_footer());
   cmd->callback([options] { run(*options); });
 }

@@ -62,6 +62,10 @@ class Renderer {
   Scene& scene();
   const Scene& scene() const;
   void scene_changed();
+  // Animation time: deforming objects and blob surfaces take their shape at t for the next frame (which then
+  // restarts accumulation). No effect on static scenes.
+  void set_time(double seconds);
+  double time() const;
 
   int accumulated_frames() const;
   const FrameTimings& timings() const;  // of the last frame

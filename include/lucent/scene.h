@@ -61,13 +61,26 @@ struct EnvironmentLight {
   std::shared_ptr<const EnvironmentMap> map; // the loaded map, already scaled
 };
 
+// A per-frame vertex deformation in object space (y up), the "melting or bending object" of Dal Corso et al.:
+// nothing is precomputed; the method re-renders its maps from the deformed mesh every frame.
+enum class DeformationType { None, Bend, Melt, Wave };
+struct Deformation {
+  DeformationType type = DeformationType::None;
+  float amplitude = 0.3f;  // bend, wave: sideways displacement at the top [object units]; melt: height lost [0, 1)
+  float period_s = 4.0f;   // one cycle [seconds]
+};
+
 struct SceneObject {
   std::string name;
+  Deformation deformation;            // per-frame vertex animation (none by default)
+  int blob_resolution = 0;            // > 0: the animated implicit blob surface (geometry/blob_field.h), extracted
+                                      // on the GPU every frame on a grid of this many cells along its long axis
   TriangleMesh mesh;                  // object space
   glm::mat4 world_from_object{1.0f};
   std::optional<Material> material;   // translucent when set
   glm::vec3 albedo{0.8f};             // diffuse reflectance of an opaque object
   bool translucent() const { return material.has_value(); }
+  bool animated() const { return deformation.type != DeformationType::None || blob_resolution > 0; }
 };
 
 enum class ToneMapOperator { Linear = 0, Reinhard = 1, Aces = 2 };
@@ -80,6 +93,7 @@ struct RenderSettings {
   float exposure = 0.0f;        // [stops]
   ToneMapOperator tonemap = ToneMapOperator::Aces;
   glm::vec3 background{0.0f};   // radiance behind the scene
+  float fps = 30.0f;            // animation: seconds per frame = 1 / fps (lucent render --animate)
 };
 
 struct Scene {
@@ -105,6 +119,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
 // The built-in default scene (procedural, needs no file).
 const char* default_scene_json();
 Scene default_scene(const std::vector<std::string>& overrides = {});
+
+// The object-space mesh of a deforming object at time t (normals recomputed from the deformed faces).
+TriangleMesh deformed_mesh(const TriangleMesh& mesh, const Deformation& deformation, double seconds);
+// The scene frozen at time t: deformations applied and blob surfaces extracted (on the CPU) into plain meshes,
+// e.g. for the CPU references of an animated scene.
+Scene scene_at_time(const Scene& scene, double seconds);
 
 // The declarations the parser checks, per section, for help and docs.
 std::vector<ParamSection> scene_param_sections();

@@ -59,7 +59,10 @@ PixelSums sums_from(const ReferenceImage& image) {
 
 }  // namespace
 
-ReferenceImage render_reference(const Scene& scene, const ReferenceSettings& settings, const ReferenceImage* previous) {
+ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSettings& settings,
+                                const ReferenceImage* previous) {
+  // An animated scene is rendered as it stands at settings.time_seconds (deformations applied, blobs extracted).
+  const Scene scene = scene_at_time(animated_scene, settings.time_seconds);
   const int width = scene.render.width, height = scene.render.height;
   if (settings.samples_per_pixel < 1) throw Error("--spp must be at least 1");
   if (previous && (previous->mean.width != width || previous->mean.height != height))

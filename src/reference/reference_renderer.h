@@ -19,6 +19,7 @@ struct ReferenceSettings {
   std::uint64_t seed = 1;
   int threads = 0;      // 0 = all cores
   bool jitter = false;  // false: rays through pixel centres, as the rasterizer samples
+  double time_seconds = 0.0;  // animated scenes: the instant rendered
   std::function<void(double done_fraction)> progress;
 };
 

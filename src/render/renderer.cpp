@@ -73,6 +73,8 @@ struct Renderer::Impl {
   GLuint frame_buffer = 0;
   OutputImages output;
   bool restart = true;
+  double time_seconds = 0.0;
+  bool geometry_dirty = true;  // animated geometry must be brought to time_seconds before the next frame
   unsigned frame_counter = 0;
   FrameTimings timings;
 
@@ -94,6 +96,7 @@ struct Renderer::Impl {
     if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
     method.reset();
     scene_gpu = std::make_unique<render::SceneGpu>(scene);
+    geometry_dirty = true;
     environment.reset();
     if (scene.environment && scene.environment->map)
       environment = std::make_unique<render::EnvironmentTexture>(*scene.environment->map);
@@ -165,6 +168,8 @@ struct Renderer::Impl {
     restart = false;
     glNamedBufferSubData(frame_buffer, 0, sizeof(frame), &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_FRAME, frame_buffer);
+    if (geometry_dirty && scene_gpu->animated()) scene_gpu->update(time_seconds, &timer);
+    geometry_dirty = false;
     scene_gpu->bind_buffers();
     if (environment) environment->bind();
     camera_gbuffer_pass();
@@ -183,6 +188,12 @@ void Renderer::render(const Camera& camera, const RenderTarget& target) { impl_-
 Scene& Renderer::scene() { return impl_->scene; }
 const Scene& Renderer::scene() const { return impl_->scene; }
 void Renderer::scene_changed() { impl_->rebuild(); }
+void Renderer::set_time(double seconds) {
+  if (seconds == impl_->time_seconds) return;
+  impl_->time_seconds = seconds;
+  if (impl_->scene_gpu->animated()) impl_->geometry_dirty = true, impl_->restart = true;
+}
+double Renderer::time() const { return impl_->time_seconds; }
 int Renderer::accumulated_frames() const { return impl_->method->accumulated_frames(); }
 const FrameTimings& Renderer::timings() const { return impl_->timings; }
 std::string Renderer::device_of_current_context() {

@@ -4,7 +4,11 @@
 #include <algorithm>
 #include <numeric>
 
+#include "geometry/blob_field.h"
+#include "geometry/blob_isosurface.h"
+#include "geometry/isosurface_grid.h"
 #include "gpu/gl_debug.h"
+#include "gpu/gpu_timer.h"
 #include "shared/shader_io.h"
 
 namespace lucent::render {
@@ -33,11 +37,11 @@ MaterialGPU to_gpu(const Material& m, float scale_mm) {
 }
 
 template <typename T>
-GLuint make_buffer(const std::vector<T>& data, const char* label) {
+GLuint make_buffer(const std::vector<T>& data, const char* label, GLbitfield flags = 0) {
   GLuint buffer = 0;
   glCreateBuffers(1, &buffer);
   glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T)),
-                       data.empty() ? nullptr : data.data(), 0);
+                       data.empty() ? nullptr : data.data(), flags);
   gpu::label_object(GL_BUFFER, buffer, label);
   return buffer;
 }
@@ -56,15 +60,34 @@ SceneGpu::SceneGpu(const Scene& scene) {
   std::vector<glm::vec3> all_points, translucent_points;
   for (std::size_t i : order) {
     const SceneObject& object = scene.objects[i];
-    TriangleMesh world = transformed(object.mesh, object.world_from_object);
-    auto base = static_cast<std::uint32_t>(vertices.size());
-    for (std::size_t v = 0; v < world.positions.size(); ++v) {
-      glm::vec3 p = world.positions[v];
-      vertices.push_back({glm::vec4(p, static_cast<float>(i)), glm::vec4(world.normals[v], 0.0f)});
-      all_points.push_back(p);
-      if (object.translucent()) translucent_points.push_back(p);
+    auto add_bounds = [&](const std::vector<glm::vec3>& points) {
+      all_points.insert(all_points.end(), points.begin(), points.end());
+      if (object.translucent()) translucent_points.insert(translucent_points.end(), points.begin(), points.end());
+    };
+    if (object.blob_resolution > 0) {
+      // Extracted on the GPU each frame; bounded by the field's provable box (world space, no transform).
+      blobs_.push_back(std::make_unique<geometry::BlobIsosurface>(geometry::blob_grid(object.blob_resolution),
+                                                                  static_cast<int>(i)));
+      if (object.translucent()) ++translucent_blob_count_;
+      glm::vec3 b = shader::blob_body_bound();
+      std::vector<glm::vec3> corners;
+      for (int c = 0; c < 8; ++c) corners.emplace_back(c & 1 ? b.x : -b.x, c & 2 ? b.y : -b.y, c & 4 ? b.z : -b.z);
+      add_bounds(corners);
+    } else {
+      TriangleMesh world = transformed(object.mesh, object.world_from_object);
+      auto base = static_cast<std::uint32_t>(vertices.size());
+      for (std::size_t v = 0; v < world.positions.size(); ++v)
+        vertices.push_back({glm::vec4(world.positions[v], static_cast<float>(i)), glm::vec4(world.normals[v], 0.0f)});
+      for (std::uint32_t index : object.mesh.indices) indices.push_back(base + index);
+      add_bounds(world.positions);
+      if (object.deformation.type != DeformationType::None) {
+        deforming_.push_back({i, base, object.mesh, object.world_from_object, object.deformation});
+        // Conservative bounds: the deformed mesh sampled over one period.
+        for (int k = 0; k < 24; ++k)
+          add_bounds(transformed(deformed_mesh(object.mesh, object.deformation, double(object.deformation.period_s) * k / 24.0),
+                                 object.world_from_object).positions);
+      }
     }
-    for (std::uint32_t index : object.mesh.indices) indices.push_back(base + index);
     if (object.translucent()) {
       translucent_index_count_ = static_cast<GLsizei>(indices.size());
       objects[i].info = glm::ivec4(static_cast<int>(materials.size()), 0, 0, 0);
@@ -77,8 +100,14 @@ SceneGpu::SceneGpu(const Scene& scene) {
   index_count_ = static_cast<GLsizei>(indices.size());
   scene_bounds_ = bounds_of(all_points);
   translucent_bounds_ = translucent_points.empty() ? scene_bounds_ : bounds_of(translucent_points);
+  if (!deforming_.empty()) {  // sampled over time: a little margin for the instants between samples
+    scene_bounds_.radius *= 1.02f;
+    translucent_bounds_.radius *= 1.02f;
+  }
+  // blobs_ follows `order`, so translucent blobs come first, as draw_translucent() expects.
 
-  vertex_buffer_ = make_buffer(vertices, "scene vertices");
+  vertex_bytes_ = vertices.size() * sizeof(VertexGPU);
+  vertex_buffer_ = make_buffer(vertices, "scene vertices", deforming_.empty() ? 0 : GL_DYNAMIC_STORAGE_BIT);
   index_buffer_ = make_buffer(indices, "scene indices");
   material_buffer_ = make_buffer(materials, "materials");
   object_buffer_ = make_buffer(objects, "objects");
@@ -106,12 +135,32 @@ void SceneGpu::bind_buffers() const {
 
 void SceneGpu::draw_all() const {
   glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  if (index_count_ > 0) glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  for (const auto& blob : blobs_) blob->draw();
 }
 
 void SceneGpu::draw_translucent() const {
   glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, translucent_index_count_, GL_UNSIGNED_INT, nullptr);
+  if (translucent_index_count_ > 0) glDrawElements(GL_TRIANGLES, translucent_index_count_, GL_UNSIGNED_INT, nullptr);
+  for (std::size_t b = 0; b < translucent_blob_count_; ++b) blobs_[b]->draw();
+}
+
+void SceneGpu::update(double seconds, gpu::GpuTimer* timer) {
+  for (const Deforming& d : deforming_) {
+    TriangleMesh world = transformed(deformed_mesh(d.mesh, d.deformation, seconds), d.world_from_object);
+    std::vector<VertexGPU> vertices(world.positions.size());
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+      vertices[v] = {glm::vec4(world.positions[v], static_cast<float>(d.object)), glm::vec4(world.normals[v], 0.0f)};
+    glNamedBufferSubData(vertex_buffer_, static_cast<GLintptr>(d.first_vertex * sizeof(VertexGPU)),
+                         static_cast<GLsizeiptr>(vertices.size() * sizeof(VertexGPU)), vertices.data());
+  }
+  for (const auto& blob : blobs_) blob->extract(static_cast<float>(seconds), timer);
+}
+
+std::size_t SceneGpu::gpu_memory_bytes() const {
+  std::size_t bytes = vertex_bytes_ + static_cast<std::size_t>(index_count_) * 4;
+  for (const auto& blob : blobs_) bytes += blob->gpu_memory_bytes();
+  return bytes;
 }
 
 }  // namespace lucent::render

@@ -1,12 +1,20 @@
 // scene_gpu.h: a scene's geometry, materials and objects on the GPU. All objects share one world-space vertex
 // buffer; translucent objects come first so that passes that need only them draw a prefix of the indices.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
 
 #include "lucent/scene.h"
+
+namespace lucent::geometry {
+class BlobIsosurface;
+}
+namespace lucent::gpu {
+class GpuTimer;
+}
 
 namespace lucent::render {
 
@@ -26,11 +34,29 @@ class SceneGpu {
   void draw_all() const;
   void draw_translucent() const;
 
+  // Animated scenes: deforming objects' vertices are recomputed and uploaded, blob surfaces re-extracted on the
+  // GPU, for time t. Bounds are conservative over the whole animation, so views built from them stay valid.
+  bool animated() const { return !deforming_.empty() || !blobs_.empty(); }
+  void update(double seconds, gpu::GpuTimer* timer);
+
   BoundingSphere translucent_bounds() const { return translucent_bounds_; }  // all bounds if none translucent
   BoundingSphere scene_bounds() const { return scene_bounds_; }
-  bool has_translucent() const { return translucent_index_count_ > 0; }
+  bool has_translucent() const { return translucent_index_count_ > 0 || translucent_blob_count_ > 0; }
+  std::size_t gpu_memory_bytes() const;
 
  private:
+  struct Deforming {
+    std::size_t object;
+    std::uint32_t first_vertex;
+    TriangleMesh mesh;  // object space, undeformed
+    glm::mat4 world_from_object;
+    Deformation deformation;
+  };
+  std::vector<Deforming> deforming_;
+  std::vector<std::unique_ptr<geometry::BlobIsosurface>> blobs_;  // translucent ones first
+  std::size_t translucent_blob_count_ = 0;
+  std::size_t vertex_bytes_ = 0;
+
   GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0, material_buffer_ = 0, object_buffer_ = 0;
   GLsizei translucent_index_count_ = 0, index_count_ = 0;
   BoundingSphere translucent_bounds_, scene_bounds_;

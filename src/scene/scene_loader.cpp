@@ -47,9 +47,14 @@ constexpr ParamDecl kEnvironmentParams[] = {
     {"intensity", ParamType::Float, "1", "", 0, 1e9, "", "scale on the map's radiance"},
     {"background", ParamType::Bool, "true", "", 0, 1, "", "camera rays that miss the scene see the map"},
 };
+constexpr ParamDecl kDeformParams[] = {
+    {"type", ParamType::Enum, "\"bend\"", "", 0, 0, "bend|melt|wave", "per-frame vertex deformation"},
+    {"amplitude", ParamType::Float, "0.3", "units", 0, 1e9, "", "bend, wave: sideways sway at the top; melt: fraction of height lost (< 1)"},
+    {"period_s", ParamType::Float, "4", "s", 1e-3, 1e6, "", "one cycle"},
+};
 constexpr ParamDecl kObjectParams[] = {
     {"name", ParamType::String, "\"\"", "", 0, 0, "", "name used in messages"},
-    {"shape", ParamType::Enum, "\"\"", "", 0, 0, "|sphere|shell|torus|box|plane|lathe",
+    {"shape", ParamType::Enum, "\"\"", "", 0, 0, "|sphere|shell|torus|box|plane|lathe|blobs",
      "procedural shape (or give mesh); lathe revolves \"profile\": [[r, y], ...] (units, r >= 0) about y"},
     {"mesh", ParamType::String, "\"\"", "", 0, 0, "", "mesh file (OBJ, PLY, glTF, STL, 3DS, ...), relative to the scene"},
     {"radius", ParamType::Float, "1", "units", kPositive, 1e9, "", "sphere and shell radius"},
@@ -58,7 +63,7 @@ constexpr ParamDecl kObjectParams[] = {
     {"minor_radius", ParamType::Float, "0.4", "units", kPositive, 1e9, "", "torus: tube radius"},
     {"size", ParamType::Vec3, "[1, 1, 1]", "units", kPositive, 1e9, "", "box edge lengths"},
     {"extent", ParamType::Vec2, "[10, 10]", "units", kPositive, 1e9, "", "plane size along x and z"},
-    {"segments", ParamType::Int, "64", "", 3, 4096, "", "tessellation of spheres and tori"},
+    {"segments", ParamType::Int, "64", "", 3, 4096, "", "tessellation of spheres, tori and lathes; blobs: grid cells along the long axis"},
     {"translate", ParamType::Vec3, "[0, 0, 0]", "units", -1e9, 1e9, "", "translation"},
     {"rotate_deg", ParamType::Vec3, "[0, 0, 0]", "degrees", -1e4, 1e4, "", "rotation about x, then y, then z"},
     {"scale", ParamType::Float, "1", "", kPositive, 1e9, "", "uniform scale"},
@@ -81,6 +86,7 @@ constexpr ParamDecl kRenderParams[] = {
     {"exposure", ParamType::Float, "0", "stops", -30, 30, "", "exposure before tone mapping"},
     {"tonemap", ParamType::Enum, "\"aces\"", "", 0, 0, "aces|reinhard|linear", "tone-mapping operator"},
     {"background", ParamType::Vec3, "[0, 0, 0]", "radiance", 0, 1e9, "", "radiance behind the scene"},
+    {"fps", ParamType::Float, "30", "frames/s", 1e-3, 1e4, "", "animation frame rate (lucent render --animate)"},
 };
 
 [[noreturn]] void fail(const JsonLocation& where, const std::string& problem) {
@@ -224,6 +230,7 @@ TriangleMesh read_geometry(const ParamValues& v, const std::vector<glm::vec2>& p
   const std::string& mesh = v.text("mesh");
   if (shape.empty() == mesh.empty()) fail(where, "give exactly one of shape and mesh");
   int segments = v.integer("segments");
+  if (shape == "blobs") return {};  // extracted every frame (SceneObject::blob_resolution)
   if (!profile.empty() && shape != "lathe") fail(where.child("profile"), "only used by shape lathe");
   if (shape == "sphere") return make_sphere(static_cast<float>(v.number("radius")), segments / 2, segments);
   if (shape == "torus")
@@ -272,17 +279,36 @@ glm::mat4 read_transform(const ParamValues& v) {
 }
 
 SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir) {
-  ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile"});
+  ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile", "deform"});
   SceneObject object;
   object.name = v.text("name").empty() ? where.pointer : v.text("name");
   object.mesh = read_geometry(v, read_profile(j, where), where, base_dir);
-  validate_mesh(object.mesh, where.str());
   object.world_from_object = read_transform(v);
+  if (v.text("shape") == "blobs") {
+    // The blob field lives in world space about the origin (geometry/blob_field.h).
+    for (const char* key : {"translate", "rotate_deg", "scale", "deform"})
+      if (j.contains(key)) fail(where.child(key), "not supported for blobs (the field is fixed in world space)");
+    object.blob_resolution = v.integer("segments");
+  } else {
+    validate_mesh(object.mesh, where.str());
+  }
+  if (j.contains("deform")) {
+    ParamValues d = read_params(j.at("deform"), {"deform", kDeformParams}, where.child("deform"));
+    const std::string& type = d.text("type");
+    object.deformation.type = type == "bend" ? DeformationType::Bend
+                              : type == "melt" ? DeformationType::Melt
+                                               : DeformationType::Wave;
+    object.deformation.amplitude = static_cast<float>(d.number("amplitude"));
+    object.deformation.period_s = static_cast<float>(d.number("period_s"));
+    if (object.deformation.type == DeformationType::Melt && object.deformation.amplitude >= 1.0f)
+      fail(where.child("deform").child("amplitude"), fmt::format("{} must be below 1 for melt (the fraction of height lost)",
+                                                                 object.deformation.amplitude));
+  }
   object.albedo = v.vec3("albedo");
   if (j.contains("material")) {
     if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
     object.material = read_material(j.at("material"), where.child("material"));
-    orient_normals_outward(object.mesh, where.str());
+    if (object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
   }
   return object;
 }
@@ -314,6 +340,7 @@ RenderSettings read_render(const json& j, const JsonLocation& where) {
   const std::string& op = v.text("tonemap");
   r.tonemap = op == "aces" ? ToneMapOperator::Aces : op == "reinhard" ? ToneMapOperator::Reinhard : ToneMapOperator::Linear;
   r.background = v.vec3("background");
+  r.fps = static_cast<float>(v.number("fps"));
   return r;
 }
 
@@ -393,7 +420,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 std::vector<ParamSection> scene_param_sections() {
   std::vector<ParamSection> sections = {{"scene", kSceneParams},       {"camera", kCameraParams},
                                         {"lights[]", kLightParams},    {"environment", kEnvironmentParams},
-                                        {"objects[]", kObjectParams},
+                                        {"objects[]", kObjectParams},          {"objects[].deform", kDeformParams},
                                         {"objects[].material", kMaterialParams}, {"render", kRenderParams}};
   for (const auto& m : methods::method_registry()) sections.push_back({m.name, m.params});
   return sections;

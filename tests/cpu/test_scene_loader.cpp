@@ -243,7 +243,7 @@ TEST(SceneLoader, UnknownTopLevelKey) {
   json doc = minimal_scene();
   doc["objcets"] = json::array();
   EXPECT_EQ(parse_error(doc),
-            "test.json: /objcets: unknown key; known keys: scale_mm, comment, camera, lights, objects, method, render");
+            "test.json: /objcets: unknown key; known keys: scale_mm, comment, camera, lights, environment, objects, method, render");
 }
 
 TEST(SceneLoader, UnknownMethodKey) {
