@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
@@ -65,19 +66,34 @@ std::string reference_key(const std::string& scene, const std::vector<std::strin
   return fmt::format("{}_{:016x}", integrator, std::hash<std::string>{}(text));
 }
 
+// One rendered variant, waiting for its comparison with the references.
+struct Rendered {
+  json result;
+  ImageRGBA32F image;
+  Scene scene;
+  std::string scene_path, stem;
+  std::vector<std::string> sets;
+  double wall_seconds = 0.0;
+};
+
+// The noise of a reference in the units of the RGB RMSE (sqrt(dr^2+dg^2+db^2)), and the noise-corrected RMSE:
+// the expected squared error against a noisy reference is the method's squared error plus the reference's variance.
+double noise_rgb(const ImageError& e) { return e.reference_noise_rms * std::sqrt(3.0); }
+double corrected_rmse(const ImageError& e) {
+  return std::sqrt(std::max(0.0, e.rmse_rgb * e.rmse_rgb - noise_rgb(e) * noise_rgb(e)));
+}
+
 struct Bench {
   json config;
   fs::path out;
   std::unique_ptr<GLContext> context;
 
-  // Renders (or loads) a reference with at least `spp` samples per pixel.
+  // Renders, loads, or extends a cached reference so that it has at least `spp` samples per pixel. A cached
+  // reference of the same scene, integrator and image-relevant overrides (found by its metadata) is resumed.
   reference::ReferenceImage reference_image(const std::string& scene_path, const std::vector<std::string>& sets,
                                             const std::string& integrator, int spp) {
     fs::path exr = out / "references" / (reference_key(scene_path, sets, integrator) + ".exr");
-    fs::path meta = exr;
-    meta.replace_extension(".json");
-    fs::path se = reference::reference_sidecar(exr.string(), ".stderr.exr");
-    // A cached reference of the same scene, integrator and image-relevant overrides (found by its metadata).
+    std::optional<reference::ReferenceImage> cached;
     if (fs::exists(exr.parent_path()))
       for (const auto& entry : fs::directory_iterator(exr.parent_path())) {
         if (entry.path().extension() != ".json") continue;
@@ -88,23 +104,28 @@ struct Bench {
           continue;
         fs::path cached_exr = entry.path();
         cached_exr.replace_extension(".exr");
-        reference::ReferenceImage cached{read_exr(cached_exr.string()),
-                                         read_exr(reference::reference_sidecar(cached_exr.string(), ".stderr.exr")),
-                                         m["samples_per_pixel"], m["seconds"]};
-        if (cached.samples_per_pixel >= spp) return cached;
+        cached = reference::ReferenceImage{read_exr(cached_exr.string()),
+                                           read_exr(reference::reference_sidecar(cached_exr.string(), ".stderr.exr")),
+                                           m["samples_per_pixel"], m["seconds"]};
+        exr = cached_exr;
+        break;
       }
+    if (cached && cached->samples_per_pixel >= spp) return *cached;
     Scene scene = load_scene(scene_path, sets);
     reference::ReferenceSettings settings;
     settings.integrator = integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
-    settings.samples_per_pixel = spp;
-    fmt::print(stderr, "  reference {} {} spp ({}x{})...\n", integrator, spp, scene.render.width, scene.render.height);
-    reference::ReferenceImage image = reference::render_reference(scene, settings);
+    settings.samples_per_pixel = spp - (cached ? cached->samples_per_pixel : 0);
+    fmt::print(stderr, "  reference {} {} spp ({}x{}){}...\n", integrator, spp, scene.render.width,
+               scene.render.height, cached ? fmt::format(", resuming from {} spp", cached->samples_per_pixel) : "");
+    reference::ReferenceImage image = reference::render_reference(scene, settings, cached ? &*cached : nullptr);
+    if (cached) image.seconds += cached->seconds;
     fs::create_directories(exr.parent_path());
     write_exr(exr.string(), image.mean);
-    write_exr(se.string(), image.standard_error);
-    std::ofstream(meta) << json{{"scene", scene_path}, {"overrides", sets}, {"integrator", integrator},
-                                {"samples_per_pixel", image.samples_per_pixel}, {"seconds", image.seconds}}
-                               .dump(2);
+    write_exr(reference::reference_sidecar(exr.string(), ".stderr.exr"), image.standard_error);
+    std::ofstream(reference::reference_sidecar(exr.string(), ".json"))
+        << json{{"scene", scene_path}, {"overrides", sets}, {"integrator", integrator},
+                {"samples_per_pixel", image.samples_per_pixel}, {"seconds", image.seconds}}
+               .dump(2);
     return image;
   }
 
@@ -140,12 +161,14 @@ struct Bench {
     return covered + uncovered ? static_cast<double>(covered) / static_cast<double>(covered + uncovered) : 1.0;
   }
 
-  json run_variant(const json& run, const json& variant, const std::string& run_name) {
-    std::vector<std::string> sets = strings(config, "set");
-    for (const auto& s : strings(run, "set")) sets.push_back(s);
-    for (const auto& s : strings(variant, "set")) sets.push_back(s);
-    std::string scene_path = run.at("scene");
-    Scene scene = load_scene(scene_path, sets);
+  Rendered render_variant(const json& run, const json& variant, const std::string& run_name) {
+    Rendered r;
+    r.sets = strings(config, "set");
+    for (const auto& s : strings(run, "set")) r.sets.push_back(s);
+    for (const auto& s : strings(variant, "set")) r.sets.push_back(s);
+    r.scene_path = run.at("scene");
+    r.scene = load_scene(r.scene_path, r.sets);
+    const Scene& scene = r.scene;
     int frames = variant.value("frames", scene.render.frames);
     std::string name = variant.value("name", "default");
     fmt::print(stderr, "{} / {}: {} frame(s)\n", run_name, name, frames);
@@ -162,19 +185,23 @@ struct Bench {
       step1.push_back(last.light_gbuffer_ms), step2.push_back(last.radiosity_maps_ms);
       step3.push_back(last.combine_ms), total.push_back(last.total_ms);
       for (const StepTiming& s : last.passes)
-        if (s.name == "integrate" && s.ms > 0) rate.push_back(static_cast<double>(last.bssrdf_samples) / (s.ms * 1e-3));
+        if ((s.name == "integrate" || s.name == "per_pixel") && s.ms > 0) rate.push_back(static_cast<double>(last.bssrdf_samples) / (s.ms * 1e-3));
     }
     glFinish();
-    double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ImageRGBA32F image = renderer.read_radiance();
-    std::string stem = fmt::format("{}_{}", run_name, variant.value("id", name));
-    std::replace_if(stem.begin(), stem.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '_'; }, '_');
-    write_exr((out / "images" / (stem + ".exr")).string(), image);
-    write_png((out / "images" / (stem + ".png")).string(), renderer.read_display());
+    r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.image = renderer.read_radiance();
+    r.stem = fmt::format("{}_{}", run_name, variant.value("id", name));
+    std::replace_if(r.stem.begin(), r.stem.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '_'; }, '_');
+    write_exr((out / "images" / (r.stem + ".exr")).string(), r.image);
+    write_png((out / "images" / (r.stem + ".png")).string(), renderer.read_display());
 
-    json result = {{"run", run_name}, {"variant", name}, {"frames", frames}, {"image", "images/" + stem + ".png"},
-                   {"wall_seconds", wall}, {"gpu_memory_mb", static_cast<double>(last.gpu_memory_bytes) / 1048576.0},
-                   {"bssrdf_samples_per_frame", last.bssrdf_samples}};
+    json& result = r.result;
+    result = {{"run", run_name}, {"variant", name}, {"frames", frames}, {"image", "images/" + r.stem + ".png"},
+              {"wall_seconds", r.wall_seconds}, {"gpu_memory_mb", static_cast<double>(last.gpu_memory_bytes) / 1048576.0},
+              {"bssrdf_samples_per_frame", last.bssrdf_samples}, {"method", scene.method},
+              {"occupancy", static_cast<double>(last.translucent_pixels) /
+                                (static_cast<double>(scene.render.width) * scene.render.height)},
+              {"map_coverage", last.map_coverage}};
     for (auto [key, values] : {std::pair{"light_gbuffer_ms", step1}, std::pair{"radiosity_maps_ms", step2},
                                std::pair{"combine_ms", step3}, std::pair{"total_ms", total},
                                std::pair{"bssrdf_samples_per_second", rate}}) {
@@ -183,38 +210,95 @@ struct Bench {
     }
     for (const auto& [key, value] : variant.items())
       if (key != "set" && key != "name" && key != "id") result["params"][key] = value;
-    for (const std::string& s : sets) {  // method.X as X, other keys by their path (scale_mm, render.width, ...)
+    for (const std::string& s : r.sets) {  // method.X as X, other keys by their path (scale_mm, render.width, ...)
       std::string key = s.substr(0, s.find('='));
       if (key.rfind("method.", 0) == 0) key = key.substr(7);
       result["params"][key] = json::parse(s.substr(s.find('=') + 1), nullptr, false);
     }
     if (variant.value("coverage", false)) result["coverage"] = coverage(scene);
+    if (variant.value("equal_time", false)) result["equal_time_request"] = true;
+    return r;
+  }
 
-    const json& refs = config.value("references", json::object());
-    for (const auto& [integrator, spec] : refs.items()) {
-      if (spec.contains("only_runs") && std::find(spec["only_runs"].begin(), spec["only_runs"].end(), run_name) == spec["only_runs"].end())
-        continue;
-      reference::ReferenceImage ref = reference_image(scene_path, sets, integrator, spec.value("spp", 256));
-      ImageError e = image_error(image, ref.mean, &ref.standard_error);
-      std::string ref_png = "images/" + run_name + "_reference_" + integrator +
-                            (integrator == "bssrdf" ? "_" + std::string(to_string(scene.objects[0].material ? scene.objects[0].material->model : BssrdfModel::DirectionalDipole)) : "") + ".png";
-      write_png((out / ref_png).string(), to_display(ref.mean, scene.render.exposure));
-      write_png((out / "images" / (stem + "_vs_" + integrator + ".png")).string(),
-                heat_map(image, ref.mean, std::max(1e-6, 4.0 * e.rmse_rgb)));
-      result["error"][integrator] = {{"rmse_rgb", e.rmse_rgb}, {"rmse", {e.rmse[0], e.rmse[1], e.rmse[2]}},
+  // Compares the variants of one run with one reference integrator. Variants that share a reference (same
+  // image-relevant overrides) are compared together; with "noise_ratio" R in the reference's configuration, the
+  // reference is extended (up to "max_spp") until its own noise is R times below the smallest noise-corrected
+  // RMSE measured against it.
+  void compare(std::vector<Rendered>& rendered, const std::string& run_name, const std::string& integrator,
+               const json& spec) {
+    std::map<std::string, std::vector<Rendered*>> groups;
+    for (Rendered& r : rendered) groups[reference_key(r.scene_path, r.sets, integrator)].push_back(&r);
+    const double ratio = spec.value("noise_ratio", 0.0);
+    // Below this RMSE (linear radiance; a lit surface is about 0.5) an error is invisible after 8-bit quantization:
+    // a reference is not refined further to resolve it (a black object matching a black reference, for example).
+    const double floor = spec.value("rmse_floor", 1e-3);
+    const int first_spp = spec.value("spp", 256), max_spp = spec.value("max_spp", first_spp);
+    for (auto& [key, group] : groups) {
+      reference::ReferenceImage ref = reference_image(group[0]->scene_path, group[0]->sets, integrator, first_spp);
+      std::vector<ImageError> errors;
+      for (;;) {
+        errors.clear();
+        double smallest = 1e30, noise = 0.0;
+        for (Rendered* r : group) {
+          errors.push_back(image_error(r->image, ref.mean, &ref.standard_error));
+          smallest = std::min(smallest, corrected_rmse(errors.back()));
+          noise = noise_rgb(errors.back());
+        }
+        smallest = std::max(smallest, floor);
+        if (ratio <= 0.0 || noise * ratio <= smallest || ref.samples_per_pixel >= max_spp) {
+          if (ratio > 0.0 && noise * ratio > smallest)
+            fmt::print(stderr, "  reference {} for {}: noise {:.5f} is not {}x below the smallest RMSE {:.5f} at max_spp {}\n",
+                       integrator, run_name, noise, ratio, smallest, max_spp);
+          break;
+        }
+        // The standard error falls as 1/sqrt(spp): aim 10% past the predicted sample count, at least doubling.
+        double wanted = ref.samples_per_pixel * 1.1 * std::pow(noise * ratio / std::max(smallest, 1e-9), 2.0);
+        int spp = static_cast<int>(std::min<double>(max_spp, std::max(wanted, 2.0 * ref.samples_per_pixel)));
+        ref = reference_image(group[0]->scene_path, group[0]->sets, integrator, spp);
+      }
+      for (std::size_t i = 0; i < group.size(); ++i) attach_error(*group[i], run_name, integrator, ref, errors[i]);
+    }
+  }
+
+  void attach_error(Rendered& r, const std::string& run_name, const std::string& integrator,
+                    const reference::ReferenceImage& ref, const ImageError& e) {
+    const Scene& scene = r.scene;
+    std::string ref_png = "images/" + run_name + "_reference_" + integrator +
+                          (integrator == "bssrdf" ? "_" + std::string(to_string(scene.objects[0].material ? scene.objects[0].material->model : BssrdfModel::DirectionalDipole)) : "") + ".png";
+    write_png((out / ref_png).string(), to_display(ref.mean, scene.render.exposure));
+    write_png((out / "images" / (r.stem + "_vs_" + integrator + ".png")).string(),
+              heat_map(r.image, ref.mean, std::max(1e-6, 4.0 * e.rmse_rgb)));
+    r.result["error"][integrator] = {{"rmse_rgb", e.rmse_rgb}, {"rmse", {e.rmse[0], e.rmse[1], e.rmse[2]}},
                                      {"relative_mse", e.relative_mse}, {"mean_error", e.mean_error},
                                      {"mean_error_se", e.mean_error_se},
                                      {"reference_noise_rms", e.reference_noise_rms},
-                                     {"reference_spp", ref.samples_per_pixel}, {"reference_image", ref_png}};
-      if (integrator == "bssrdf" && variant.value("equal_time", false)) {
-        reference::ReferenceImage quick = equal_time_reference(scene, wall);
-        ImageError eq = image_error(quick.mean, ref.mean, &ref.standard_error);
-        result["equal_time_bssrdf"] = {{"rmse_rgb", eq.rmse_rgb}, {"spp", quick.samples_per_pixel},
+                                     {"reference_spp", ref.samples_per_pixel}, {"reference_seconds", ref.seconds},
+                                     {"reference_image", ref_png}};
+    if (integrator == "bssrdf" && r.result.value("equal_time_request", false)) {
+      reference::ReferenceImage quick = equal_time_reference(scene, r.wall_seconds);
+      ImageError eq = image_error(quick.mean, ref.mean, &ref.standard_error);
+      r.result["equal_time_bssrdf"] = {{"rmse_rgb", eq.rmse_rgb}, {"spp", quick.samples_per_pixel},
                                        {"seconds", quick.seconds}};
-        write_png((out / "images" / (stem + "_equal_time_bssrdf.png")).string(), to_display(quick.mean, scene.render.exposure));
-      }
+      write_png((out / "images" / (r.stem + "_equal_time_bssrdf.png")).string(), to_display(quick.mean, scene.render.exposure));
     }
-    return result;
+  }
+
+  // All variants of a run, then their comparison with each configured reference.
+  void run(const json& run, const std::string& run_name, json& results) {
+    std::vector<Rendered> rendered;
+    for (const json& v : run.value("variants", json::array({json::object()})))
+      rendered.push_back(render_variant(run, v, run_name));
+    const json references = config.value("references", json::object());
+    for (const auto& [integrator, spec] : references.items()) {
+      if (spec.contains("only_runs") &&
+          std::find(spec["only_runs"].begin(), spec["only_runs"].end(), run_name) == spec["only_runs"].end())
+        continue;
+      compare(rendered, run_name, integrator, spec);
+    }
+    for (Rendered& r : rendered) {
+      r.result.erase("equal_time_request");
+      results.push_back(std::move(r.result));
+    }
   }
 };
 
@@ -223,14 +307,14 @@ std::string markdown(const json& results) {
                    "S_d samples/s | GPU MB | coverage | RMSE vs bssrdf | RMSE vs volpath | mean error vs volpath | "
                    "equal-time bssrdf RMSE |\n"
                    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  // RMSE, the reference's own noise, and the noise-corrected RMSE sqrt(max(0, RMSE^2 - noise^2)): the expected
-  // squared error against a noisy reference is the method's squared error plus the reference's variance.
+  // RMSE, the reference's own noise (and samples per pixel), and the noise-corrected RMSE.
   auto error = [](const json& r, const char* integrator) {
     if (!r.contains("error") || !r["error"].contains(integrator)) return std::string("-");
     const json& e = r["error"][integrator];
-    double rmse = e["rmse_rgb"].get<double>(), noise = e["reference_noise_rms"].get<double>() * std::sqrt(3.0);
-    return fmt::format("{:.4f} (ref noise {:.4f}; corrected {:.4f})", rmse, noise,
-                       std::sqrt(std::max(0.0, rmse * rmse - noise * noise)));
+    ImageError ie;
+    ie.rmse_rgb = e["rmse_rgb"].get<double>(), ie.reference_noise_rms = e["reference_noise_rms"].get<double>();
+    return fmt::format("{:.4f} (ref noise {:.4f} at {} spp; corrected {:.4f})", ie.rmse_rgb, noise_rgb(ie),
+                       e["reference_spp"].get<int>(), corrected_rmse(ie));
   };
   auto bias = [](const json& r, const char* integrator) {
     if (!r.contains("error") || !r["error"].contains(integrator)) return std::string("-");
@@ -257,7 +341,8 @@ std::string markdown(const json& results) {
 // One line per result: run, variant, every numeric parameter, median total ms, coverage, RMSEs.
 void write_tsv(const json& results, const fs::path& path) {
   std::ofstream tsv(path);
-  tsv << "run\tvariant\tK\tN\tscale_mm\ttotal_ms\tradiosity_maps_ms\tcoverage\trmse_bssrdf\trmse_volpath\trmse_equal_time_bssrdf\n";
+  tsv << "run\tvariant\tK\tN\tscale_mm\ttotal_ms\tradiosity_maps_ms\tcoverage\trmse_bssrdf\trmse_volpath\trmse_equal_time_bssrdf"
+         "\tmethod\toccupancy\n";
   for (const json& r : results) {
     auto param = [&](const char* k) { return r.contains("params") && r["params"].contains(k) ? r["params"][k].dump() : "nan"; };
     auto err = [&](const char* k) {
@@ -269,7 +354,7 @@ void write_tsv(const json& results, const fs::path& path) {
         << (r.contains("coverage") ? std::to_string(r["coverage"].get<double>()) : "nan") << "\t" << err("bssrdf")
         << "\t" << err("volpath") << "\t"
         << (r.contains("equal_time_bssrdf") ? std::to_string(r["equal_time_bssrdf"]["rmse_rgb"].get<double>()) : "nan")
-        << "\n";
+        << "\t" << r.value("method", std::string("?")) << "\t" << r.value("occupancy", 0.0) << "\n";
   }
 }
 
@@ -285,7 +370,7 @@ void run(const std::string& config_path, const std::string& output) {
   json results = json::array();
   for (const json& r : bench.config.at("runs")) {
     std::string run_name = r.value("name", fs::path(r.at("scene").get<std::string>()).stem().string());
-    for (const json& v : r.value("variants", json::array({json::object()}))) results.push_back(bench.run_variant(r, v, run_name));
+    bench.run(r, run_name, results);
   }
   json doc = {{"config", config_path}, {"device", Renderer::device_of_current_context()}, {"results", results}};
   std::ofstream(bench.out / "results.json") << doc.dump(2) << "\n";

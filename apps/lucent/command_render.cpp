@@ -45,7 +45,7 @@ void print_timings(const std::vector<FrameTimings>& frames, const std::string& d
     step1.push_back(t.light_gbuffer_ms), step2.push_back(t.radiosity_maps_ms), step3.push_back(t.combine_ms);
     total.push_back(t.total_ms);
     for (const StepTiming& s : t.passes)
-      if (s.name == "integrate" && s.ms > 0) rate.push_back(static_cast<double>(t.bssrdf_samples) / (s.ms * 1e-3));
+      if ((s.name == "integrate" || s.name == "per_pixel") && s.ms > 0) rate.push_back(static_cast<double>(t.bssrdf_samples) / (s.ms * 1e-3));
   }
   fmt::print("GPU time per frame, median of {} frame(s), on {}:\n", frames.size(), device);
   fmt::print("  1. light G-buffer      {:10.3f} ms\n", median(step1));
@@ -54,8 +54,11 @@ void print_timings(const std::vector<FrameTimings>& frames, const std::string& d
   fmt::print("  total                  {:10.3f} ms\n", median(total));
   fmt::print("  passes:");
   for (const std::string& name : order) fmt::print(" {} {:.3f}", name, median(per_pass[name]));
-  fmt::print(" (ms)\n  BSSRDF samples: {} per frame, {:.3g} per second in the integrate pass\n", frames.back().bssrdf_samples,
+  fmt::print(" (ms)\n  BSSRDF samples: {} per frame, {:.3g} per second in the integrate (or per_pixel) pass\n", frames.back().bssrdf_samples,
              median(rate));
+  const FrameTimings& last = frames.back();
+  fmt::print("  translucent pixels: {}, seen by the maps: {:.2f}%{}\n", last.translucent_pixels, 100.0 * last.map_coverage,
+             last.map_coverage < 0.999 ? " (view=coverage shows the rest in magenta; raise method.K)" : "");
 }
 
 std::string default_png_path(const std::string& scene_path) {

@@ -6,19 +6,20 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 namespace lucent {
 
-enum class ParamType { Int, Float, Bool, Enum, String, Vec2, Vec3 };
+enum class ParamType { Int, Float, Bool, Enum, String, Vec2, Vec3, Vec3List };
 
 struct ParamDecl {
   std::string_view name;           // JSON key
   ParamType type;
   std::string_view default_json;   // default as JSON text ("" = required or no default)
   std::string_view unit;           // "" when unitless
-  double min = -1e30;              // inclusive range for Int/Float and each Vec component
+  double min = -1e30;              // inclusive range for Int/Float and each Vec/Vec3List component
   double max = 1e30;
   std::string_view choices;        // Enum: "a|b|c"
   std::string_view doc;
@@ -30,7 +31,7 @@ struct ParamSection {
   std::span<const ParamDecl> params;
 };
 
-using ParamValue = std::variant<double, bool, std::string, glm::vec3>;
+using ParamValue = std::variant<double, bool, std::string, glm::vec3, std::vector<glm::vec3>>;
 
 // Values of one section after parsing; every declared parameter is present (defaults filled in).
 class ParamValues {
@@ -41,6 +42,7 @@ class ParamValues {
   bool boolean(std::string_view name) const;
   const std::string& text(std::string_view name) const;
   glm::vec3 vec3(std::string_view name) const;
+  const std::vector<glm::vec3>& vec3_list(std::string_view name) const;
   bool has(std::string_view name) const { return values_.count(std::string(name)) != 0; }
   const std::map<std::string, ParamValue>& all() const { return values_; }
 

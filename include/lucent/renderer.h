@@ -33,7 +33,10 @@ struct FrameTimings {
   double radiosity_maps_ms = 0.0;  // step 2 (map G-buffers, integration, mipmaps)
   double combine_ms = 0.0;         // step 3 (camera G-buffer, combine, tone map)
   double total_ms = 0.0;
+  double geometry_ms = 0.0;        // animated geometry (blob isosurface extraction), before step 1
   std::uint64_t bssrdf_samples = 0;  // light-space samples drawn this frame (each evaluates S_d once if lit)
+  std::uint64_t translucent_pixels = 0;  // camera pixels on translucent objects (their share: "occupancy")
+  double map_coverage = 1.0;       // fraction of those seen by at least one map (per-pixel: 1)
   std::size_t gpu_memory_bytes = 0;  // textures and buffers of the method and the output images
 };
 

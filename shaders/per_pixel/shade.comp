@@ -14,7 +14,7 @@ layout(binding = LUCENT_TEX_CAMERA_POSITION) uniform sampler2D camera_position;
 layout(binding = LUCENT_TEX_CAMERA_NORMAL) uniform sampler2D camera_normal;
 layout(rgba32f, binding = LUCENT_IMAGE_RADIOSITY) uniform image2D accumulated;  // rgb: sum of B, a: frames
 layout(rgba32f, binding = LUCENT_IMAGE_HDR) uniform writeonly image2D hdr;
-layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { uint shaded_pixels; };
+layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -33,7 +33,8 @@ void main() {
     if (dot(n, w_o) < 0.0f) n = -n;
     L = lambertian_direct(p.xyz, n, object.albedo.rgb);
   } else {
-    atomicAdd(shaded_pixels, 1u);
+    atomicAdd(counters.translucent_pixels, 1u);
+    atomicAdd(counters.covered_pixels, 1u);
     vec4 sum = frame.seeds.z != 0u ? vec4(0.0f) : imageLoad(accumulated, pixel);
     sum += vec4(scattered_radiosity(object_index, p.xyz, n, uint(pixel.y * frame.sizes.z + pixel.x), 0u), 1.0f);
     imageStore(accumulated, pixel, sum);

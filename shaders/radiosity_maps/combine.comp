@@ -15,10 +15,13 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(binding = LUCENT_TEX_CAMERA_POSITION) uniform sampler2D camera_position;
 layout(binding = LUCENT_TEX_CAMERA_NORMAL) uniform sampler2D camera_normal;
 layout(rgba32f, binding = LUCENT_IMAGE_HDR) uniform writeonly image2D hdr;
+layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
 
 vec3 shade_translucent(vec3 x, vec3 n, vec3 w_o, MaterialGPU material) {
   float eta = material.sigma_a.w;
   vec4 B = combine_maps(x, n);
+  atomicAdd(counters.translucent_pixels, 1u);
+  if (B.w > 0.0f) atomicAdd(counters.covered_pixels, 1u);
   if (int(frame.options.y) == LUCENT_VIEW_COVERAGE) return B.w > 0.0f ? vec3(0.2f) : vec3(1.0f, 0.0f, 1.0f);
   return fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * B.rgb + specular_direct(x, n, w_o, eta) + environment_specular(n, w_o, eta);
 }

@@ -10,7 +10,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(binding = LUCENT_TEX_MAP_POSITION) uniform sampler2DArray map_position;
 layout(binding = LUCENT_TEX_MAP_NORMAL) uniform sampler2DArray map_normal;
 layout(rgba32f, binding = LUCENT_IMAGE_RADIOSITY) uniform image2DArray radiosity;
-layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { uint covered_texels; };
+layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
 
 void main() {
   ivec3 texel = ivec3(gl_GlobalInvocationID);
@@ -22,7 +22,7 @@ void main() {
     imageStore(radiosity, texel, vec4(0.0f));
     return;
   }
-  atomicAdd(covered_texels, 1u);
+  atomicAdd(counters.covered_texels, 1u);
   vec3 n_o = normalize(texelFetch(map_normal, texel, 0).xyz);
   vec3 B = scattered_radiosity(int(p_o.w) - 1, p_o.xyz, n_o, uint(texel.y * size + texel.x), uint(texel.z));
   imageStore(radiosity, texel, previous + vec4(B, 1.0f));

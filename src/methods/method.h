@@ -36,6 +36,8 @@ class Method {
   virtual int accumulated_frames() const = 0;
   virtual std::uint64_t bssrdf_samples_last_frame() const = 0;
   virtual std::size_t gpu_memory_bytes() const = 0;  // textures and buffers the method allocated
+  // Last frame: camera pixels on translucent objects, and of those the ones the method has radiosity for.
+  virtual glm::uvec2 pixel_coverage() const = 0;
   // Diagnostics (after a frame): the scattered radiosity B at surface points, and the virtual point lights.
   // Methods without a radiosity cache or VPLs return empty vectors.
   virtual std::vector<shader::ProbeGPU> scattered_radiosity(std::vector<shader::ProbeGPU> probes) const {

@@ -16,6 +16,9 @@ double ParamValues::number(std::string_view name) const { return std::get<double
 bool ParamValues::boolean(std::string_view name) const { return std::get<bool>(get(name)); }
 const std::string& ParamValues::text(std::string_view name) const { return std::get<std::string>(get(name)); }
 glm::vec3 ParamValues::vec3(std::string_view name) const { return std::get<glm::vec3>(get(name)); }
+const std::vector<glm::vec3>& ParamValues::vec3_list(std::string_view name) const {
+  return std::get<std::vector<glm::vec3>>(get(name));
+}
 
 std::string_view to_string(ParamType type) {
   switch (type) {
@@ -26,6 +29,7 @@ std::string_view to_string(ParamType type) {
     case ParamType::String: return "string";
     case ParamType::Vec2: return "vec2";
     case ParamType::Vec3: return "vec3";
+    case ParamType::Vec3List: return "vec3[]";
   }
   return "?";
 }
@@ -34,6 +38,11 @@ std::string to_string(const ParamValue& value) {
   if (auto* d = std::get_if<double>(&value)) return fmt::format("{:g}", *d);
   if (auto* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
   if (auto* s = std::get_if<std::string>(&value)) return *s;
+  if (auto* list = std::get_if<std::vector<glm::vec3>>(&value)) {
+    std::string out;
+    for (const glm::vec3& v : *list) out += fmt::format("{}[{:g}, {:g}, {:g}]", out.empty() ? "" : ", ", v.x, v.y, v.z);
+    return "[" + out + "]";
+  }
   auto v = std::get<glm::vec3>(value);
   return fmt::format("[{:g}, {:g}, {:g}]", v.x, v.y, v.z);
 }

@@ -66,6 +66,14 @@ ParamValue read_value(const nlohmann::json& v, const ParamDecl& p, const JsonLoc
       return v.get<std::string>();
     case ParamType::Vec2:
     case ParamType::Vec3: return read_vector(v, p, where);
+    case ParamType::Vec3List: {
+      if (!v.is_array()) fail(where, fmt::format("expected an array of [x, y, z] arrays, got {}", v.dump()));
+      std::vector<glm::vec3> list;
+      ParamDecl element = p;
+      element.type = ParamType::Vec3;
+      for (std::size_t i = 0; i < v.size(); ++i) list.push_back(read_vector(v[i], element, where.child(i)));
+      return list;
+    }
   }
   fail(where, "unsupported parameter type");
 }

@@ -148,12 +148,16 @@ struct Renderer::Impl {
     timings = FrameTimings{};
     for (auto& [name, ms] : timer.resolve()) {
       timings.passes.push_back({name, ms});
-      if (name == "light_gbuffer") timings.light_gbuffer_ms += ms;
+      if (name.rfind("isosurface", 0) == 0) timings.geometry_ms += ms;
+      else if (name == "light_gbuffer") timings.light_gbuffer_ms += ms;
       else if (name == "map_gbuffers" || name == "integrate" || name == "mipmaps") timings.radiosity_maps_ms += ms;
       else timings.combine_ms += ms;
       timings.total_ms += ms;
     }
     timings.bssrdf_samples = method->bssrdf_samples_last_frame();
+    glm::uvec2 coverage = method->pixel_coverage();
+    timings.translucent_pixels = coverage.x;
+    timings.map_coverage = coverage.x > 0 ? static_cast<double>(coverage.y) / coverage.x : 1.0;
     // Output images: RGBA32F radiance, RGBA8 display, camera G-buffer (RGBA32F + RGBA16F + DEPTH32F).
     std::size_t pixels = static_cast<std::size_t>(output.width) * static_cast<std::size_t>(output.height);
     timings.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4);

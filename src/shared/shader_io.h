@@ -9,7 +9,7 @@
 #define LUCENT_BINDING_MATERIALS 1   // buffer MaterialGPU[] (std430)
 #define LUCENT_BINDING_OBJECTS 2     // buffer ObjectGPU[] (std430)
 #define LUCENT_BINDING_PARITY 3      // buffer used by the GPU parity test (std430)
-#define LUCENT_BINDING_COUNTERS 4    // buffer uint[]: x = covered map texels this frame (std430)
+#define LUCENT_BINDING_COUNTERS 4    // buffer CountersGPU (std430)
 #define LUCENT_BINDING_VPLS 5        // buffer VplGPU[] (std430)
 #define LUCENT_BINDING_PROBES 6      // buffer ProbeGPU[] (std430)
 
@@ -111,6 +111,14 @@ struct FrameGPU {
   ViewGPU vpl_views[6];                         // cube map of the translucent objects' outermost surface
 };
 
+// Per-frame counters written by the methods' passes with atomics (std430, 16 bytes).
+struct CountersGPU {
+  uint covered_texels;      // map texels that see a translucent surface (radiosity-maps integration)
+  uint translucent_pixels;  // camera pixels on translucent objects
+  uint covered_pixels;      // of those, the ones at least one map sees (all of them for per-pixel)
+  uint unused;
+};
+
 // A virtual point light on a translucent object's outer surface (Dal Corso et al. 2015, Section 3.4; std430).
 // It emits L(w) = F_t(w) B / pi over its area, so its intensity toward w is F_t(w) B A cos(theta) / pi (eq. 16).
 struct VplGPU {
@@ -150,6 +158,7 @@ static_assert(sizeof(lucent::shader::ParityCaseGPU) == 128);
 static_assert(offsetof(lucent::shader::FrameGPU, counts) == 96);
 static_assert(sizeof(lucent::shader::LightGPU) == 64);
 static_assert(sizeof(lucent::shader::VplGPU) == 48);
+static_assert(sizeof(lucent::shader::CountersGPU) == 16);
 static_assert(sizeof(lucent::shader::ProbeGPU) == 48);
 static_assert(offsetof(lucent::shader::FrameGPU, extra_counts) == 176);
 static_assert(offsetof(lucent::shader::FrameGPU, vpl_center) == 192);

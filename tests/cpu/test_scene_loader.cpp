@@ -250,7 +250,8 @@ TEST(SceneLoader, UnknownMethodKey) {
   json doc = minimal_scene();
   doc["method"] = {{"KK", 8}};
   EXPECT_EQ(parse_error(doc),
-            "test.json: /method/KK: unknown key; known keys: K, N, map_size, light_map_size, eps_bias, eps_comb, "
+            "test.json: /method/KK: unknown key; known keys: K, directions, map_directions, N, map_size, light_map_size, "
+            "eps_bias, eps_comb, "
             "visibility_taps, filter_lod, progressive, specular, roughness, vpls, vpl_map_size, view, name");
 }
 
@@ -387,6 +388,18 @@ TEST(SceneLoader, EnvironmentBecomesDirectionalLights) {
     error = e.what();
   }
   EXPECT_EQ(error.rfind("test.json: /environment/file: ", 0), 0u) << error;
+}
+
+TEST(SceneLoader, Vec3ListParameter) {
+  json doc = minimal_scene();
+  doc["method"] = {{"map_directions", {{0, 0, 1}, {1, 0, 0}}}};
+  Scene scene = parse_scene(doc.dump(), "test.json", ".");
+  ASSERT_EQ(scene.method_params.vec3_list("map_directions").size(), 2u);
+  EXPECT_EQ(scene.method_params.vec3_list("map_directions")[1], glm::vec3(1, 0, 0));
+  doc["method"] = {{"map_directions", {{0, 0}}}};
+  EXPECT_EQ(parse_error(doc), "test.json: /method/map_directions/0: expected an array of 3 numbers, got [0,0]");
+  doc["method"] = {{"map_directions", {0, 0, 1}}};
+  EXPECT_EQ(parse_error(doc), "test.json: /method/map_directions/0: expected an array of 3 numbers, got 0");
 }
 
 TEST(SceneLoader, LightZeroDirection) {

@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "gpu/frame_counters.h"
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
 #include "render/light_gbuffer.h"
@@ -24,15 +25,8 @@ class PerPixel final : public Method {
   PerPixel(const Scene& scene, const render::SceneGpu& scene_gpu)
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
-        program_(gpu::ShaderProgram::compute("per_pixel/shade.comp")) {
-    glCreateBuffers(1, &counter_buffer_);
-    glNamedBufferStorage(counter_buffer_, sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    gpu::label_object(GL_BUFFER, counter_buffer_, "shaded pixel counter");
-  }
-  ~PerPixel() override {
-    glDeleteTextures(1, &accumulated_);
-    glDeleteBuffers(1, &counter_buffer_);
-  }
+        program_(gpu::ShaderProgram::compute("per_pixel/shade.comp")) {}
+  ~PerPixel() override { glDeleteTextures(1, &accumulated_); }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
     // View dependent: a camera change restarts accumulation too.
@@ -53,9 +47,7 @@ class PerPixel final : public Method {
     light_gbuffer_.render(context.scene_gpu, context.timer);
     gpu::DebugGroup group("per_pixel");
     context.timer.begin("per_pixel");
-    const std::uint32_t zero = 0;
-    glNamedBufferSubData(counter_buffer_, 0, sizeof(zero), &zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_COUNTERS, counter_buffer_);
+    counters_.reset_and_bind();
     light_gbuffer_.bind_textures();
     glBindImageTexture(LUCENT_IMAGE_RADIOSITY, accumulated_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -66,10 +58,12 @@ class PerPixel final : public Method {
   }
 
   int accumulated_frames() const override { return accumulated_frames_; }
+  glm::uvec2 pixel_coverage() const override {
+    shader::CountersGPU c = counters_.read();
+    return {c.translucent_pixels, c.covered_pixels};
+  }
   std::uint64_t bssrdf_samples_last_frame() const override {
-    std::uint32_t pixels = 0;
-    glGetNamedBufferSubData(counter_buffer_, 0, sizeof(pixels), &pixels);
-    return static_cast<std::uint64_t>(pixels) * 3u * static_cast<std::uint64_t>(params_.integer("N")) *
+    return static_cast<std::uint64_t>(counters_.read().translucent_pixels) * 3u * static_cast<std::uint64_t>(params_.integer("N")) *
            static_cast<std::uint64_t>(light_gbuffer_.light_count());
   }
   std::size_t gpu_memory_bytes() const override {
@@ -88,7 +82,8 @@ class PerPixel final : public Method {
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;
   gpu::ShaderProgram program_;
-  GLuint accumulated_ = 0, counter_buffer_ = 0;
+  GLuint accumulated_ = 0;
+  gpu::FrameCounters counters_;
   int width_ = 0, height_ = 0, accumulated_frames_ = 0;
   glm::mat4 last_camera_{0.0f};
 };

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gpu/frame_counters.h"
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
@@ -23,6 +25,10 @@ using shader::ViewGPU;
 // benchmark configuration (N = 32 per band).
 constexpr ParamDecl kParams[] = {
     {"K", ParamType::Int, "16", "maps", 1, LUCENT_MAX_MAPS, "", "number of scattered-radiosity maps (views)"},
+    {"directions", ParamType::Enum, "\"halton\"", "", 0, 0, "halton|fibonacci",
+     "automatic map directions: Halton points (the paper) or a spherical Fibonacci set (more even)"},
+    {"map_directions", ParamType::Vec3List, "[]", "", -1e9, 1e9, "",
+     "user map directions (from the object toward each map camera); non-empty: overrides K and directions"},
     {"N", ParamType::Int, "32", "samples", 1, 4096, "", "samples per colour band per map texel per frame"},
     {"map_size", ParamType::Int, "512", "texels", 8, 4096, "", "resolution of each scattered-radiosity map"},
     {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer"},
@@ -73,7 +79,8 @@ class RadiosityMaps final : public Method {
  public:
   RadiosityMaps(const Scene& scene, const render::SceneGpu& scene_gpu)
       : params_(scene.method_params),
-        K_(params_.integer("K")),
+        map_directions_(choose_map_directions(scene)),
+        K_(static_cast<int>(map_directions_.size())),
         map_size_(params_.integer("map_size")),
         light_map_size_(params_.integer("light_map_size")),
         light_gbuffer_(scene, scene_gpu, light_map_size_),
@@ -88,9 +95,6 @@ class RadiosityMaps final : public Method {
         vpl_program_(gpu::ShaderProgram::compute("radiosity_maps/vpl.comp")),
         probe_program_(gpu::ShaderProgram::compute("radiosity_maps/probe.comp")) {
     radiosity_ = make_radiosity_texture(map_size_, K_);
-    glCreateBuffers(1, &counter_buffer_);
-    glNamedBufferStorage(counter_buffer_, sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    gpu::label_object(GL_BUFFER, counter_buffer_, "covered texel counter");
     glCreateBuffers(1, &vpl_buffer_);
     glNamedBufferStorage(vpl_buffer_, static_cast<GLsizeiptr>(sizeof(shader::VplGPU)) * std::max(1, vpl_count_), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
@@ -102,7 +106,6 @@ class RadiosityMaps final : public Method {
 
   ~RadiosityMaps() override {
     glDeleteTextures(1, &radiosity_);
-    glDeleteBuffers(1, &counter_buffer_);
     glDeleteBuffers(1, &vpl_buffer_);
   }
 
@@ -134,6 +137,10 @@ class RadiosityMaps final : public Method {
   }
 
   int accumulated_frames() const override { return accumulated_; }
+  glm::uvec2 pixel_coverage() const override {
+    shader::CountersGPU c = counters_.read();
+    return {c.translucent_pixels, c.covered_pixels};
+  }
 
   std::size_t gpu_memory_bytes() const override {
     auto layers = [](const gpu::GBuffer& g) { return static_cast<std::size_t>(std::max(1, g.layers())); };
@@ -170,13 +177,32 @@ class RadiosityMaps final : public Method {
     return vpls;
   }
   std::uint64_t bssrdf_samples_last_frame() const override {
-    std::uint32_t covered = 0;
-    glGetNamedBufferSubData(counter_buffer_, 0, sizeof(covered), &covered);
-    return static_cast<std::uint64_t>(covered) * 3u * static_cast<std::uint64_t>(params_.integer("N")) *
+    return static_cast<std::uint64_t>(counters_.read().covered_texels) * 3u * static_cast<std::uint64_t>(params_.integer("N")) *
            static_cast<std::uint64_t>(light_gbuffer_.light_count());
   }
 
  private:
+  // The user's directions (normalized; checked here because the scene parser does not know the method's
+  // meaning), or K automatic ones.
+  std::vector<glm::vec3> choose_map_directions(const Scene& scene) const {
+    const std::vector<glm::vec3>& user = params_.vec3_list("map_directions");
+    if (user.empty()) {
+      int K = params_.integer("K");
+      return params_.text("directions") == "fibonacci" ? fibonacci_sphere_directions(K) : halton_sphere_directions(K);
+    }
+    if (user.size() > LUCENT_MAX_MAPS)
+      throw Error(fmt::format("{}: /method/map_directions: {} directions; at most {}", scene.source, user.size(),
+                              LUCENT_MAX_MAPS));
+    std::vector<glm::vec3> out;
+    for (std::size_t i = 0; i < user.size(); ++i) {
+      float length = glm::length(user[i]);
+      if (!(length > 1e-6f))
+        throw Error(fmt::format("{}: /method/map_directions/{}: must be a non-zero vector", scene.source, i));
+      out.push_back(user[i] / length);
+    }
+    return out;
+  }
+
   // Dal Corso et al., Section 5: when the scattering length 1/sigma_tr is under about two light-map texels the
   // contributions cluster ("pearling"). Say so once, with the light-map size that would avoid it.
   void warn_about_pearling(const Scene& scene) const {
@@ -215,7 +241,7 @@ class RadiosityMaps final : public Method {
     render::BoundingSphere object = scene_gpu.translucent_bounds();
     float half_width = 1.02f * object.radius + 1e-6f;
     // Step 2 views: K directions from a Halton sequence on the bounding sphere, looking at its centre.
-    for (glm::vec3 d : halton_sphere_directions(K_)) {
+    for (glm::vec3 d : map_directions_) {
       ViewGPU view;
       view.clip_from_world = orthographic_view(object.center, d, half_width, half_width, 2.0f * half_width);
       view.direction = glm::vec4(d, 2.0f * half_width);
@@ -240,9 +266,7 @@ class RadiosityMaps final : public Method {
   void integrate(const FrameContext& context) {
     gpu::DebugGroup group("integrate");
     context.timer.begin("integrate");
-    const std::uint32_t zero = 0;
-    glNamedBufferSubData(counter_buffer_, 0, sizeof(zero), &zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_COUNTERS, counter_buffer_);
+    counters_.reset_and_bind();
     map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
     light_gbuffer_.bind_textures();
     glBindImageTexture(LUCENT_IMAGE_RADIOSITY, radiosity_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
@@ -300,6 +324,7 @@ class RadiosityMaps final : public Method {
   }
 
   const ParamValues& params_;
+  std::vector<glm::vec3> map_directions_;
   int K_, map_size_, light_map_size_;
   int accumulated_ = 0;
   render::LightGBuffer light_gbuffer_;
@@ -307,7 +332,8 @@ class RadiosityMaps final : public Method {
   int vpl_count_, vpl_map_size_;
   gpu::GBuffer vpl_gbuffer_;
   gpu::ShaderProgram gbuffer_program_, integrate_program_, combine_program_, vpl_program_, probe_program_;
-  GLuint radiosity_ = 0, counter_buffer_ = 0, vpl_buffer_ = 0;
+  GLuint radiosity_ = 0, vpl_buffer_ = 0;
+  gpu::FrameCounters counters_;
   std::vector<ViewGPU> maps_, vpl_views_;
   glm::vec3 vpl_center_{0.0f};
 };
@@ -318,6 +344,17 @@ std::span<const ParamDecl> radiosity_maps_params() { return kParams; }
 
 std::unique_ptr<Method> create_radiosity_maps(const Scene& scene, const render::SceneGpu& scene_gpu) {
   return std::make_unique<RadiosityMaps>(scene, scene_gpu);
+}
+
+std::vector<glm::vec3> fibonacci_sphere_directions(int count) {
+  std::vector<glm::vec3> directions;
+  for (int i = 0; i < count; ++i) {
+    float z = 1.0f - (2.0f * static_cast<float>(i) + 1.0f) / static_cast<float>(count);
+    float phi = 2.39996322972865f * static_cast<float>(i);  // golden angle
+    float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    directions.emplace_back(s * std::cos(phi), s * std::sin(phi), z);
+  }
+  return directions;
 }
 
 std::vector<glm::vec3> halton_sphere_directions(int count) {

@@ -21,5 +21,7 @@ std::unique_ptr<Method> create_radiosity_maps(const Scene& scene, const render::
 
 // The unit directions d_k of the K map views (Halton bases 2 and 3 mapped uniformly onto the sphere).
 std::vector<glm::vec3> halton_sphere_directions(int count);
+// A spherical Fibonacci set: more even than Halton points for small K.
+std::vector<glm::vec3> fibonacci_sphere_directions(int count);
 
 }  // namespace lucent::methods
