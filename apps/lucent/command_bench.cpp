@@ -46,12 +46,12 @@ std::vector<std::string> strings(const json& j, const char* key) {
   return out;
 }
 
-// Overrides that change the image of a reference: not method parameters or frame counts, and for volpath not
-// the diffusion model either (the physics does not use it).
+// Overrides that change the image of a reference: not the method or its parameters ("method.K=8",
+// "method={...}") or frame counts, and for volpath not the diffusion model either (the physics does not use it).
 std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator) {
   std::vector<std::string> relevant;
   for (const std::string& s : sets) {
-    bool method = s.rfind("method.", 0) == 0 || s.rfind("render.frames", 0) == 0;
+    bool method = s.rfind("method.", 0) == 0 || s.rfind("method=", 0) == 0 || s.rfind("render.frames", 0) == 0;
     bool model = integrator == "volpath" && s.find(".model=") != std::string::npos;
     if (!method && !model) relevant.push_back(s);
   }

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Renders the README gallery of the flagship scenes into docs/images/ (llvmpipe: a few minutes on 2 cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+L=build/lucent
+S="--set render.width=320 --set render.height=200 -q"
+$L render scenes/candle.json $S --frames 4 --set method.map_size=256 -o docs/images/candle.png
+$L render scenes/candle.json $S --frames 4 --set method.map_size=256 --set method.vpls=0 -o docs/images/candle_no_vpls.png
+$L render scenes/lamp_shade.json $S --frames 4 --set method.map_size=256 -o docs/images/lamp_shade.png
+$L render scenes/bunny_environment.json $S --frames 4 --set render.height=240 --set method.map_size=256 \
+  --set method.light_map_size=512 -o docs/images/bunny_environment.png
+$L render scenes/shell_point_light.json $S --frames 4 -o docs/images/shell_point_light.png
+$L render scenes/blobs.json $S --animate --frames 3 --set render.fps=0.5 -o out/gallery/blobs.png
+cp out/gallery/blobs_0000.png docs/images/blobs_t0.png && cp out/gallery/blobs_0002.png docs/images/blobs_t4.png
+$L render scenes/candle_melting.json $S --animate --frames 2 --set render.fps=1.33 --set method.map_size=256 \
+  -o out/gallery/candle_melting.png
+cp out/gallery/candle_melting_0001.png docs/images/candle_melting.png
