@@ -15,3 +15,5 @@ cp out/gallery/blobs_0000.png docs/images/blobs_t0.png && cp out/gallery/blobs_0
 $L render scenes/candle_melting.json $S --animate --frames 2 --set render.fps=1.33 --set method.map_size=256 \
   -o out/gallery/candle_melting.png
 cp out/gallery/candle_melting_0001.png docs/images/candle_melting.png
+$L render scenes/bunny_spot.json $S --frames 4 --set render.height=240 --set method.map_size=256 \
+  --set method.light_map_size=512 -o docs/images/bunny_spot.png
