@@ -88,8 +88,9 @@ struct Bench {
   fs::path out;
   std::unique_ptr<GLContext> context;
 
-  // Renders, loads, or extends a cached reference so that it has at least `spp` samples per pixel. A cached
-  // reference of the same scene, integrator and image-relevant overrides (found by its metadata) is resumed.
+  // Renders, loads, or extends a cached reference so that it has at least `spp` samples per pixel. The cached
+  // reference of the same scene, integrator and image-relevant overrides (found by its metadata) with the most
+  // samples is used or resumed.
   reference::ReferenceImage reference_image(const std::string& scene_path, const std::vector<std::string>& sets,
                                             const std::string& integrator, int spp) {
     fs::path exr = out / "references" / (reference_key(scene_path, sets, integrator) + ".exr");
@@ -102,13 +103,13 @@ struct Bench {
         if (relevant_overrides(m.value("overrides", std::vector<std::string>{}), integrator) !=
             relevant_overrides(sets, integrator))
           continue;
+        if (cached && cached->samples_per_pixel >= m.value("samples_per_pixel", 0)) continue;  // keep the best
         fs::path cached_exr = entry.path();
         cached_exr.replace_extension(".exr");
         cached = reference::ReferenceImage{read_exr(cached_exr.string()),
                                            read_exr(reference::reference_sidecar(cached_exr.string(), ".stderr.exr")),
                                            m["samples_per_pixel"], m["seconds"]};
         exr = cached_exr;
-        break;
       }
     if (cached && cached->samples_per_pixel >= spp) return *cached;
     Scene scene = load_scene(scene_path, sets);
