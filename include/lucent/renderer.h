@@ -31,7 +31,7 @@ struct FrameTimings {
   std::vector<StepTiming> passes;  // light_gbuffer, map_gbuffers, integrate, mipmaps, camera_gbuffer, ...
   double light_gbuffer_ms = 0.0;   // step 1 of the method
   double radiosity_maps_ms = 0.0;  // step 2 (map G-buffers, integration, mipmaps)
-  double combine_ms = 0.0;         // step 3 (camera G-buffer, combine, tone map)
+  double combine_ms = 0.0;         // step 3 (VPL placement and gathering, camera G-buffer, combine, tone map)
   double total_ms = 0.0;
   double geometry_ms = 0.0;        // animated geometry (blob isosurface extraction), before step 1
   std::uint64_t bssrdf_samples = 0;  // light-space samples drawn this frame (each evaluates S_d once if lit)

@@ -80,8 +80,9 @@ LightViews build_light_views(const Scene& scene, BoundingSphere translucent, Bou
       // Outside: one frustum framing the translucent objects, then the scene-wide shadow cube.
       glm::vec3 forward = (translucent.center - light.position) / distance;
       float half_angle = std::asin(std::min(1.0f, half_width / distance));
-      out.views.push_back(perspective(light.position, forward, any_perpendicular_up(forward), half_angle,
-                                      std::max(z_near, 0.5f * (distance - half_width)), reach, light_map_size));
+      // The near plane stays at the light: occluders between it and the objects must be in the G-buffer.
+      out.views.push_back(perspective(light.position, forward, any_perpendicular_up(forward), half_angle, z_near,
+                                      reach, light_map_size));
       g.views = glm::ivec4(first, 1, first + 1, 6);
     } else {
       g.views = glm::ivec4(first, 6, first, 6);  // inside: the cube map serves both

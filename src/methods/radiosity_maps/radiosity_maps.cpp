@@ -319,7 +319,8 @@ class RadiosityMaps final : public Method {
     glUseProgram(combine_program_.id());
     int width = context.camera_gbuffer.size_x(), height = context.camera_gbuffer.size_y();
     glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    GL_SHADER_STORAGE_BARRIER_BIT);  // counters read back or cleared next
     context.timer.end();
   }
 
