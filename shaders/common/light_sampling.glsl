@@ -7,6 +7,8 @@
 // see docs/methods/radiosity-maps.md). Point and spot lights: samples lie in the plane through x_o
 // perpendicular to the light and are mapped to directions by the stereographic correction (eqs. 13-14); dividing
 // by dA_plane / d omega cancels the irradiance's cos(theta_i) / d^2 in the same way (lights/point_light.h).
+// Scenes without point or spot lights compile with LUCENT_DIRECTIONAL_LIGHTS_ONLY: llvmpipe executes both sides
+// of a branch under a lane mask, and the unused point-light side cost the directional integration 1.7x.
 #include "bssrdf/model.h"
 #include "shared/random.h"
 
@@ -42,12 +44,16 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
       if (any(lessThan(uv, vec2(0.0f))) || any(greaterThanEqual(uv, vec2(1.0f)))) continue;
       w_i = axis;
     } else {
+#if defined(LUCENT_DIRECTIONAL_LIGHTS_ONLY)
+      continue;
+#else
       vec3 x_j = x_o + r * (cos(alpha) * t1 + sin(alpha) * t2);
       StereographicSample s = stereographic_sample(light.position.xyz, x_o, x_j);
       if (!point_light_lookup(light, light.views.x, light.views.y, s.direction, layer, uv)) continue;
       weight /= s.plane_area_per_solid_angle;
       if (int(light.position.w) == LUCENT_LIGHT_SPOT)
         weight *= spot_falloff(dot(s.direction, light.axis.xyz), light.power.w, light.axis.w);
+#endif
     }
     // Look up x_i, n_i; only this object's directly lit surface contributes.
     ivec3 texel = ivec3(ivec2(uv * float(size)), layer);

@@ -7,6 +7,10 @@
 
 namespace lucent::render {
 
+std::string light_sampling_defines(const Scene& scene) {
+  return scene.point_lights.empty() ? "#define LUCENT_DIRECTIONAL_LIGHTS_ONLY 1\n" : "";
+}
+
 LightGBuffer::LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int size)
     : size_(size),
       views_(build_light_views(scene, scene_gpu.translucent_bounds(), scene_gpu.scene_bounds(), size)),

@@ -1,12 +1,18 @@
 // light_gbuffer.h: step 1 shared by the methods that sample light space (radiosity-maps, per-pixel): the lights
 // as the GPU sees them, the layered light G-buffer (render/light_views.h) and the pass that renders it.
 #pragma once
+#include <string>
+
 #include "gpu/gbuffer.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/shader_program.h"
 #include "render/light_views.h"
 
 namespace lucent::render {
+
+// Preprocessor defines for shaders that include common/light_sampling.glsl: the point-light path is compiled
+// only when the scene has point or spot lights.
+std::string light_sampling_defines(const Scene& scene);
 
 class LightGBuffer {
  public:

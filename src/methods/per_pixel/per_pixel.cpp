@@ -25,7 +25,7 @@ class PerPixel final : public Method {
   PerPixel(const Scene& scene, const render::SceneGpu& scene_gpu)
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
-        program_(gpu::ShaderProgram::compute("per_pixel/shade.comp")) {}
+        program_(gpu::ShaderProgram::compute("per_pixel/shade.comp", render::light_sampling_defines(scene))) {}
   ~PerPixel() override { glDeleteTextures(1, &accumulated_); }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
