@@ -1,6 +1,7 @@
 // test_cli.cpp: the `lucent` tool from outside: bad input gives one clear line and a non-zero exit; bssrdf
 // prints the model's values; render writes a non-black image; help is generated from the declarations.
 #include <array>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -132,6 +133,27 @@ TEST(Cli, RenderWritesNonBlackImage) {
   double sum = 0.0;
   for (std::size_t i = 0; i < image.pixels.size(); i += 4) sum += image.pixels[i];
   EXPECT_GT(sum / (48.0 * 32.0), 20.0);  // mean red above 20/255: lit objects, not black
+}
+
+TEST(Cli, AnimateWritesNumberedFramesAndCallsFfmpeg) {
+  // A stand-in ffmpeg on the PATH records how it is called (the real one is optional and not installed in CI).
+  std::string dir = lucent::test::output_path("animate");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/bin");
+  std::string fake = dir + "/bin/ffmpeg";
+  std::ofstream(fake) << "#!/bin/sh\necho \"$@\" > " << dir << "/ffmpeg_args.txt\n";
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  std::string scene = std::string(LUCENT_SCENES_DIR) + "/blobs.json";
+  Result r = run("render " + scene + " " + kSmall + " --set method.vpls=0 --set objects.0.segments=24 --animate --frames 2 -o " +
+                     dir + "/blobs.png",
+                 "PATH=" + dir + "/bin:$PATH");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  lucent::ImageRGBA8 a = lucent::read_png(dir + "/blobs_0000.png"), b = lucent::read_png(dir + "/blobs_0001.png");
+  EXPECT_NE(a.pixels, b.pixels) << "the blobs move between frames";
+  std::ifstream args_file(dir + "/ffmpeg_args.txt");
+  std::string args((std::istreambuf_iterator<char>(args_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(args.find("-framerate 30 -i " + dir + "/blobs_%04d.png"), std::string::npos) << args;
+  EXPECT_NE(args.find(dir + "/blobs.mp4"), std::string::npos) << args;
 }
 
 }  // namespace
