@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.h"
 #include "lights/equirect.h"
 #include "lucent/environment.h"
 #include "lucent/error.h"
@@ -26,36 +27,8 @@ constexpr float kPi = 3.14159265358979f;
 const EnvironmentSampling kAllSamplings[] = {EnvironmentSampling::MedianCut, EnvironmentSampling::Stratified,
                                              EnvironmentSampling::VarianceCut, EnvironmentSampling::KMeans};
 
-// A file in the test temp directory, named after the running test, removed when the test ends.
-class TempFile {
- public:
-  explicit TempFile(const std::string& extension) {
-    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::path(::testing::TempDir()) /
-            (std::string("lucent_") + test->test_suite_name() + "_" + test->name() + extension);
-  }
-  ~TempFile() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-  std::string path() const { return path_.string(); }
-
- private:
-  std::filesystem::path path_;
-};
-
-// The Error message a call throws, or "" when it does not throw.
-template <class Call>
-std::string error_message(Call call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
+using test::error_message;
+using test::TempFile;
 
 glm::vec3 total_radiance(const std::vector<DirectionalLight>& lights) {
   glm::vec3 sum(0.0f);

@@ -1,0 +1,45 @@
+// test_support.h: small helpers shared by the CPU tests: a temporary file named after the running test, and
+// the message of the lucent::Error a call throws.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+#include <gtest/gtest.h>
+
+#include "lucent/error.h"
+
+namespace lucent::test {
+
+// A file in the test temp directory, named after the running test, removed when the test ends.
+class TempFile {
+ public:
+  explicit TempFile(const std::string& extension) {
+    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::path(::testing::TempDir()) /
+            (std::string("lucent_") + test->test_suite_name() + "_" + test->name() + extension);
+  }
+  ~TempFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  std::string path() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// The Error message a call throws, or "" when it does not throw.
+template <class Call>
+std::string error_message(Call call) {
+  try {
+    call();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace lucent::test
