@@ -12,6 +12,7 @@
 #include "lucent/error.h"
 #include "lucent/environment.h"
 #include "lucent/scene.h"
+#include "render/light_views.h"
 
 namespace lucent {
 namespace {
@@ -446,3 +447,37 @@ TEST(SceneLoader, LoadMissingFile) {
 
 }  // namespace
 }  // namespace lucent
+
+namespace {
+
+// The light table's limits are errors that name the scene, not silently dropped lights.
+TEST(LightViews, TooManyLightsOrLayersAreErrors) {
+  using namespace lucent;
+  Scene scene = parse_scene(R"({"objects": [{"shape": "sphere", "material": "Marble"}]})", "lights.json", ".");
+  render::BoundingSphere object{{0, 0, 0}, 1.0f}, all{{0, 0, 0}, 10.0f};
+  for (int i = 0; i < 10; ++i) scene.point_lights.push_back({glm::vec3(5.0f + static_cast<float>(i), 0, 0)});
+  std::string message;
+  try {
+    render::build_light_views(scene, object, all, 64);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, "lights.json: the lights need 70 light G-buffer layers; at most 64 are supported (a directional "
+                     "light needs 2, a point or spot light 6 or 7)");
+  scene.point_lights.resize(17);
+  message.clear();
+  try {
+    render::build_light_views(scene, object, all, 64);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, "lights.json: 17 lights; at most 16 are supported");
+  // Inside the objects' bounding sphere: one shared cube map (6 layers); outside: a frustum and a cube (7).
+  scene.point_lights = {PointLight{}, PointLight{glm::vec3(5, 0, 0)}};
+  render::LightViews views = render::build_light_views(scene, object, all, 64);
+  ASSERT_EQ(views.lights.size(), 2u);
+  EXPECT_EQ(views.lights[0].views, glm::ivec4(0, 6, 0, 6));
+  EXPECT_EQ(views.lights[1].views, glm::ivec4(6, 1, 7, 6));
+}
+
+}  // namespace
