@@ -33,7 +33,7 @@ double median(std::vector<double> values) {
   return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
-void print_timings(const std::vector<FrameTimings>& frames, const std::string& device) {
+void print_timings(const std::vector<FrameTimings>& frames, const std::string& device, const std::string& method) {
   std::map<std::string, std::vector<double>> per_pass;
   std::vector<std::string> order;
   std::vector<double> step1, step2, step3, total, rate;
@@ -57,8 +57,11 @@ void print_timings(const std::vector<FrameTimings>& frames, const std::string& d
   fmt::print(" (ms)\n  BSSRDF samples: {} per frame, {:.3g} per second in the integrate (or per_pixel) pass\n", frames.back().bssrdf_samples,
              median(rate));
   const FrameTimings& last = frames.back();
-  fmt::print("  translucent pixels: {}, seen by the maps: {:.2f}%{}\n", last.translucent_pixels, 100.0 * last.map_coverage,
-             last.map_coverage < 0.999 ? " (view=coverage shows the rest in magenta; raise method.K)" : "");
+  if (method == "radiosity-maps")
+    fmt::print("  translucent pixels: {}, seen by the maps: {:.2f}%{}\n", last.translucent_pixels, 100.0 * last.map_coverage,
+               last.map_coverage < 0.999 ? " (view=coverage shows the rest in magenta; raise method.K)" : "");
+  else
+    fmt::print("  translucent pixels: {}\n", last.translucent_pixels);
 }
 
 std::string default_png_path(const std::string& scene_path) {
@@ -109,7 +112,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
   if (!o.quiet) {
     fmt::print("{}: {} frames at {} fps, {} sample(s) each -> {}{}\n", scene.source, frames, scene.render.fps,
                o.samples_per_frame, pattern, have_ffmpeg ? " and " + mp4 : " (no ffmpeg: no MP4)");
-    print_timings(timings, renderer.device());
+    print_timings(timings, renderer.device(), scene.method);
   }
 }
 
@@ -144,7 +147,7 @@ void run(const RenderOptions& o) {
   if (!o.quiet) {
     fmt::print("{}: {}x{}, {} frame(s) accumulated -> {}{}\n", scene.source, width, height,
                renderer.accumulated_frames(), png, o.exr.empty() ? "" : " and " + o.exr);
-    print_timings(timings, renderer.device());
+    print_timings(timings, renderer.device(), scene.method);
   }
 }
 

@@ -2,6 +2,7 @@
 #include "methods/method.h"
 #include "methods/per_pixel/per_pixel.h"
 #include "methods/radiosity_maps/radiosity_maps.h"
+#include "methods/voxel_paths/voxel_paths.h"
 
 namespace lucent::methods {
 
@@ -13,6 +14,9 @@ std::span<const MethodInfo> method_registry() {
       {"per-pixel",
        "caching-free baseline: the same light-space sampling per screen pixel every frame (Dal Corso et al. Fig. 11)",
        per_pixel_params(), create_per_pixel},
+      {"voxel-paths",
+       "shortest optical paths through a solid voxelization (Dijkstra-style relaxation on the GPU; first version)",
+       voxel_paths_params(), create_voxel_paths},
   };
   return methods;
 }

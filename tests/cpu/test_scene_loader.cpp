@@ -412,7 +412,7 @@ TEST(SceneLoader, LightZeroDirection) {
 TEST(SceneLoader, UnknownMethod) {
   json doc = minimal_scene();
   doc["method"] = {{"name", "photon-beams"}};
-  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps, per-pixel");
+  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps, per-pixel, voxel-paths");
 }
 
 TEST(SceneLoader, WrongType) {

@@ -1,0 +1,24 @@
+// initialize_distances.comp: voxel-paths graph initialization, step 2 of 2: lit voxels start at
+// n0 = -ln(F_t P) (eq. 2), with F_t P the flux that entered the voxel (initialize_flux.comp) over its cross
+// section h^2 (eq. 3's sum over the shadow-map texels in the voxel, normalised to the voxel), so that exp(-n) is
+// an irradiance; every other voxel starts unreached.
+#include "voxel_paths/grid.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(std430, binding = VOXEL_BINDING_FLIPS) readonly buffer FluxBlock { uint flux[]; };
+layout(std430, binding = VOXEL_BINDING_DISTANCES) writeonly buffer DistanceBlock { vec4 distances[]; };
+
+uniform float u_flux_unit;
+
+void main() {
+  ivec3 v = ivec3(gl_GlobalInvocationID);
+  if (!in_grid(v)) return;
+  int index = voxel_index(v);
+  vec3 n0 = vec3(VOXEL_UNREACHED);
+  for (int band = 0; band < 3; ++band) {
+    uint units = flux[3 * index + band];
+    if (units != 0u) n0[band] = -log(float(units) * u_flux_unit / (u_voxel_size * u_voxel_size));
+  }
+  distances[index] = vec4(n0, 0.0f);
+}

@@ -1,0 +1,70 @@
+// voxel_grid.h: the voxel grid of the voxel-paths method (Dijkstra shortest optical paths through a solid
+// voxelization, "voxel-dijkstra-heterogeneous-sss", Section 2.1): R^3 cubic voxels over the translucent objects,
+// the translucent triangles it is built from, and the per-voxel labels (0 outside, object index + 1 inside).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "lucent/scene.h"
+
+namespace lucent::methods::voxel_paths {
+
+// Storage-buffer binding points of the voxel-paths shaders (passed to them as #defines, see shader_defines()).
+inline constexpr int kBindingTriangles = 8;  // vec4[3 * triangles], xyz world position; w: label of the object
+inline constexpr int kBindingFlips = 9;      // uint per voxel: parity of the crossings entering at that voxel
+inline constexpr int kBindingLabels = 10;    // uint per voxel: 0 outside, object index + 1 inside
+inline constexpr int kBindingDistances = 11;  // vec4 per voxel: rgb optical path length n(v) per band
+inline constexpr int kBindingSigmaT = 12;     // vec4 per label: rgb sigma_t [1/scene unit]
+inline constexpr int kBindingChanged = 13;    // uint: set to 1 by a relaxation that lowered a distance
+
+// Distances at or above this are "not reached" (outside voxels, or no path from a lit voxel).
+inline constexpr float kUnreached = 1.0e30f;
+
+struct VoxelGrid {
+  int resolution = 64;         // R voxels per axis
+  glm::vec3 origin{0.0f};      // corner of voxel (0, 0, 0) [scene units]
+  float voxel_size = 1.0f;     // h, edge length [scene units]
+
+  std::size_t voxel_count() const {
+    return static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution) *
+           static_cast<std::size_t>(resolution);
+  }
+  // x fastest, then y, then z.
+  std::size_t index(glm::ivec3 v) const {
+    return (static_cast<std::size_t>(v.z) * static_cast<std::size_t>(resolution) + static_cast<std::size_t>(v.y)) *
+               static_cast<std::size_t>(resolution) +
+           static_cast<std::size_t>(v.x);
+  }
+  glm::ivec3 voxel(std::size_t index) const {
+    const auto r = static_cast<std::size_t>(resolution);
+    return {static_cast<int>(index % r), static_cast<int>((index / r) % r), static_cast<int>(index / (r * r))};
+  }
+  glm::vec3 center(glm::ivec3 v) const { return origin + (glm::vec3(v) + 0.5f) * voxel_size; }
+};
+
+// The cube of R^3 voxels whose side is the largest extent of [lower, upper], centred on it, grown by
+// `padding_voxels` on every side (so that surface voxels have outside neighbours).
+VoxelGrid grid_around(glm::vec3 lower, glm::vec3 upper, int resolution, int padding_voxels);
+
+// The translucent objects' triangles in world space, three vec4 per triangle (w: object index + 1), one
+// contiguous range per object, and each label's path-cost coefficient in scene units: sigma_t (the paper), or
+// with `effective_transport` the diffusion's sigma_tr = sqrt(3 sigma_a sigma_t'), which carries absorption.
+struct TranslucentTriangles {
+  std::vector<glm::vec4> corners;
+  struct Range {
+    std::uint32_t first_triangle, triangle_count, label;
+  };
+  std::vector<Range> objects;
+  std::vector<glm::vec4> sigma_t;  // per label (index 0: outside, zero); rgb cost coefficient [1/scene unit]
+  glm::vec3 lower{0.0f}, upper{0.0f};  // world-space bounds of all corners
+};
+TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effective_transport = false);
+
+// "#define VOXEL_BINDING_... n" lines for the shaders.
+std::string shader_defines();
+
+}  // namespace lucent::methods::voxel_paths

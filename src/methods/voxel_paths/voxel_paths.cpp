@@ -1,0 +1,202 @@
+// voxel_paths.cpp: see voxel_paths.h.
+#include "methods/voxel_paths/voxel_paths.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "gpu/frame_counters.h"
+#include "gpu/gl_debug.h"
+#include "gpu/shader_program.h"
+#include "lucent/error.h"
+#include "methods/voxel_paths/relaxation_solver.h"
+#include "methods/voxel_paths/voxelizer.h"
+#include "render/light_gbuffer.h"
+
+namespace lucent::methods {
+namespace {
+
+using namespace voxel_paths;
+
+constexpr ParamDecl kParams[] = {
+    {"resolution", ParamType::Int, "64", "voxels", 8, 256, "", "voxels per axis of the grid over the translucent objects"},
+    {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer"},
+    {"check_every", ParamType::Int, "8", "sweeps", 1, 256, "", "relaxation sweeps between reads of the changed flag"},
+    {"max_iterations", ParamType::Int, "1024", "sweeps", 1, 65536, "", "relaxation sweeps at most per frame"},
+    {"extinction", ParamType::Enum, "\"sigma_t\"", "", 0, 0, "sigma_t|sigma_tr",
+     "edge cost coefficient: sigma_t (the paper) or the diffusion's sigma_tr (carries absorption, hence colour)"},
+    {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights"},
+    {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection"},
+};
+
+constexpr int kPaddingVoxels = 2;  // outside voxels around the objects: surface voxels keep outside neighbours
+
+TranslucentTriangles checked_triangles(const Scene& scene, bool effective_transport) {
+  for (const SceneObject& object : scene.objects)
+    if (object.translucent() && object.blob_resolution > 0)
+      throw Error(fmt::format("{}: method voxel-paths does not voxelize blob surfaces yet (object '{}')",
+                              scene.source, object.name));
+  return gather_translucent_triangles(scene, effective_transport);
+}
+
+class VoxelPaths final : public Method {
+ public:
+  VoxelPaths(const Scene& scene, const render::SceneGpu& scene_gpu)
+      : params_(scene.method_params),
+        light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
+        triangles_(checked_triangles(scene, params_.text("extinction") == "sigma_tr")),
+        grid_(grid_around(triangles_.lower, triangles_.upper, params_.integer("resolution"), kPaddingVoxels)),
+        flux_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_flux.comp", shader_defines())),
+        distances_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_distances.comp", shader_defines())),
+        radiance_program_(gpu::ShaderProgram::compute("voxel_paths/radiance.comp", shader_defines())),
+        shade_program_(gpu::ShaderProgram::compute("voxel_paths/shade.comp",
+                                                   render::light_sampling_defines(scene) + shader_defines())) {
+    const GLsizei r = grid_.resolution;
+    glCreateBuffers(1, &flux_);
+    glNamedBufferData(flux_, static_cast<GLsizeiptr>(grid_.voxel_count() * 12), nullptr, GL_DYNAMIC_DRAW);
+    gpu::label_object(GL_BUFFER, flux_, "voxel-paths entering flux");
+    glCreateTextures(GL_TEXTURE_3D, 1, &radiance_);
+    glTextureStorage3D(radiance_, 1, GL_RGBA16F, r, r, r);
+    glTextureParameteri(radiance_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(radiance_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+      glTextureParameteri(radiance_, wrap, GL_CLAMP_TO_EDGE);
+    gpu::label_object(GL_TEXTURE, radiance_, "voxel-paths radiance");
+    solver_.resize(grid_);
+    // Fixed-point flux unit: the brightest directional texel adds 2^16 units.
+    float brightest = 0.0f;
+    const render::LightViews& views = light_gbuffer_.views();
+    for (const shader::LightGPU& light : views.lights) {
+      if (static_cast<int>(light.position.w) != LUCENT_LIGHT_DIRECTIONAL) continue;
+      float texel = views.views[static_cast<std::size_t>(light.views.x)].direction.w /
+                    static_cast<float>(light_gbuffer_.size());
+      brightest = std::max(brightest, std::max({light.power.r, light.power.g, light.power.b}) * texel * texel);
+    }
+    flux_unit_ = brightest > 0.0f ? brightest / 65536.0f : 1.0f;
+  }
+  ~VoxelPaths() override {
+    glDeleteBuffers(1, &flux_);
+    glDeleteTextures(1, &radiance_);
+  }
+
+  void prepare_frame(shader::FrameGPU& frame, bool restart) override {
+    (void)restart;
+    frame.counts = glm::ivec4(0, 0, 1, 3);  // z: unused; w: shadow taps of the direct shading
+    light_gbuffer_.fill_frame(frame);
+    frame.biases.w = static_cast<float>(params_.number("roughness"));
+    frame.options.z = params_.boolean("specular") ? 1.0f : 0.0f;
+    width_ = frame.sizes.z, height_ = frame.sizes.w;
+  }
+
+  void render(const FrameContext& context) override {
+    light_gbuffer_.render(context.scene_gpu, context.timer);
+    gpu::DebugGroup group("voxel_paths");
+    context.timer.begin("voxelize");
+    voxelizer_.voxelize(triangles_, grid_);
+    context.timer.end();
+    context.timer.begin("voxel_initialize");
+    initialize();
+    context.timer.end();
+    context.timer.begin("relax");
+    stats_ = solver_.solve(grid_, voxelizer_.labels_buffer(), voxelizer_.sigma_t_buffer(),
+                           params_.integer("check_every"), params_.integer("max_iterations"));
+    context.timer.end();
+    context.timer.begin("voxel_shade");
+    radiance();
+    shade(context);
+    context.timer.end();
+  }
+
+  int accumulated_frames() const override { return 1; }
+  glm::uvec2 pixel_coverage() const override {
+    shader::CountersGPU c = counters_.read();
+    return {c.translucent_pixels, c.covered_pixels};
+  }
+  std::uint64_t bssrdf_samples_last_frame() const override { return 0; }
+  std::size_t gpu_memory_bytes() const override {
+    return light_gbuffer_.gpu_memory_bytes() + voxelizer_.gpu_memory_bytes() + grid_.voxel_count() * (16 + 12 + 8);
+  }
+
+ private:
+  void set_grid_uniforms(GLuint program) const {
+    glUniform3fv(glGetUniformLocation(program, "u_origin"), 1, &grid_.origin.x);
+    glUniform1f(glGetUniformLocation(program, "u_voxel_size"), grid_.voxel_size);
+    glUniform1i(glGetUniformLocation(program, "u_resolution"), grid_.resolution);
+  }
+
+  // Lit voxels start at -ln(F_t P), all others unreached.
+  void initialize() const {
+    const GLuint zero = 0;
+    const auto r = static_cast<GLuint>(grid_.resolution);
+    glClearNamedBufferData(flux_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingLabels, voxelizer_.labels_buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingFlips, flux_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingDistances, solver_.distances_buffer());
+    light_gbuffer_.bind_textures();
+    glUseProgram(flux_program_.id());
+    set_grid_uniforms(flux_program_.id());
+    glUniform1f(glGetUniformLocation(flux_program_.id(), "u_flux_unit"), flux_unit_);
+    const auto size = static_cast<GLuint>(light_gbuffer_.size());
+    const std::vector<shader::LightGPU>& lights = light_gbuffer_.views().lights;
+    for (std::size_t l = 0; l < lights.size(); ++l) {
+      if (static_cast<int>(lights[l].position.w) != LUCENT_LIGHT_DIRECTIONAL) continue;
+      glUniform1i(glGetUniformLocation(flux_program_.id(), "u_light"), static_cast<GLint>(l));
+      glDispatchCompute((size + 7) / 8, (size + 7) / 8, 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(distances_program_.id());
+    set_grid_uniforms(distances_program_.id());
+    glUniform1f(glGetUniformLocation(distances_program_.id(), "u_flux_unit"), flux_unit_);
+    glDispatchCompute((r + 3) / 4, (r + 3) / 4, (r + 3) / 4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
+  // exp(-n) into the 3D texture.
+  void radiance() const {
+    const auto r = static_cast<GLuint>(grid_.resolution);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingLabels, voxelizer_.labels_buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingDistances, solver_.distances_buffer());
+    glBindImageTexture(0, radiance_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glUseProgram(radiance_program_.id());
+    set_grid_uniforms(radiance_program_.id());
+    glDispatchCompute((r + 3) / 4, (r + 3) / 4, (r + 3) / 4);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+
+  void shade(const FrameContext& context) const {
+    counters_.reset_and_bind();
+    light_gbuffer_.bind_textures();
+    glBindTextureUnit(LUCENT_TEX_RADIOSITY, radiance_);
+    glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    const GLuint p = shade_program_.id();
+    glUseProgram(p);
+    glUniform3fv(glGetUniformLocation(p, "u_origin"), 1, &grid_.origin.x);
+    glUniform1f(glGetUniformLocation(p, "u_grid_size"), grid_.voxel_size * static_cast<float>(grid_.resolution));
+    glDispatchCompute(static_cast<GLuint>((width_ + 7) / 8), static_cast<GLuint>((height_ + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+
+  const ParamValues& params_;
+  render::LightGBuffer light_gbuffer_;
+  TranslucentTriangles triangles_;
+  VoxelGrid grid_;
+  Voxelizer voxelizer_;
+  RelaxationSolver solver_;
+  gpu::ShaderProgram flux_program_, distances_program_, radiance_program_, shade_program_;
+  GLuint flux_ = 0, radiance_ = 0;
+  float flux_unit_ = 1.0f;
+  gpu::FrameCounters counters_;
+  RelaxationStats stats_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace
+
+std::span<const ParamDecl> voxel_paths_params() { return kParams; }
+
+std::unique_ptr<Method> create_voxel_paths(const Scene& scene, const render::SceneGpu& scene_gpu) {
+  return std::make_unique<VoxelPaths>(scene, scene_gpu);
+}
+
+}  // namespace lucent::methods
