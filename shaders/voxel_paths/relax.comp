@@ -1,13 +1,14 @@
 // relax.comp: one sweep of parallel Bellman-Ford relaxation of the shortest optical paths n(v) over the inside
 // voxels (voxel-paths; the paper solves the same graph with Dijkstra's algorithm, Section 2.1). Every inside
 // voxel takes, per colour band, the minimum over its 26 inside neighbours u of n(u) + cost(u, v), with
-// cost = sigma_t integrated along the edge by the trapezoid rule: 0.5 (sigma_t(u) + sigma_t(v)) |u - v|.
+// cost = sigma_t integrated along the edge by the trapezoid rule: 0.5 (sigma_t(u) + sigma_t(v)) |u - v|, with
+// sigma_t per voxel (fill_coefficients.comp: the material times the heterogeneous field).
 // Updates are in place: values only decrease and each 32-bit store is atomic, so a sweep that reads a
 // neighbour's newer value converges no slower. Any lowered value sets `changed`.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(std430, binding = VOXEL_BINDING_LABELS) readonly buffer LabelBlock { uint labels[]; };
-layout(std430, binding = VOXEL_BINDING_SIGMA_T) readonly buffer SigmaTBlock { vec4 sigma_t[]; };
+layout(std430, binding = VOXEL_BINDING_SIGMA_T) readonly buffer SigmaTBlock { vec4 sigma_t[]; };  // per voxel
 layout(std430, binding = VOXEL_BINDING_DISTANCES) coherent buffer DistanceBlock { vec4 distances[]; };
 layout(std430, binding = VOXEL_BINDING_CHANGED) buffer ChangedBlock { uint changed; };
 
@@ -21,7 +22,7 @@ void main() {
   int index = (v.z * r + v.y) * r + v.x;
   uint label = labels[index];
   if (label == 0u) return;
-  vec3 sigma_v = sigma_t[label].rgb;
+  vec3 sigma_v = sigma_t[index].rgb;
   vec3 n = distances[index].rgb;
   vec3 best = n;
   const float kLength[4] = float[4](0.0f, 1.0f, 1.4142135f, 1.7320508f);  // = kEdgeLength (voxel_dijkstra.h)
@@ -34,7 +35,7 @@ void main() {
         uint label_u = labels[neighbour];
         if (label_u == 0u || neighbour == index) continue;
         float edge = u_voxel_size * kLength[abs(dx) + abs(dy) + abs(dz)];
-        best = min(best, distances[neighbour].rgb + 0.5f * (sigma_v + sigma_t[label_u].rgb) * edge);
+        best = min(best, distances[neighbour].rgb + 0.5f * (sigma_v + sigma_t[neighbour].rgb) * edge);
       }
   if (any(lessThan(best, n))) {
     distances[index] = vec4(best, 0.0f);

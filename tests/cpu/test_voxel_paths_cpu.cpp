@@ -1,10 +1,15 @@
 // test_voxel_paths_cpu.cpp: the CPU parts of voxel-paths: the grid, the gathered translucent triangles (world
-// space, sigma_t in scene units) and the reference Dijkstra against closed-form optical path lengths.
+// space, sigma_t in scene units), the reference Dijkstra against closed-form optical path lengths, and the
+// heterogeneous fields (heterogeneous_field.h) and per-voxel coefficients.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "lucent/error.h"
+#include "methods/voxel_paths/coefficient_field.h"
 #include "methods/voxel_paths/voxel_dijkstra.h"
 #include "methods/voxel_paths/voxel_grid.h"
 
@@ -103,6 +108,137 @@ TEST(VoxelPathsCpu, DijkstraRespectsWallsSourcesAndMaterialBoundaries) {
   // Band r: the source at x = 7 (n0 = 1) is closer to x = 6 (1 + 3 = 4) than x = 0's path (11).
   EXPECT_FLOAT_EQ(n[grid.index({6, 0, 0})].r, 4.0f);
   EXPECT_FLOAT_EQ(n[grid.index({1, 1, 0})].r, kUnreached);  // outside
+}
+
+// Heterogeneous fields: `none` is 1; every field is deterministic and lies in [1, 1 + contrast] over a volume
+// spanning many features (40^3 points in a cube of 6 x 6 x 6 feature sizes, off the origin).
+TEST(VoxelPathsCpu, FieldsAreDeterministicAndBounded) {
+  using namespace lucent::shader;
+  const float scale = 0.3f, contrast = 4.0f;
+  const glm::vec3 lower(-1.0f), upper(1.0f);
+  for (int field : {kFieldNone, kFieldMarble, kFieldLayered}) {
+    float lowest = 1e30f, highest = -1e30f;
+    for (int k = 0; k < 40; ++k)
+      for (int j = 0; j < 40; ++j)
+        for (int i = 0; i < 40; ++i) {
+          glm::vec3 p = glm::vec3(-0.83f) + (6.0f * scale / 40.0f) * glm::vec3(i, j, k);
+          float m = field_multiplier(field, p, lower, upper, scale, contrast);
+          ASSERT_EQ(m, field_multiplier(field, p, lower, upper, scale, contrast));
+          if (field == kFieldNone) {
+            ASSERT_EQ(m, 1.0f);
+          }
+          lowest = std::min(lowest, m), highest = std::max(highest, m);
+        }
+    EXPECT_GE(lowest, 1.0f) << field;
+    EXPECT_LE(highest, 1.0f + contrast) << field;
+    if (field != kFieldNone) {
+      EXPECT_LT(lowest, 1.01f) << field;                    // soft matter somewhere
+      EXPECT_GT(highest, 1.0f + 0.99f * contrast) << field;  // and dense matter
+    }
+  }
+  // Value noise is continuous across lattice cells and in [0, 1).
+  EXPECT_NEAR(field_value_noise(glm::vec3(2.0f - 1e-5f, 0.5f, 0.5f)), field_value_noise(glm::vec3(2.0f, 0.5f, 0.5f)),
+              1e-3f);
+}
+
+// Marble veins are thin bands: vein >= 1/2 (m >= 1 + contrast / 2) on a fraction kMarbleVeinWidth = 10% of a
+// cube of 8 vein periods (64^3 samples), within 3 points; the soft matrix (m < 1.01) covers more than 75%.
+TEST(VoxelPathsCpu, MarbleVeinsAreThinDenseBands) {
+  using namespace lucent::shader;
+  const float scale = 0.25f, contrast = 4.0f;
+  int dense = 0, soft = 0, total = 0;
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i, ++total) {
+        glm::vec3 p = glm::vec3(0.37f, -1.1f, 0.2f) + (8.0f * scale / 64.0f) * glm::vec3(i, j, k);
+        float m = field_multiplier(kFieldMarble, p, glm::vec3(0.0f), glm::vec3(1.0f), scale, contrast);
+        dense += m >= 1.0f + 0.5f * contrast ? 1 : 0;
+        soft += m < 1.01f ? 1 : 0;
+      }
+  const double dense_fraction = static_cast<double>(dense) / total, soft_fraction = static_cast<double>(soft) / total;
+  fmt::print("marble: dense (vein >= 1/2) {:.4f}, soft (m < 1.01) {:.4f}\n", dense_fraction, soft_fraction);
+  EXPECT_NEAR(dense_fraction, kMarbleVeinWidth, 0.03);
+  EXPECT_GT(soft_fraction, 0.75);
+}
+
+// Layered: by depth below the bounding ellipsoid (a sphere of radius 1 here), scale 0.1: dense outer layer
+// (depth < 0.1), soft middle (0.1 to 0.3), denser core (> 0.3); outside the ellipsoid counts as depth 0.
+TEST(VoxelPathsCpu, LayeredProfileFollowsDepth) {
+  using namespace lucent::shader;
+  const glm::vec3 lower(-1.0f), upper(1.0f);
+  auto m = [&](float radius) {
+    return field_multiplier(kFieldLayered, radius * glm::normalize(glm::vec3(1, 2, -2)), lower, upper, 0.1f, 3.0f);
+  };
+  EXPECT_FLOAT_EQ(m(0.95f), 4.0f);
+  EXPECT_FLOAT_EQ(m(0.8f), 1.0f);
+  EXPECT_FLOAT_EQ(m(0.75f), 1.0f);
+  EXPECT_FLOAT_EQ(m(0.5f), 2.5f);
+  EXPECT_FLOAT_EQ(m(0.0f), 2.5f);
+  EXPECT_FLOAT_EQ(m(1.2f), 4.0f);
+  EXPECT_NEAR(ellipsoid_depth(glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(-2, -1, -3), glm::vec3(2, 1, 3)), 0.5f, 1e-6f);
+}
+
+// Per-voxel coefficients: with `none` each inside voxel holds its label's sigma_t (the per-label table, exactly)
+// or sigma_tr; with marble, m sigma_t with m at the voxel centre; 0 outside.
+TEST(VoxelPathsCpu, CoefficientFieldScalesTheMaterial) {
+  lucent::Scene scene;
+  scene.scale_mm = 10.0f;
+  lucent::SceneObject box;
+  box.mesh = lucent::make_box(glm::vec3(1.0f));
+  lucent::Material material;
+  material.sigma_a = glm::vec3(0.1f, 0.2f, 0.3f);
+  material.sigma_s = glm::vec3(1.0f, 2.0f, 3.0f);
+  material.g = glm::vec3(0.5f);
+  box.material = material;
+  scene.objects.push_back(box);
+  VoxelGrid grid = unit_grid(8, 0.25f);
+  grid.origin = glm::vec3(-1.0f);
+  std::vector<std::uint32_t> labels(grid.voxel_count(), 0u);
+  labels[grid.index({3, 4, 5})] = 1u;
+  labels[grid.index({4, 4, 5})] = 1u;
+  for (bool effective : {false, true}) {
+    TranslucentTriangles triangles = gather_translucent_triangles(scene, effective);
+    std::vector<glm::vec4> none = coefficient_field(grid, labels, triangles.materials, {});
+    for (int band = 0; band < 3; ++band)
+      EXPECT_NEAR(none[grid.index({3, 4, 5})][band], triangles.sigma_t[1][band], 1e-5f * triangles.sigma_t[1][band]);
+    EXPECT_EQ(none[0], glm::vec4(0.0f));
+    FieldSettings marble{lucent::shader::kFieldMarble, 0.3f, 2.0f};
+    std::vector<glm::vec4> veined = coefficient_field(grid, labels, triangles.materials, marble);
+    const glm::vec3 p = grid.center({4, 4, 5});
+    const float m = lucent::shader::field_multiplier(lucent::shader::kFieldMarble, p, glm::vec3(-0.5f), glm::vec3(0.5f),
+                                                     0.3f, 2.0f);
+    if (!effective) {
+      EXPECT_NEAR(veined[grid.index({4, 4, 5})].g, m * 22.0f, 1e-4f);
+    }
+    EXPECT_GE(veined[grid.index({4, 4, 5})].g, none[grid.index({4, 4, 5})].g);
+  }
+  EXPECT_THROW(field_from_name("granite"), lucent::Error);
+  EXPECT_EQ(field_from_name("layered"), lucent::shader::kFieldLayered);
+}
+
+// Dijkstra in a two-slab medium (per-voxel coefficients, sigma_1 for x < 8, sigma_2 beyond, per band): along
+// the axis from a source at x = 0 the optical distance is the piecewise integral sigma_1 (7.5 h) +
+// sigma_2 (x - 7.5) h between voxel centres (the trapezoid edge across the boundary is exact for a step midway
+// between centres), and sigma_1 x h before the boundary.
+TEST(VoxelPathsCpu, DijkstraInATwoSlabMediumSumsThePiecewiseCosts) {
+  const int r = 16;
+  const float h = 0.1f;
+  VoxelGrid grid = unit_grid(r, h);
+  std::vector<std::uint32_t> labels(grid.voxel_count(), 1u);
+  const glm::vec3 sigma_1(2.0f, 3.0f, 4.0f), sigma_2(5.0f, 1.0f, 7.0f);
+  std::vector<glm::vec4> coefficients(grid.voxel_count());
+  for (std::size_t i = 0; i < coefficients.size(); ++i)
+    coefficients[i] = glm::vec4(grid.voxel(i).x < 8 ? sigma_1 : sigma_2, 0.0f);
+  const glm::ivec3 s(0, 8, 8);
+  std::vector<VoxelSource> sources = {{grid.index(s), glm::vec3(0.0f)}};
+  std::vector<glm::vec3> n = dijkstra_optical_paths_per_voxel(grid, labels, coefficients, sources);
+  for (int band = 0; band < 3; ++band)
+    for (int x = 1; x < r; ++x) {
+      const float fx = static_cast<float>(x);
+      const float expected =
+          x < 8 ? sigma_1[band] * fx * h : sigma_1[band] * 7.5f * h + sigma_2[band] * (fx - 7.5f) * h;
+      EXPECT_NEAR(n[grid.index({x, 8, 8})][band], expected, 1e-5f * expected) << "band " << band << ", x " << x;
+    }
 }
 
 }  // namespace

@@ -34,11 +34,11 @@ void RelaxationSolver::resize(const VoxelGrid& grid) {
   glNamedBufferData(distances_, static_cast<GLsizeiptr>(voxel_count_ * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_DRAW);
 }
 
-RelaxationStats RelaxationSolver::solve(const VoxelGrid& grid, GLuint labels_buffer, GLuint sigma_t_buffer,
+RelaxationStats RelaxationSolver::solve(const VoxelGrid& grid, GLuint labels_buffer, GLuint coefficients_buffer,
                                         int check_every, int max_iterations) {
   gpu::DebugGroup group("relax");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingLabels, labels_buffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingSigmaT, sigma_t_buffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingSigmaT, coefficients_buffer);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingDistances, distances_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingChanged, changed_);
   const GLuint p = program_.id();

@@ -31,8 +31,9 @@ class RelaxationSolver {
   void reset(const VoxelGrid& grid, std::span<const VoxelSource> sources);
   // Sizes the distance buffer for `grid` (contents undefined) for a GPU pass to initialize.
   void resize(const VoxelGrid& grid);
-  // Relaxes until converged or max_iterations; labels and sigma_t as the Voxelizer fills them.
-  RelaxationStats solve(const VoxelGrid& grid, GLuint labels_buffer, GLuint sigma_t_buffer, int check_every,
+  // Relaxes until converged or max_iterations; labels as the Voxelizer fills them, coefficients (vec4 per voxel,
+  // rgb sigma_t) as CoefficientField fills them.
+  RelaxationStats solve(const VoxelGrid& grid, GLuint labels_buffer, GLuint coefficients_buffer, int check_every,
                         int max_iterations);
 
   GLuint distances_buffer() const { return distances_; }  // vec4 per voxel, rgb: n(v)

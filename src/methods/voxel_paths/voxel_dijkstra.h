@@ -27,5 +27,10 @@ inline constexpr float kEdgeLength[4] = {0.0f, 1.0f, 1.4142135f, 1.7320508f};
 std::vector<glm::vec3> dijkstra_optical_paths(const VoxelGrid& grid, std::span<const std::uint32_t> labels,
                                               std::span<const glm::vec4> sigma_t,
                                               std::span<const VoxelSource> sources);
+// The same with a coefficient per voxel (heterogeneous media, coefficient_field.h): coefficients: rgb per voxel
+// [1/scene unit]; an edge costs 0.5 (c(u) + c(v)) |u - v|, the trapezoid rule for the integral of c along it.
+std::vector<glm::vec3> dijkstra_optical_paths_per_voxel(const VoxelGrid& grid, std::span<const std::uint32_t> labels,
+                                                        std::span<const glm::vec4> coefficients,
+                                                        std::span<const VoxelSource> sources);
 
 }  // namespace lucent::methods::voxel_paths

@@ -22,6 +22,7 @@ VoxelGrid grid_around(glm::vec3 lower, glm::vec3 upper, int resolution, int padd
 TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effective_transport) {
   TranslucentTriangles out;
   out.sigma_t.assign(scene.objects.size() + 1, glm::vec4(0.0f));
+  out.materials.assign(scene.objects.size() + 1, shader::FieldMaterialGPU{});
   glm::vec3 lower(std::numeric_limits<float>::max()), upper(-std::numeric_limits<float>::max());
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
@@ -30,13 +31,20 @@ TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effec
     // Coefficients are in mm^-1; one scene unit is scale_mm millimetres.
     glm::vec3 sigma = effective_transport ? object.material->sigma_tr() : object.material->sigma_t();
     out.sigma_t[label] = glm::vec4(sigma * scene.scale_mm, 0.0f);
+    shader::FieldMaterialGPU& field = out.materials[label];
+    field.sigma_t = glm::vec4(object.material->sigma_t() * scene.scale_mm, effective_transport ? 1.0f : 0.0f);
+    field.sigma_s = glm::vec4(object.material->sigma_s * scene.scale_mm, 0.0f);
+    field.g = glm::vec4(object.material->g, 0.0f);
     TriangleMesh mesh = transformed(object.mesh, object.world_from_object);
     auto first = static_cast<std::uint32_t>(out.corners.size() / 3);
+    glm::vec3 object_lower(std::numeric_limits<float>::max()), object_upper(-std::numeric_limits<float>::max());
     for (std::uint32_t index : mesh.indices) {
       glm::vec3 p = mesh.positions[index];
       out.corners.emplace_back(p, static_cast<float>(label));
-      lower = glm::min(lower, p), upper = glm::max(upper, p);
+      object_lower = glm::min(object_lower, p), object_upper = glm::max(object_upper, p);
     }
+    field.lower = glm::vec4(object_lower, 0.0f), field.upper = glm::vec4(object_upper, 0.0f);
+    lower = glm::min(lower, object_lower), upper = glm::max(upper, object_upper);
     out.objects.push_back({first, static_cast<std::uint32_t>(mesh.indices.size() / 3), label});
   }
   if (!out.corners.empty()) out.lower = lower, out.upper = upper;
@@ -47,9 +55,9 @@ std::string shader_defines() {
   return fmt::format(
       "#define VOXEL_BINDING_TRIANGLES {}\n#define VOXEL_BINDING_FLIPS {}\n#define VOXEL_BINDING_LABELS {}\n"
       "#define VOXEL_BINDING_DISTANCES {}\n#define VOXEL_BINDING_SIGMA_T {}\n#define VOXEL_BINDING_CHANGED {}\n"
-      "#define VOXEL_UNREACHED {:.1e}\n",
+      "#define VOXEL_BINDING_FIELD_MATERIALS {}\n#define VOXEL_UNREACHED {:.1e}\n",
       kBindingTriangles, kBindingFlips, kBindingLabels, kBindingDistances, kBindingSigmaT, kBindingChanged,
-      kUnreached);
+      kBindingFieldMaterials, kUnreached);
 }
 
 }  // namespace lucent::methods::voxel_paths

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "lucent/scene.h"
+#include "methods/voxel_paths/heterogeneous_field.h"
 
 namespace lucent::methods::voxel_paths {
 
@@ -18,8 +19,9 @@ inline constexpr int kBindingTriangles = 8;  // vec4[3 * triangles], xyz world p
 inline constexpr int kBindingFlips = 9;      // uint per voxel: parity of the crossings entering at that voxel
 inline constexpr int kBindingLabels = 10;    // uint per voxel: 0 outside, object index + 1 inside
 inline constexpr int kBindingDistances = 11;  // vec4 per voxel: rgb optical path length n(v) per band
-inline constexpr int kBindingSigmaT = 12;     // vec4 per label: rgb sigma_t [1/scene unit]
+inline constexpr int kBindingSigmaT = 12;     // vec4 per voxel: rgb edge-cost coefficient [1/scene unit]
 inline constexpr int kBindingChanged = 13;    // uint: set to 1 by a relaxation that lowered a distance
+inline constexpr int kBindingFieldMaterials = 14;  // shader::FieldMaterialGPU per label
 
 // Distances at or above this are "not reached" (outside voxels, or no path from a lit voxel).
 inline constexpr float kUnreached = 1.0e30f;
@@ -60,6 +62,7 @@ struct TranslucentTriangles {
   };
   std::vector<Range> objects;
   std::vector<glm::vec4> sigma_t;  // per label (index 0: outside, zero); rgb cost coefficient [1/scene unit]
+  std::vector<shader::FieldMaterialGPU> materials;  // per label: the same material and bounds for the field
   glm::vec3 lower{0.0f}, upper{0.0f};  // world-space bounds of all corners
 };
 TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effective_transport = false);

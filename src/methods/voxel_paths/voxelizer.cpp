@@ -23,12 +23,11 @@ Voxelizer::Voxelizer()
       scan_program_(gpu::ShaderProgram::compute("voxel_paths/voxelize_scan.comp", shader_defines())),
       triangles_(make_buffer("voxel-paths triangles")),
       flips_(make_buffer("voxel-paths flips")),
-      labels_(make_buffer("voxel-paths labels")),
-      sigma_t_(make_buffer("voxel-paths sigma_t")) {}
+      labels_(make_buffer("voxel-paths labels")) {}
 
 Voxelizer::~Voxelizer() {
-  GLuint buffers[] = {triangles_, flips_, labels_, sigma_t_};
-  glDeleteBuffers(4, buffers);
+  GLuint buffers[] = {triangles_, flips_, labels_};
+  glDeleteBuffers(3, buffers);
 }
 
 void Voxelizer::voxelize(const TranslucentTriangles& triangles, const VoxelGrid& grid) {
@@ -36,14 +35,12 @@ void Voxelizer::voxelize(const TranslucentTriangles& triangles, const VoxelGrid&
   // Upload; the voxel buffers are reallocated only when the resolution changes.
   glNamedBufferData(triangles_, static_cast<GLsizeiptr>(std::max<std::size_t>(1, triangles.corners.size()) * 16),
                     triangles.corners.empty() ? nullptr : triangles.corners.data(), GL_DYNAMIC_DRAW);
-  glNamedBufferData(sigma_t_, static_cast<GLsizeiptr>(triangles.sigma_t.size() * 16), triangles.sigma_t.data(),
-                    GL_DYNAMIC_DRAW);
   if (grid.voxel_count() != voxel_count_) {
     voxel_count_ = grid.voxel_count();
     glNamedBufferData(flips_, static_cast<GLsizeiptr>(voxel_count_ * 4), nullptr, GL_DYNAMIC_DRAW);
     glNamedBufferData(labels_, static_cast<GLsizeiptr>(voxel_count_ * 4), nullptr, GL_DYNAMIC_DRAW);
   }
-  bytes_ = voxel_count_ * 8 + triangles.corners.size() * 16 + triangles.sigma_t.size() * 16;
+  bytes_ = voxel_count_ * 8 + triangles.corners.size() * 16;
   const GLuint zero = 0;
   glClearNamedBufferData(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingTriangles, triangles_);

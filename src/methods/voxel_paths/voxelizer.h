@@ -20,17 +20,16 @@ class Voxelizer {
   Voxelizer(const Voxelizer&) = delete;
   Voxelizer& operator=(const Voxelizer&) = delete;
 
-  // Uploads the triangles and sigma_t table and labels every voxel of `grid` (0 outside, object index + 1).
+  // Uploads the triangles and labels every voxel of `grid` (0 outside, object index + 1).
   void voxelize(const TranslucentTriangles& triangles, const VoxelGrid& grid);
 
   GLuint labels_buffer() const { return labels_; }    // uint per voxel
-  GLuint sigma_t_buffer() const { return sigma_t_; }  // vec4 per label
   std::vector<std::uint32_t> read_labels() const;
   std::size_t gpu_memory_bytes() const { return bytes_; }
 
  private:
   gpu::ShaderProgram triangles_program_, scan_program_;
-  GLuint triangles_ = 0, flips_ = 0, labels_ = 0, sigma_t_ = 0;
+  GLuint triangles_ = 0, flips_ = 0, labels_ = 0;
   std::size_t voxel_count_ = 0, bytes_ = 0;
 };
 
