@@ -2,6 +2,7 @@
 #include "methods/voxel_paths/voxel_paths.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -71,14 +72,22 @@ class VoxelPaths final : public Method {
       glTextureParameteri(radiance_, wrap, GL_CLAMP_TO_EDGE);
     gpu::label_object(GL_TEXTURE, radiance_, "voxel-paths radiance");
     solver_.resize(grid_);
-    // Fixed-point flux unit: the brightest directional texel adds 2^16 units.
+    // Fixed-point flux unit: the brightest texel of any light adds 2^16 units (directional: E A_texel; point and
+    // spot: I (2 tan(a) / S)^2, the on-axis texel's power; cos^3 and the spot cone only lower it).
     float brightest = 0.0f;
     const render::LightViews& views = light_gbuffer_.views();
+    const auto size = static_cast<float>(light_gbuffer_.size());
     for (const shader::LightGPU& light : views.lights) {
-      if (static_cast<int>(light.position.w) != LUCENT_LIGHT_DIRECTIONAL) continue;
-      float texel = views.views[static_cast<std::size_t>(light.views.x)].direction.w /
-                    static_cast<float>(light_gbuffer_.size());
-      brightest = std::max(brightest, std::max({light.power.r, light.power.g, light.power.b}) * texel * texel);
+      const shader::ViewGPU& view = views.views[static_cast<std::size_t>(light.views.x)];
+      float texel_power = 0.0f;  // per unit of power.rgb
+      if (static_cast<int>(light.position.w) == LUCENT_LIGHT_DIRECTIONAL) {
+        float texel = view.direction.w / size;
+        texel_power = texel * texel;
+      } else {
+        float plane_texel = 2.0f * std::tan(0.5f * view.radiance.w * size) / size;
+        texel_power = plane_texel * plane_texel;
+      }
+      brightest = std::max(brightest, std::max({light.power.r, light.power.g, light.power.b}) * texel_power);
     }
     flux_unit_ = brightest > 0.0f ? brightest / 65536.0f : 1.0f;
   }
@@ -152,9 +161,9 @@ class VoxelPaths final : public Method {
     const auto size = static_cast<GLuint>(light_gbuffer_.size());
     const std::vector<shader::LightGPU>& lights = light_gbuffer_.views().lights;
     for (std::size_t l = 0; l < lights.size(); ++l) {
-      if (static_cast<int>(lights[l].position.w) != LUCENT_LIGHT_DIRECTIONAL) continue;
+      // All layers framing the translucent objects: 1 (directional, point/spot frustum) or 6 (cube faces).
       glUniform1i(glGetUniformLocation(flux_program_.id(), "u_light"), static_cast<GLint>(l));
-      glDispatchCompute((size + 7) / 8, (size + 7) / 8, 1);
+      glDispatchCompute((size + 7) / 8, (size + 7) / 8, static_cast<GLuint>(lights[l].views.y));
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(distances_program_.id());

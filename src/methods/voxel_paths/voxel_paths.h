@@ -4,7 +4,7 @@
 // G-buffer (the paper's reflective shadow map), GPU voxelization (voxelizer.h), lit voxels initialized to
 // -ln(F_t P) (eqs. 2-3), shortest optical paths by parallel relaxation (relaxation_solver.h; verified against
 // the CPU Dijkstra of voxel_dijkstra.h), exp(-n) into a 3D texture and surface shading F_t exp(-n) / pi (eq. 1).
-// Limits: directional lights only (point and spot lights add their specular reflection but no scattering);
+// Limits: point and spot lights scatter only from the outside of the objects (a light inside one sees back faces);
 // deforming objects are voxelized undeformed; blob surfaces are refused. See docs/methods/voxel-paths.md.
 #pragma once
 #include <span>
