@@ -11,7 +11,8 @@ namespace {
 using namespace lucent;
 
 TriangleMesh column() {
-  const std::vector<glm::vec2> profile = {{0, 0}, {1, 0}, {1, 4}, {0, 4}};
+  // Rings at every unit of height, so that displacements growing with height^2 differ from linear ones.
+  const std::vector<glm::vec2> profile = {{0, 0}, {1, 0}, {1, 1}, {1, 2}, {1, 3}, {1, 4}, {0, 4}};
   return make_lathe(profile, 32);
 }
 
