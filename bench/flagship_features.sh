@@ -6,15 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 lucent=${1:-build/lucent}
-mkdir -p out/bench
+source bench/render_timings.sh
 S="--set render.width=640 --set render.height=400"
-run() {
-  local name=$1; shift
-  echo "== $name: $lucent render $*"
-  "$lucent" render "$@" -o "out/bench/$name.png" 2>/dev/null | sed -n '2,10p'
-}
-date -u +"date: %Y-%m-%d %H:%M UTC"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 common="--frames 3 $S --set method.K=16 --set method.N=32 --set method.map_size=256 --set method.light_map_size=512"
 run shell_point_inside scenes/shell_point_light.json $common --set method.vpls=0
 run candle_no_vpls scenes/candle.json $common --set method.vpls=0

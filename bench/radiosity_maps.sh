@@ -6,14 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 lucent=${1:-build/lucent}
-mkdir -p out/bench
-run() {
-  local name=$1; shift
-  echo "== $name: $lucent render $*"
-  "$lucent" render "$@" -o "out/bench/$name.png" 2>/dev/null | sed -n '2,9p'
-}
-date -u +"date: %Y-%m-%d %H:%M UTC"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+source bench/render_timings.sh
 run default_small --frames 5 --set render.width=320 --set render.height=200 --set method.map_size=256 --set method.light_map_size=256
 run default --frames 5
 run bunny_target scenes/bunny_potato.json --frames 3 --set render.width=1920 --set render.height=1080 \

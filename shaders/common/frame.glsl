@@ -6,11 +6,6 @@ layout(std140, binding = LUCENT_BINDING_FRAME) uniform FrameBlock { FrameGPU fra
 layout(std430, binding = LUCENT_BINDING_MATERIALS) readonly buffer MaterialBlock { MaterialGPU materials[]; };
 layout(std430, binding = LUCENT_BINDING_OBJECTS) readonly buffer ObjectBlock { ObjectGPU objects[]; };
 
-// Texture coordinates (u, v, depth in [0, 1]) of a world point in an orthographic view.
-vec3 view_texture_coords(mat4 clip_from_world, vec3 x) {
-  return 0.5f * (clip_from_world * vec4(x, 1.0f)).xyz + vec3(0.5f);
-}
-
 // Texture coordinates (u, v, depth in [0, 1]) of a world point in a view; z < 0 when behind a perspective view.
 vec3 view_coords(ViewGPU view, vec3 x) {
   vec4 clip = view.clip_from_world * vec4(x, 1.0f);

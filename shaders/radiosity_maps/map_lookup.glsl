@@ -38,7 +38,7 @@ vec4 combine_maps(vec3 x_o, vec3 n_o) {
     float texel_width = frame.maps[k].direction.w / float(size);
     float cos_theta = clamp(dot(n_o, d_k), 0.0f, 1.0f);
     vec3 x_bar = x_o - frame.biases.y * texel_width * (n_o - cos_theta * d_k);
-    vec3 t = view_texture_coords(frame.maps[k].clip_from_world, x_bar);
+    vec3 t = view_coords(frame.maps[k], x_bar);
     if (any(lessThan(t.xy, vec2(0.0f))) || any(greaterThanEqual(t.xy, vec2(1.0f)))) continue;
     // Depth spans the view width, so eps_bias texels are eps_bias / size in depth units.
     float bias = frame.biases.x / float(size);

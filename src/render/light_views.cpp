@@ -19,17 +19,6 @@ glm::vec3 any_perpendicular_up(glm::vec3 d) {
   return std::abs(d.y) > 0.99f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
-// Orthographic view looking along -toward_eye at a sphere (center, half_width); depth spans [0, depth_range].
-ViewGPU orthographic(glm::vec3 center, glm::vec3 toward_eye, float half_width, float eye_distance, float depth_range) {
-  glm::vec3 eye = center + toward_eye * eye_distance;
-  glm::mat4 view = glm::lookAt(eye, center, any_perpendicular_up(toward_eye));
-  ViewGPU v{};
-  v.clip_from_world = glm::ortho(-half_width, half_width, -half_width, half_width, 0.0f, depth_range) * view;
-  v.direction = glm::vec4(-toward_eye, 2.0f * half_width);
-  v.radiance = glm::vec4(0.0f, 0.0f, 0.0f, depth_range);
-  return v;
-}
-
 ViewGPU perspective(glm::vec3 eye, glm::vec3 forward, glm::vec3 up, float half_angle, float z_near, float z_far,
                     int size) {
   ViewGPU v{};
@@ -40,6 +29,17 @@ ViewGPU perspective(glm::vec3 eye, glm::vec3 forward, glm::vec3 up, float half_a
 }
 
 }  // namespace
+
+ViewGPU orthographic_view(glm::vec3 center, glm::vec3 toward_eye, float half_width, float eye_distance,
+                          float depth_range) {
+  glm::vec3 eye = center + toward_eye * eye_distance;
+  glm::mat4 view = glm::lookAt(eye, center, any_perpendicular_up(toward_eye));
+  ViewGPU v{};
+  v.clip_from_world = glm::ortho(-half_width, half_width, -half_width, half_width, 0.0f, depth_range) * view;
+  v.direction = glm::vec4(-toward_eye, 2.0f * half_width);
+  v.radiance = glm::vec4(0.0f, 0.0f, 0.0f, depth_range);
+  return v;
+}
 
 void append_cube_views(std::vector<ViewGPU>& views, glm::vec3 eye, float z_near, float z_far, int size) {
   const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -62,8 +62,8 @@ LightViews build_light_views(const Scene& scene, BoundingSphere translucent, Bou
     // Object view: covers the translucent objects; depth covers the whole scene so occluders cast shadows.
     float eye_distance = glm::length(all.center - translucent.center) + all.radius + half_width;
     g.views = glm::ivec4(static_cast<int>(out.views.size()), 1, static_cast<int>(out.views.size()) + 1, 1);
-    out.views.push_back(orthographic(translucent.center, -light.direction, half_width, eye_distance, 2.0f * eye_distance));
-    out.views.push_back(orthographic(all.center, -light.direction, scene_half_width, scene_half_width, 2.0f * scene_half_width));
+    out.views.push_back(orthographic_view(translucent.center, -light.direction, half_width, eye_distance, 2.0f * eye_distance));
+    out.views.push_back(orthographic_view(all.center, -light.direction, scene_half_width, scene_half_width, 2.0f * scene_half_width));
     out.lights.push_back(g);
   }
   for (const PointLight& light : scene.point_lights) {

@@ -23,6 +23,12 @@ struct LightViews {
 // LUCENT_MAX_LIGHT_VIEWS layers.
 LightViews build_light_views(const Scene& scene, BoundingSphere translucent, BoundingSphere all, int light_map_size);
 
+// An orthographic view looking along -toward_eye at a sphere (center, half_width), eye at eye_distance from
+// the centre, depth spanning [0, depth_range]: direction = (-toward_eye, view width), radiance.w = depth range.
+// Used for directional lights and for the scattered-radiosity maps.
+shader::ViewGPU orthographic_view(glm::vec3 center, glm::vec3 toward_eye, float half_width, float eye_distance,
+                                  float depth_range);
+
 // Appends the 6 perspective faces +X -X +Y -Y +Z -Z of a cube map about `eye` (the order of cube_face() in
 // shaders/common/frame.glsl).
 void append_cube_views(std::vector<shader::ViewGPU>& views, glm::vec3 eye, float z_near, float z_far, int size);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.h"
 #include "lucent/error.h"
 #include "lucent/scene.h"
 
@@ -68,12 +69,7 @@ TEST(Deformation, SceneAtTimeFreezesBlobsIntoClosedMeshes) {
 
 TEST(Deformation, BadInput) {
   auto error = [](const std::string& object) {
-    try {
-      parse_scene(R"({"objects": [)" + object + "]}", "s.json", ".");
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return test::error_message([&] { parse_scene(R"({"objects": [)" + object + "]}", "s.json", "."); });
   };
   EXPECT_EQ(error(R"({"shape": "box", "deform": {"type": "twist"}, "albedo": [1, 1, 1]})"),
             "s.json: /objects/0/deform/type: 'twist' is not one of {bend|melt|wave}");

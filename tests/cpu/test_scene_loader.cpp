@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lucent/error.h"
+#include "../test_support.h"
 #include "lucent/environment.h"
 #include "lucent/scene.h"
 #include "render/light_views.h"
@@ -382,12 +383,7 @@ TEST(SceneLoader, EnvironmentBecomesDirectionalLights) {
   glm::vec3 power = lucent::environment_power(*scene.environment->map);
   EXPECT_NEAR(total.x / power.x, 1.0, 1e-4);
   doc["environment"] = {{"file", "env/none.hdr"}};
-  std::string error;
-  try {
-    parse_scene(doc.dump(), "test.json", LUCENT_SCENES_DIR);
-  } catch (const Error& e) {
-    error = e.what();
-  }
+  std::string error = test::error_message([&] { parse_scene(doc.dump(), "test.json", LUCENT_SCENES_DIR); });
   EXPECT_EQ(error.rfind("test.json: /environment/file: ", 0), 0u) << error;
 }
 
@@ -456,21 +452,12 @@ TEST(LightViews, TooManyLightsOrLayersAreErrors) {
   Scene scene = parse_scene(R"({"objects": [{"shape": "sphere", "material": "Marble"}]})", "lights.json", ".");
   render::BoundingSphere object{{0, 0, 0}, 1.0f}, all{{0, 0, 0}, 10.0f};
   for (int i = 0; i < 10; ++i) scene.point_lights.push_back({glm::vec3(5.0f + static_cast<float>(i), 0, 0)});
-  std::string message;
-  try {
-    render::build_light_views(scene, object, all, 64);
-  } catch (const Error& e) {
-    message = e.what();
-  }
+  auto build = [&] { render::build_light_views(scene, object, all, 64); };
+  std::string message = test::error_message(build);
   EXPECT_EQ(message, "lights.json: the lights need 70 light G-buffer layers; at most 64 are supported (a directional "
                      "light needs 2, a point or spot light 6 or 7)");
   scene.point_lights.resize(17);
-  message.clear();
-  try {
-    render::build_light_views(scene, object, all, 64);
-  } catch (const Error& e) {
-    message = e.what();
-  }
+  message = test::error_message(build);
   EXPECT_EQ(message, "lights.json: 17 lights; at most 16 are supported");
   // Inside the objects' bounding sphere: one shared cube map (6 layers); outside: a frustum and a cube (7).
   scene.point_lights = {PointLight{}, PointLight{glm::vec3(5, 0, 0)}};

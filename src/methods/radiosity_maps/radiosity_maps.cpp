@@ -6,7 +6,6 @@
 #include <cstdio>
 
 #include <fmt/format.h>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu/frame_counters.h"
 #include "gpu/gl_debug.h"
@@ -48,18 +47,6 @@ float radical_inverse(int index, int base) {
   float inv_base = 1.0f / static_cast<float>(base), fraction = inv_base, result = 0.0f;
   for (int i = index; i > 0; i /= base, fraction *= inv_base) result += static_cast<float>(i % base) * fraction;
   return result;
-}
-
-glm::vec3 map_up(glm::vec3 d) {
-  return std::abs(d.y) > 0.99f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
-}
-
-// Orthographic view looking along -toward_eye at a sphere (center, half_width); depth spans [0, depth_range].
-glm::mat4 orthographic_view(glm::vec3 center, glm::vec3 toward_eye, float half_width, float eye_distance,
-                            float depth_range) {
-  glm::vec3 eye = center + toward_eye * eye_distance;
-  glm::mat4 view = glm::lookAt(eye, center, map_up(toward_eye));
-  return glm::ortho(-half_width, half_width, -half_width, half_width, 0.0f, depth_range) * view;
 }
 
 GLuint make_radiosity_texture(int size, int layers) {
@@ -242,10 +229,8 @@ class RadiosityMaps final : public Method {
     float half_width = 1.02f * object.radius + 1e-6f;
     // Step 2 views: K directions from a Halton sequence on the bounding sphere, looking at its centre.
     for (glm::vec3 d : map_directions_) {
-      ViewGPU view;
-      view.clip_from_world = orthographic_view(object.center, d, half_width, half_width, 2.0f * half_width);
-      view.direction = glm::vec4(d, 2.0f * half_width);
-      view.radiance = glm::vec4(0.0f, 0.0f, 0.0f, 2.0f * half_width);
+      ViewGPU view = render::orthographic_view(object.center, d, half_width, half_width, 2.0f * half_width);
+      view.direction = glm::vec4(d, 2.0f * half_width);  // a map's direction points toward its camera (d_k)
       maps_.push_back(view);
     }
     // The VPL cube map about the translucent objects' centre (the paper uses the bounding box centre).
