@@ -5,6 +5,7 @@
 #include "lucent/error.h"
 #include "lucent/image.h"
 #include "lucent/material.h"
+#include "lucent/medium_volume.h"
 #include "lucent/mesh.h"
 #include "lucent/offscreen_framebuffer.h"
 #include "lucent/params.h"

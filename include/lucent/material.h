@@ -1,9 +1,11 @@
 // material.h: translucent materials in physical units and the measured presets compiled into the library.
 #pragma once
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -14,7 +16,32 @@ enum class BssrdfModel { StandardDipole = 0, DirectionalDipole = 1, PhotonBeamDi
 std::string_view to_string(BssrdfModel model);
 std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam"
 
-// A homogeneous translucent material. Coefficients in mm^-1; the scene's scale_mm maps them to scene units.
+// A grid of density multipliers m >= 0 loaded from a file (a heterogeneous medium; lucent/medium_volume.h reads
+// it). Values at voxel centres, x fastest, then y, then z; the grid spans the object's world-space bounds.
+struct MediumVolume {
+  std::string source;           // file it came from, for messages
+  glm::ivec3 size{0};           // voxels per axis, each >= 1
+  std::vector<float> values;    // size.x * size.y * size.z multipliers
+  float max_value = 0.0f;       // largest value: the majorant of delta tracking
+  // Trilinear between voxel centres, clamped at the border; `unit` in [0, 1]^3 across the bounds.
+  float multiplier(glm::vec3 unit) const;
+};
+
+// A heterogeneous medium: a density multiplier m(x) of the material over its object (the physics and the
+// built-in fields are in src/media/heterogeneous_field.h): sigma_t(x) = m sigma_t, sigma_s(x) = min(m, 1) sigma_s.
+enum class MediumFieldType { None = 0, Marble = 1, Layered = 2, Volume = 3 };
+std::string_view to_string(MediumFieldType type);
+struct MediumField {
+  MediumFieldType type = MediumFieldType::None;
+  float scale_mm = 10.0f;  // marble: vein period; layered: outer-layer thickness [mm]
+  float contrast = 4.0f;   // marble, layered: m ranges over [1, 1 + contrast]
+  std::string file;        // volume: the JSON header it was loaded from (as written in the scene)
+  std::shared_ptr<const MediumVolume> volume;  // volume: the loaded grid
+  bool heterogeneous() const { return type != MediumFieldType::None; }
+  float max_multiplier() const;  // the largest m anywhere (1 for none)
+};
+
+// A translucent material. Coefficients in mm^-1; the scene's scale_mm maps them to scene units.
 struct Material {
   std::string name = "custom";
   glm::vec3 sigma_a{0.0f};  // absorption coefficient per RGB band [mm^-1]
@@ -22,6 +49,7 @@ struct Material {
   glm::vec3 g{0.0f};        // Henyey-Greenstein mean cosine per band [-1, 1]
   float eta = 1.3f;         // relative refractive index n_material / n_outside
   BssrdfModel model = BssrdfModel::DirectionalDipole;
+  MediumField field;        // homogeneous unless set (used by voxel-paths and volpath; the diffusion models ignore it)
 
   glm::vec3 sigma_s_prime() const { return sigma_s * (1.0f - g); }  // [mm^-1]
   glm::vec3 sigma_t() const { return sigma_a + sigma_s; }          // [mm^-1]

@@ -11,6 +11,7 @@
 
 #include "lucent/environment.h"
 #include "lucent/error.h"
+#include "lucent/medium_volume.h"
 #include "lucent/scene.h"
 #include "methods/method.h"
 #include "params/param_json.h"
@@ -77,6 +78,13 @@ constexpr ParamDecl kMaterialParams[] = {
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard|photon-beam", "diffusion model S_d"},
+};
+constexpr ParamDecl kFieldParams[] = {
+    {"type", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered|volume",
+     "heterogeneous medium: density multiplier m(x); sigma_t m, sigma_s min(m, 1) (voxel-paths and volpath)"},
+    {"scale_mm", ParamType::Float, "10", "mm", 1e-3, 1e6, "", "marble: vein period; layered: outer-layer thickness"},
+    {"contrast", ParamType::Float, "4", "", 0, 1000, "", "marble, layered: m ranges over [1, 1 + contrast]"},
+    {"file", ParamType::String, "\"\"", "", 0, 0, "", "volume: JSON header of a raw grid of m (lucent/medium_volume.h)"},
 };
 constexpr ParamDecl kRenderParams[] = {
     {"width", ParamType::Int, "640", "pixels", 1, 16384, "", "image width"},
@@ -180,9 +188,31 @@ json normalized_material(const json& j) {
   return copy;
 }
 
-Material read_material(const json& raw, const JsonLocation& where) {
+MediumField read_field(const json& j, const JsonLocation& where, const std::string& base_dir) {
+  ParamValues v = read_params(j, {"field", kFieldParams}, where);
+  MediumField field;
+  const std::string& type = v.text("type");
+  field.type = type == "marble"    ? MediumFieldType::Marble
+               : type == "layered" ? MediumFieldType::Layered
+               : type == "volume"  ? MediumFieldType::Volume
+                                   : MediumFieldType::None;
+  field.scale_mm = static_cast<float>(v.number("scale_mm"));
+  field.contrast = static_cast<float>(v.number("contrast"));
+  field.file = v.text("file");
+  if (field.type == MediumFieldType::Volume) {
+    if (field.file.empty()) fail(where.child("file"), "a volume field needs the file of its JSON header");
+    std::filesystem::path path = field.file;
+    if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+    field.volume = load_medium_volume(path.string());
+  } else if (!field.file.empty()) {
+    fail(where.child("file"), fmt::format("only for type volume (type is {})", type));
+  }
+  return field;
+}
+
+Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
   json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
-  ParamValues v = read_params(j, {"material", kMaterialParams}, where);
+  ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
   Material m;
   const std::string& preset_name = v.text("preset");
   bool explicit_coefficients = v.has("sigma_a") || v.has("sigma_s") || v.has("sigma_s_prime") || v.has("g");
@@ -201,6 +231,7 @@ Material read_material(const json& raw, const JsonLocation& where) {
   }
   if (v.has("eta")) m.eta = static_cast<float>(v.number("eta"));
   m.model = *parse_bssrdf_model(v.text("model"));
+  if (j.contains("field")) m.field = read_field(j.at("field"), where.child("field"), base_dir);
   validate_material(m, where.str());
   return m;
 }
@@ -307,7 +338,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   object.albedo = v.vec3("albedo");
   if (j.contains("material")) {
     if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
-    object.material = read_material(j.at("material"), where.child("material"));
+    object.material = read_material(j.at("material"), where.child("material"), base_dir);
     if (object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
   }
   return object;
@@ -421,7 +452,7 @@ std::vector<ParamSection> scene_param_sections() {
   std::vector<ParamSection> sections = {{"scene", kSceneParams},       {"camera", kCameraParams},
                                         {"lights[]", kLightParams},    {"environment", kEnvironmentParams},
                                         {"objects[]", kObjectParams},          {"objects[].deform", kDeformParams},
-                                        {"objects[].material", kMaterialParams}, {"render", kRenderParams}};
+                                        {"objects[].material", kMaterialParams}, {"objects[].material.field", kFieldParams}, {"render", kRenderParams}};
   for (const auto& m : methods::method_registry()) sections.push_back({m.name, m.params});
   return sections;
 }

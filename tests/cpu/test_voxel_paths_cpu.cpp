@@ -197,13 +197,18 @@ TEST(VoxelPathsCpu, CoefficientFieldScalesTheMaterial) {
   labels[grid.index({3, 4, 5})] = 1u;
   labels[grid.index({4, 4, 5})] = 1u;
   for (bool effective : {false, true}) {
+    scene.objects[0].material->field = {};
     TranslucentTriangles triangles = gather_translucent_triangles(scene, effective);
-    std::vector<glm::vec4> none = coefficient_field(grid, labels, triangles.materials, {});
+    std::vector<glm::vec4> none = coefficient_field(grid, labels, triangles);
     for (int band = 0; band < 3; ++band)
       EXPECT_NEAR(none[grid.index({3, 4, 5})][band], triangles.sigma_t[1][band], 1e-5f * triangles.sigma_t[1][band]);
     EXPECT_EQ(none[0], glm::vec4(0.0f));
-    FieldSettings marble{lucent::shader::kFieldMarble, 0.3f, 2.0f};
-    std::vector<glm::vec4> veined = coefficient_field(grid, labels, triangles.materials, marble);
+    // Marble with a 3 mm vein period: 0.3 scene units at 10 mm per unit.
+    scene.objects[0].material->field.type = lucent::MediumFieldType::Marble;
+    scene.objects[0].material->field.scale_mm = 3.0f;
+    scene.objects[0].material->field.contrast = 2.0f;
+    triangles = gather_translucent_triangles(scene, effective);
+    std::vector<glm::vec4> veined = coefficient_field(grid, labels, triangles);
     const glm::vec3 p = grid.center({4, 4, 5});
     const float m = lucent::shader::field_multiplier(lucent::shader::kFieldMarble, p, glm::vec3(-0.5f), glm::vec3(0.5f),
                                                      0.3f, 2.0f);
@@ -212,8 +217,29 @@ TEST(VoxelPathsCpu, CoefficientFieldScalesTheMaterial) {
     }
     EXPECT_GE(veined[grid.index({4, 4, 5})].g, none[grid.index({4, 4, 5})].g);
   }
-  EXPECT_THROW(field_from_name("granite"), lucent::Error);
-  EXPECT_EQ(field_from_name("layered"), lucent::shader::kFieldLayered);
+}
+
+// The medium where the field is m: m < 1 thins it at constant albedo (sigma_s scales too), m > 1 adds absorbing
+// matter (sigma_s stays); sigma_tr of the modified medium by hand for m = 0.5 and m = 3.
+TEST(VoxelPathsCpu, FieldMultiplierThinsOrAddsAbsorbingMatter) {
+  using namespace lucent::shader;
+  FieldMaterialGPU material{};
+  material.sigma_t = glm::vec4(2.0f, 4.0f, 8.0f, 1.0f);  // sigma_tr costs
+  material.sigma_s = glm::vec4(1.5f, 3.0f, 6.0f, 0.0f);
+  material.g = glm::vec4(0.5f);
+  for (float m : {0.5f, 3.0f}) {
+    const glm::vec3 sigma_t = field_sigma_t(material, m), sigma_s = field_sigma_s(material, m);
+    const glm::vec3 expected_s = m < 1.0f ? m * glm::vec3(material.sigma_s) : glm::vec3(material.sigma_s);
+    EXPECT_EQ(sigma_s, expected_s);
+    EXPECT_EQ(sigma_t, m * glm::vec3(material.sigma_t));
+    const glm::vec3 sigma_a = sigma_t - sigma_s;
+    const glm::vec3 sigma_tr = glm::sqrt(3.0f * sigma_a * (sigma_a + 0.5f * sigma_s));
+    const glm::vec3 c = field_coefficient(material, m);
+    for (int band = 0; band < 3; ++band) EXPECT_NEAR(c[band], sigma_tr[band], 1e-5f * sigma_tr[band]) << m;
+  }
+  // Albedo is kept where the medium thins: 0.75 at m = 1 and m = 0.5, 0.25 at m = 3.
+  EXPECT_FLOAT_EQ(field_sigma_s(material, 0.5f).x / field_sigma_t(material, 0.5f).x, 0.75f);
+  EXPECT_FLOAT_EQ(field_sigma_s(material, 3.0f).x / field_sigma_t(material, 3.0f).x, 0.25f);
 }
 
 // Dijkstra in a two-slab medium (per-voxel coefficients, sigma_1 for x < 8, sigma_2 beyond, per band): along

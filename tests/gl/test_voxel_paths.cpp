@@ -2,6 +2,7 @@
 // a box's exact cell count, and the parallel relaxation converges to the CPU Dijkstra's optical path lengths.
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -104,7 +105,7 @@ TEST(VoxelPaths, RelaxationConvergesToDijkstra) {
     const VoxelGrid grid = grid_around(triangles.lower, triangles.upper, c.resolution, 2);
     voxelizer.voxelize(triangles, grid);
     const std::vector<std::uint32_t> labels = voxelizer.read_labels();
-    field.fill(grid, voxelizer.labels_buffer(), triangles.materials, {});
+    field.fill(grid, voxelizer.labels_buffer(), triangles);
     // Sources: the inside voxels nearest three points, with per-band initial values.
     std::vector<VoxelSource> sources;
     const glm::vec3 targets[3] = {{0.9f, 0.0f, 0.0f}, {-0.3f, -0.4f, 0.1f}, {0.0f, 0.2f, -0.2f}};
@@ -205,29 +206,44 @@ TEST(VoxelPaths, SideLitSphereIsBrightestOnTheLitSide) {
 // CPU evaluation of the same header does (relative 1e-4 on all but at most 0.1% of the voxel bands: float
 // rounding may move a voxel centre across a layer boundary or a noise cell), and the relaxation on those
 // coefficients converges to the CPU Dijkstra on the same (read-back) coefficients within 1e-5 relative, as in
-// the homogeneous test. Marble veins and skin-like layers, sigma_t and sigma_tr costs, sphere R = 32.
+// the homogeneous test. Marble veins, skin-like layers and a volume field (GPU trilinear by texelFetch against
+// MediumVolume::multiplier), sigma_t and sigma_tr costs, sphere R = 32.
 TEST(VoxelPaths, HeterogeneousRelaxationConvergesToDijkstra) {
   lucent::test::ensure_gl_context();
   Voxelizer voxelizer;
   RelaxationSolver solver;
   CoefficientField field;
+  // A volume of multipliers in [0.3, 3.3] on a coarse, anisotropic grid, so that trilinear weights matter.
+  auto volume = std::make_shared<lucent::MediumVolume>();
+  volume->size = glm::ivec3(7, 5, 9);
+  for (int i = 0; i < 7 * 5 * 9; ++i) volume->values.push_back(0.3f + 3.0f * static_cast<float>((i * 37) % 64) / 63.0f);
+  volume->max_value = 3.3f;
+  auto field_of = [&](lucent::MediumFieldType type, float scale_mm, float contrast) {
+    lucent::MediumField f;
+    f.type = type, f.scale_mm = scale_mm, f.contrast = contrast;
+    if (type == lucent::MediumFieldType::Volume) f.volume = volume;
+    return f;
+  };
   struct Case {
     const char* name;
-    FieldSettings settings;
+    lucent::MediumField field;
     bool effective;
   };
-  const Case cases[] = {{"marble sigma_t", {lucent::shader::kFieldMarble, 0.4f, 4.0f}, false},
-                        {"marble sigma_tr", {lucent::shader::kFieldMarble, 0.4f, 4.0f}, true},
-                        {"layered sigma_t", {lucent::shader::kFieldLayered, 0.15f, 3.0f}, false}};
+  // scene_with: 10 mm per scene unit.
+  const Case cases[] = {{"marble sigma_t", field_of(lucent::MediumFieldType::Marble, 4.0f, 4.0f), false},
+                        {"marble sigma_tr", field_of(lucent::MediumFieldType::Marble, 4.0f, 4.0f), true},
+                        {"layered sigma_t", field_of(lucent::MediumFieldType::Layered, 1.5f, 3.0f), false},
+                        {"volume sigma_tr", field_of(lucent::MediumFieldType::Volume, 10.0f, 0.0f), true}};
   for (const Case& c : cases) {
-    const lucent::Scene scene = scene_with(lucent::make_sphere(1.0f, 32, 64));
+    lucent::Scene scene = scene_with(lucent::make_sphere(1.0f, 32, 64));
+    scene.objects[0].material->field = c.field;
     const TranslucentTriangles triangles = gather_translucent_triangles(scene, c.effective);
     const VoxelGrid grid = grid_around(triangles.lower, triangles.upper, 32, 2);
     voxelizer.voxelize(triangles, grid);
     const std::vector<std::uint32_t> labels = voxelizer.read_labels();
-    field.fill(grid, voxelizer.labels_buffer(), triangles.materials, c.settings);
+    field.fill(grid, voxelizer.labels_buffer(), triangles);
     const std::vector<glm::vec4> gpu = field.read();
-    const std::vector<glm::vec4> cpu = coefficient_field(grid, labels, triangles.materials, c.settings);
+    const std::vector<glm::vec4> cpu = coefficient_field(grid, labels, triangles);
     std::size_t field_mismatches = 0, bands = 0;
     float lowest = 1e30f, highest = 0.0f;
     for (std::size_t i = 0; i < labels.size(); ++i) {
@@ -282,17 +298,20 @@ TEST(VoxelPaths, HeterogeneousRelaxationConvergesToDijkstra) {
   }
 }
 
-// The side-lit sphere with marble veins and with skin-like layers (field_scale 0.4, field_contrast 20) against
+// The side-lit sphere with marble veins and with skin-like layers (scale_mm 0.4, contrast 20) against
 // the homogeneous one (R = 32): the denser matter darkens the image (mean green lower) and pixels change: mean
 // relative difference measured 0.047 for marble (thin veins: shortest paths mostly go around them, and the lit
 // side's voxels keep their own n0) and 0.81 for layered (the dense outer layer is on every path); asserted > 0.02.
 TEST(VoxelPaths, HeterogeneousFieldsChangeTheRender) {
   lucent::test::ensure_gl_context();
   auto render = [](const std::string& field) {
-    lucent::Scene scene = side_lit_sphere(fmt::format(
-        R"({{"name": "voxel-paths", "resolution": 32, "light_map_size": 256, "specular": false, "field": "{}",
-             "field_scale": 0.4, "field_contrast": 20}})",
-        field));
+    lucent::Scene scene = side_lit_sphere(
+        R"({"name": "voxel-paths", "resolution": 32, "light_map_size": 256, "specular": false})");
+    lucent::MediumField& f = scene.objects[0].material->field;  // scale_mm 1: mm = scene units
+    f.type = field == "marble" ? lucent::MediumFieldType::Marble
+             : field == "layered" ? lucent::MediumFieldType::Layered
+                                  : lucent::MediumFieldType::None;
+    f.scale_mm = 0.4f, f.contrast = 20.0f;
     lucent::OffscreenFramebuffer framebuffer(64, 64);
     lucent::Renderer renderer(scene);
     renderer.render(scene.camera, {framebuffer.id(), 64, 64});

@@ -1,11 +1,10 @@
 // coefficient_field.h: the per-voxel edge-cost coefficients of voxel-paths (rgb, one vec4 per voxel, 0 outside):
-// each inside voxel's material (by label) modified by the heterogeneous field of heterogeneous_field.h at the
+// each inside voxel's material (by label) modified by its heterogeneous field (media/heterogeneous_field.h) at the
 // voxel centre. Filled on the GPU every frame after voxelization (shaders/voxel_paths/fill_coefficients.comp);
 // coefficient_field() is the CPU evaluation of the same header for the tests and the CPU Dijkstra.
 #pragma once
 #include <cstdint>
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -15,19 +14,11 @@
 
 namespace lucent::methods::voxel_paths {
 
-struct FieldSettings {
-  int field = shader::kFieldNone;  // kFieldNone, kFieldMarble or kFieldLayered
-  float scale = 0.25f;             // feature size [scene units]: vein period, layer thickness unit
-  float contrast = 4.0f;           // m ranges over [1, 1 + contrast]
-};
-
-// "none" | "marble" | "layered" -> kField*; throws lucent::Error for anything else.
-int field_from_name(std::string_view name);
-
-// CPU evaluation: per voxel, rgb coefficient (0 outside). materials: per label (TranslucentTriangles::materials).
+// CPU evaluation: per voxel, rgb coefficient (0 outside) from each label's material and field (`triangles`).
 std::vector<glm::vec4> coefficient_field(const VoxelGrid& grid, std::span<const std::uint32_t> labels,
-                                         std::span<const shader::FieldMaterialGPU> materials,
-                                         const FieldSettings& settings);
+                                         const TranslucentTriangles& triangles);
+// The field multiplier m of a label's material at p (CPU; the GPU evaluates the same in fill_coefficients.comp).
+float field_multiplier_at(const shader::FieldMaterialGPU& material, const MediumVolume* volume, glm::vec3 p);
 
 class CoefficientField {
  public:
@@ -36,18 +27,18 @@ class CoefficientField {
   CoefficientField(const CoefficientField&) = delete;
   CoefficientField& operator=(const CoefficientField&) = delete;
 
-  // Uploads the per-label materials and fills the per-voxel coefficients from the labels.
-  void fill(const VoxelGrid& grid, GLuint labels_buffer, std::span<const shader::FieldMaterialGPU> materials,
-            const FieldSettings& settings);
+  // Uploads the per-label materials (and the volume field once) and fills the per-voxel coefficients.
+  void fill(const VoxelGrid& grid, GLuint labels_buffer, const TranslucentTriangles& triangles);
 
   GLuint buffer() const { return coefficients_; }  // vec4 per voxel, rgb [1/scene unit]
   std::vector<glm::vec4> read() const;
-  std::size_t gpu_memory_bytes() const { return voxel_count_ * 16; }
+  std::size_t gpu_memory_bytes() const { return voxel_count_ * 16 + volume_bytes_; }
 
  private:
   gpu::ShaderProgram program_;
-  GLuint coefficients_ = 0, materials_ = 0;
-  std::size_t voxel_count_ = 0;
+  GLuint coefficients_ = 0, materials_ = 0, volume_texture_ = 0;
+  const MediumVolume* uploaded_volume_ = nullptr;
+  std::size_t voxel_count_ = 0, volume_bytes_ = 0;
 };
 
 }  // namespace lucent::methods::voxel_paths

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "lucent/error.h"
+
 namespace lucent::methods::voxel_paths {
 
 VoxelGrid grid_around(glm::vec3 lower, glm::vec3 upper, int resolution, int padding_voxels) {
@@ -35,6 +37,14 @@ TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effec
     field.sigma_t = glm::vec4(object.material->sigma_t() * scene.scale_mm, effective_transport ? 1.0f : 0.0f);
     field.sigma_s = glm::vec4(object.material->sigma_s * scene.scale_mm, 0.0f);
     field.g = glm::vec4(object.material->g, 0.0f);
+    const MediumField& medium = object.material->field;
+    field.field = glm::vec4(static_cast<float>(medium.type), medium.scale_mm / scene.scale_mm, medium.contrast, 0.0f);
+    if (medium.type == MediumFieldType::Volume) {
+      if (out.volume && out.volume != medium.volume)
+        throw Error(fmt::format("{}: voxel-paths supports one volume field per scene (object '{}' has a second)",
+                                scene.source, object.name));
+      out.volume = medium.volume;
+    }
     TriangleMesh mesh = transformed(object.mesh, object.world_from_object);
     auto first = static_cast<std::uint32_t>(out.corners.size() / 3);
     glm::vec3 object_lower(std::numeric_limits<float>::max()), object_upper(-std::numeric_limits<float>::max());
@@ -55,9 +65,9 @@ std::string shader_defines() {
   return fmt::format(
       "#define VOXEL_BINDING_TRIANGLES {}\n#define VOXEL_BINDING_FLIPS {}\n#define VOXEL_BINDING_LABELS {}\n"
       "#define VOXEL_BINDING_DISTANCES {}\n#define VOXEL_BINDING_SIGMA_T {}\n#define VOXEL_BINDING_CHANGED {}\n"
-      "#define VOXEL_BINDING_FIELD_MATERIALS {}\n#define VOXEL_UNREACHED {:.1e}\n",
+      "#define VOXEL_BINDING_FIELD_MATERIALS {}\n#define VOXEL_TEXTURE_VOLUME {}\n#define VOXEL_UNREACHED {:.1e}\n",
       kBindingTriangles, kBindingFlips, kBindingLabels, kBindingDistances, kBindingSigmaT, kBindingChanged,
-      kBindingFieldMaterials, kUnreached);
+      kBindingFieldMaterials, kTextureVolume, kUnreached);
 }
 
 }  // namespace lucent::methods::voxel_paths

@@ -4,13 +4,14 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "lucent/scene.h"
-#include "methods/voxel_paths/heterogeneous_field.h"
+#include "media/heterogeneous_field.h"
 
 namespace lucent::methods::voxel_paths {
 
@@ -22,6 +23,7 @@ inline constexpr int kBindingDistances = 11;  // vec4 per voxel: rgb optical pat
 inline constexpr int kBindingSigmaT = 12;     // vec4 per voxel: rgb edge-cost coefficient [1/scene unit]
 inline constexpr int kBindingChanged = 13;    // uint: set to 1 by a relaxation that lowered a distance
 inline constexpr int kBindingFieldMaterials = 14;  // shader::FieldMaterialGPU per label
+inline constexpr int kTextureVolume = 15;          // texture unit: R32F 3D texture of the scene's volume field
 
 // Distances at or above this are "not reached" (outside voxels, or no path from a lit voxel).
 inline constexpr float kUnreached = 1.0e30f;
@@ -62,7 +64,8 @@ struct TranslucentTriangles {
   };
   std::vector<Range> objects;
   std::vector<glm::vec4> sigma_t;  // per label (index 0: outside, zero); rgb cost coefficient [1/scene unit]
-  std::vector<shader::FieldMaterialGPU> materials;  // per label: the same material and bounds for the field
+  std::vector<shader::FieldMaterialGPU> materials;  // per label: the same material, bounds and field
+  std::shared_ptr<const MediumVolume> volume;        // the (single) volume field of the scene, if any
   glm::vec3 lower{0.0f}, upper{0.0f};  // world-space bounds of all corners
 };
 TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effective_transport = false);

@@ -27,11 +27,6 @@ constexpr ParamDecl kParams[] = {
     {"max_iterations", ParamType::Int, "1024", "sweeps", 1, 65536, "", "relaxation sweeps at most per frame"},
     {"extinction", ParamType::Enum, "\"sigma_t\"", "", 0, 0, "sigma_t|sigma_tr",
      "edge cost coefficient: sigma_t (the paper) or the diffusion's sigma_tr (carries absorption, hence colour)"},
-    {"field", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered",
-     "heterogeneous medium: sigma_t times m(x) in [1, 1 + field_contrast] (marble veins or skin-like layers by depth)"},
-    {"field_scale", ParamType::Float, "0.25", "scene units", 0.001, 1000, "",
-     "feature size of the field: marble vein period, layered thickness unit (outer layer 1, middle 2)"},
-    {"field_contrast", ParamType::Float, "4", "", 0, 100, "", "the field's multiplier of sigma_t reaches 1 + this"},
     {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights"},
     {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection"},
 };
@@ -53,8 +48,6 @@ class VoxelPaths final : public Method {
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
         triangles_(checked_triangles(scene, params_.text("extinction") == "sigma_tr")),
         grid_(grid_around(triangles_.lower, triangles_.upper, params_.integer("resolution"), kPaddingVoxels)),
-        field_settings_{field_from_name(params_.text("field")), static_cast<float>(params_.number("field_scale")),
-                        static_cast<float>(params_.number("field_contrast"))},
         flux_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_flux.comp", shader_defines())),
         distances_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_distances.comp", shader_defines())),
         radiance_program_(gpu::ShaderProgram::compute("voxel_paths/radiance.comp", shader_defines())),
@@ -112,7 +105,7 @@ class VoxelPaths final : public Method {
     voxelizer_.voxelize(triangles_, grid_);
     context.timer.end();
     context.timer.begin("voxel_field");
-    field_.fill(grid_, voxelizer_.labels_buffer(), triangles_.materials, field_settings_);
+    field_.fill(grid_, voxelizer_.labels_buffer(), triangles_);
     context.timer.end();
     context.timer.begin("voxel_initialize");
     initialize();
@@ -202,7 +195,6 @@ class VoxelPaths final : public Method {
   render::LightGBuffer light_gbuffer_;
   TranslucentTriangles triangles_;
   VoxelGrid grid_;
-  FieldSettings field_settings_;
   Voxelizer voxelizer_;
   CoefficientField field_;
   RelaxationSolver solver_;

@@ -1,7 +1,9 @@
-// heterogeneous_field.h: the heterogeneous media of voxel-paths (issue 5; the paper's "heterogeneous translucent
-// materials", Section 2.1 uses per-voxel sigma_t): a per-point multiplier m(x) in [1, 1 + contrast] of a material's
-// extinction. The field adds absorbing matter: sigma_t(x) = m(x) sigma_t, sigma_s(x) = sigma_s, so the albedo falls
-// as 1 / m(x) where the medium is denser. Fields (all deterministic, no state):
+// heterogeneous_field.h: heterogeneous translucent media (issue 5), shared by the voxel-paths method and the
+// volumetric path tracer: a density multiplier m(x) >= 0 of a material over its object, in world space over the
+// object's world-space bounds. The medium at x:
+//   sigma_t(x) = m sigma_t,   sigma_s(x) = min(m, 1) sigma_s
+// so m < 1 thins the medium at constant albedo and m > 1 adds absorbing matter (the albedo falls as 1 / m where
+// the medium is denser: dark marble veins). Fields (deterministic, no state):
 //   none    m = 1.
 //   marble  thin veins: a phase that advances one unit per `scale` along a fixed direction, warped by 4 octaves of
 //           value noise (own integer-hash lattice, smoothstep interpolation); vein(x) = 1 - smoothstep(0, w, d),
@@ -10,7 +12,10 @@
 //   layered a skin-like profile by depth below the surface of the object's bounding ellipsoid (exact for a
 //           sphere): t = depth / scale; t < 1 dense outer layer (m = 1 + contrast), 1 <= t < 3 soft middle (m = 1),
 //           t >= 3 denser core (m = 1 + contrast / 2).
-// Compiled as C++ (namespace lucent::shader) and as GLSL (shaders/voxel_paths/fill_coefficients.comp).
+//   volume  a grid of m values loaded from a file (lucent/material.h, MediumVolume), spanning the bounds;
+//           trilinear between voxel centres, clamped at the border. The lookup is language-specific (a 3D texture
+//           fetch in GLSL, MediumVolume::multiplier in C++); the weights are volume_trilinear_weights below.
+// Compiled as C++ (namespace lucent::shader) and as GLSL.
 #ifndef LUCENT_VOXEL_PATHS_HETEROGENEOUS_FIELD_H
 #define LUCENT_VOXEL_PATHS_HETEROGENEOUS_FIELD_H
 #include "shared/bridge.h"
@@ -20,15 +25,17 @@ LUCENT_SHADER_BEGIN
 LUCENT_CONST int kFieldNone = 0;
 LUCENT_CONST int kFieldMarble = 1;
 LUCENT_CONST int kFieldLayered = 2;
+LUCENT_CONST int kFieldVolume = 3;
 LUCENT_CONST float kMarbleVeinWidth = 0.1f;  // half-width of a vein's smoothstep, in vein periods
 
-// One translucent object's material and bounds (std430, per label; label 0 unused).
+// One translucent object's material, bounds and field (std430, per label; label 0 unused).
 struct FieldMaterialGPU {
   vec4 sigma_t;  // rgb extinction [1/scene unit]; w: 1 = edge cost is sigma_tr, 0 = sigma_t
   vec4 sigma_s;  // rgb scattering (unreduced) [1/scene unit]
   vec4 g;        // rgb Henyey-Greenstein mean cosine
   vec4 lower;    // xyz: world-space bounds of the object [scene units]
   vec4 upper;
+  vec4 field;    // x: kField*, y: feature size [scene units], z: contrast, w: unused
 };
 
 // Integer hash of a lattice point (xorshift-multiply mixing).
@@ -91,19 +98,32 @@ LUCENT_INLINE float layered_multiplier(float t, float contrast) {
   return 1.0f + 0.5f * contrast;
 }
 
-// m(p) in [1, 1 + contrast] for field kField*.
+// m(p) of the procedural fields (kFieldNone, kFieldMarble, kFieldLayered); kFieldVolume is looked up by the caller.
 LUCENT_INLINE float field_multiplier(int field, vec3 p, vec3 lower, vec3 upper, float scale, float contrast) {
   if (field == kFieldMarble) return 1.0f + contrast * marble_vein(p, scale);
   if (field == kFieldLayered) return layered_multiplier(ellipsoid_depth(p, lower, upper) / scale, contrast);
   return 1.0f;
 }
 
-// The edge-cost coefficient of a voxel of `material` where the field is m: m sigma_t, or with the material's
-// sigma_tr flag sqrt(3 sigma_a sigma_t') of the modified medium (sigma_a = m sigma_t - sigma_s).
+// Trilinear lookup in a grid of `size` values spanning [lower, upper] (values at voxel centres, clamped at the
+// border): the continuous grid coordinate of p, the lower corner voxel of its cell (the upper neighbours are
+// corner + 1, clamped to size - 1 by the caller) and the weights of the upper neighbours, u - corner.
+LUCENT_INLINE vec3 volume_grid_coordinate(vec3 p, vec3 lower, vec3 upper, ivec3 size) {
+  vec3 u = (p - lower) / max(upper - lower, vec3(1e-12f)) * vec3(size) - 0.5f;
+  return clamp(u, vec3(0.0f), vec3(size - ivec3(1)));
+}
+LUCENT_INLINE ivec3 volume_corner(vec3 u, ivec3 size) { return max(min(ivec3(floor(u)), size - ivec3(2)), ivec3(0)); }
+
+// The medium at a point where the field is m (see the top of this file).
+LUCENT_INLINE vec3 field_sigma_t(FieldMaterialGPU material, float m) { return m * vec3(material.sigma_t); }
+LUCENT_INLINE vec3 field_sigma_s(FieldMaterialGPU material, float m) { return min(m, 1.0f) * vec3(material.sigma_s); }
+
+// The edge-cost coefficient of a voxel of `material` where the field is m: sigma_t(x), or with the material's
+// sigma_tr flag sqrt(3 sigma_a sigma_t') of the medium there.
 LUCENT_INLINE vec3 field_coefficient(FieldMaterialGPU material, float m) {
-  vec3 sigma_t = m * vec3(material.sigma_t);
+  vec3 sigma_t = field_sigma_t(material, m);
   if (material.sigma_t.w < 0.5f) return sigma_t;
-  vec3 sigma_s = vec3(material.sigma_s);
+  vec3 sigma_s = field_sigma_s(material, m);
   vec3 sigma_a = max(sigma_t - sigma_s, vec3(0.0f));
   return sqrt(3.0f * sigma_a * (sigma_a + sigma_s * (1.0f - vec3(material.g))));
 }
