@@ -39,6 +39,8 @@ struct MediumField {
   std::shared_ptr<const MediumVolume> volume;  // volume: the loaded grid
   bool heterogeneous() const { return type != MediumFieldType::None; }
   float max_multiplier() const;  // the largest m anywhere (1 for none)
+  // m at world point p of an object with world-space bounds [lower, upper]; one scene unit is scale_mm mm.
+  float multiplier(glm::vec3 p, glm::vec3 lower, glm::vec3 upper, float scene_scale_mm) const;
 };
 
 // A translucent material. Coefficients in mm^-1; the scene's scale_mm maps them to scene units.

@@ -1,4 +1,4 @@
-// medium_volume.cpp: see lucent/medium_volume.h; MediumVolume::multiplier and MediumField::max_multiplier.
+// medium_volume.cpp: see lucent/medium_volume.h; the lookups of MediumVolume and MediumField (lucent/material.h).
 #include "lucent/medium_volume.h"
 
 #include <algorithm>
@@ -72,6 +72,12 @@ float MediumField::max_multiplier() const {
     case MediumFieldType::Volume: return volume ? volume->max_value : 1.0f;
   }
   return 1.0f;
+}
+
+float MediumField::multiplier(glm::vec3 p, glm::vec3 lower, glm::vec3 upper, float scene_scale_mm) const {
+  if (type == MediumFieldType::Volume)
+    return volume ? volume->multiplier((p - lower) / glm::max(upper - lower, glm::vec3(1e-12f))) : 1.0f;
+  return shader::field_multiplier(static_cast<int>(type), p, lower, upper, scale_mm / scene_scale_mm, contrast);
 }
 
 std::string_view to_string(MediumFieldType type) {

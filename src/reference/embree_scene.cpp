@@ -35,6 +35,11 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     d.g = m.g;
     d.eta = m.eta;
     d.model = static_cast<int>(m.model);
+    d.field = m.field;
+    d.scale_mm = scale_mm;
+    d.lower = glm::vec3(std::numeric_limits<float>::max()), d.upper = -d.lower;
+    for (const glm::vec3& p : d.positions) d.lower = glm::min(d.lower, p), d.upper = glm::max(d.upper, p);
+    d.majorant = static_cast<double>(m.field.max_multiplier()) * (d.sigma_a + d.sigma_s);
   }
   return d;
 }

@@ -27,6 +27,14 @@ struct ObjectData {
   glm::dvec3 sigma_a{0.0}, sigma_s{0.0}, g{0.0};  // [1/scene unit], unreduced sigma_s
   double eta = 1.0;
   int model = 1;                                  // LUCENT_MODEL_*
+  // Heterogeneous medium (media/heterogeneous_field.h): sigma_t(x) = m(x) sigma_t, sigma_s(x) = min(m, 1) sigma_s
+  // over the world-space bounds [lower, upper]; `majorant` = max m sigma_t bounds sigma_t(x) for delta tracking.
+  MediumField field;
+  float scale_mm = 1.0f;                          // mm per scene unit (the field's feature sizes are in mm)
+  glm::vec3 lower{0.0f}, upper{0.0f};
+  glm::dvec3 majorant{0.0};                       // [1/scene unit]
+  bool heterogeneous() const { return field.heterogeneous(); }
+  double multiplier(const glm::dvec3& p) const { return field.multiplier(glm::vec3(p), lower, upper, scale_mm); }
   double area = 0.0;                              // [scene units^2]
   std::vector<double> triangle_cdf;               // cumulative area, normalised
   std::vector<glm::vec3> positions, normals;      // world space

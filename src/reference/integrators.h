@@ -8,12 +8,16 @@
 // the refracted beam by its Fresnel transmittance, its compression at a locally flat boundary (cos theta_i /
 // cos theta_t; for a point light the pencil's footprint, see volpath.cpp) and the attenuation to the vertex.
 // Point lights must be outside the media (in air, e.g. in a candle's hollow). Russian roulette keeps it unbiased.
+// Heterogeneous media (a material's "field", media/heterogeneous_field.h): free flights by delta tracking against
+// the majorant max m sigma_t with null collisions, and the next-event segments' transmittance by ratio tracking;
+// both unbiased (volpath.cpp).
 // Known limits: one entry point per medium vertex (the nearest along the refracted direction; thin parts with
 // several entry points miss the others); focusing by the boundary's curvature is neglected (exact on flat
 // boundaries, a bias of the order of depth / focal length on curved ones); nested or touching translucent objects
 // are not supported.
 //
-// bssrdf (the model): Monte Carlo integration of Dal Corso et al.'s eq. 1 over the object's surface with the
+// bssrdf (the model; homogeneous only: a material's field is ignored, as by the diffusion models): Monte Carlo
+// integration of Dal Corso et al.'s eq. 1 over the object's surface with the
 // same S_d code the shaders run, light visibility by shadow rays, Fresnel transmittance in and out. x_i comes
 // from uniform area sampling combined by multiple importance sampling with exponential probes around x_o (the
 // paper's reference uses area sampling with a Russian roulette on exp(-sigma_tr r); that misses the directional

@@ -104,8 +104,24 @@ RefractedBeam find_refracted_point_beam(const ReferenceScene& s, int object, glm
   return beam;
 }
 
+// Transmittance along the segment from `a` to `b` inside object o: exact in a homogeneous medium; in a
+// heterogeneous one, ratio tracking (Novak et al. 2014): tentative points at the rate mu of the largest band
+// majorant, each multiplying band k by 1 - sigma_t,k(x) / mu. Unbiased, and in [0, 1] because mu >= sigma_t.
+glm::dvec3 transmittance(const ObjectData& o, glm::dvec3 a, glm::dvec3 b, Rng& rng) {
+  const double length = glm::length(b - a);
+  if (!o.heterogeneous()) return exp_neg((o.sigma_a + o.sigma_s) * length);
+  const double mu = max_component(o.majorant);
+  const glm::dvec3 direction = (b - a) / std::max(length, 1e-300), sigma_t = o.sigma_a + o.sigma_s;
+  glm::dvec3 T(1.0);
+  for (double t = -std::log(1.0 - rng.uniform()) / mu; t < length; t -= std::log(1.0 - rng.uniform()) / mu) {
+    T *= glm::max(glm::dvec3(0.0), 1.0 - o.multiplier(a + t * direction) * sigma_t / mu);
+    if (max_component(T) <= 0.0) break;
+  }
+  return T;
+}
+
 // Next-event estimation at a medium scattering vertex: light in-scattered toward -path_dir.
-glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 path_dir) {
+glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 path_dir, Rng& rng) {
   const ObjectData& o = s.rt.object(object);
   glm::dvec3 L(0.0);
   for (const DirectionalLight& light : s.scene.lights) {
@@ -114,9 +130,8 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, 
     if (!beam.found) continue;
     glm::dvec3 entry_outside = beam.entry - s.rt.ray_epsilon() * light_dir * 2.0;
     if (s.rt.occluded(entry_outside, -light_dir)) continue;
-    glm::dvec3 transmittance = exp_neg((o.sigma_a + o.sigma_s) * beam.distance);
     glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
-    L += glm::dvec3(light.radiance) * beam.irradiance_factor * transmittance * phase;
+    L += glm::dvec3(light.radiance) * beam.irradiance_factor * transmittance(o, beam.entry, x, rng) * phase;
   }
   for (const PointLight& light : s.scene.point_lights) {
     glm::dvec3 x_l(light.position);
@@ -126,9 +141,9 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, 
     glm::dvec3 entry_outside = beam.entry - s.rt.ray_epsilon() * light_dir * 2.0;
     double to_light = glm::length(x_l - entry_outside);
     if (s.rt.occluded(entry_outside, -light_dir, to_light - s.rt.ray_epsilon())) continue;
-    glm::dvec3 transmittance = exp_neg((o.sigma_a + o.sigma_s) * beam.distance);
     glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
-    L += point_light_intensity(s, light, light_dir) * beam.irradiance_factor * transmittance * phase;
+    L += point_light_intensity(s, light, light_dir) * beam.irradiance_factor * transmittance(o, beam.entry, x, rng) *
+         phase;
   }
   return L;
 }
@@ -161,33 +176,10 @@ bool roulette(PathState& p, Rng& rng) {
   return true;
 }
 
-// Inside a medium: scatter (with next-event estimation) or reach the boundary and reflect or leave.
-bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
+// At the boundary from inside: relative index 1/eta; reflect with probability F (1 under total internal
+// reflection), else refract out.
+bool leave_or_reflect(const ReferenceScene& s, PathState& p, Rng& rng, const SurfaceHit& boundary) {
   const ObjectData& o = s.rt.object(p.medium);
-  glm::dvec3 sigma_t = o.sigma_a + o.sigma_s;
-  SurfaceHit boundary = s.rt.intersect(p.origin, p.direction);
-  if (!boundary.hit()) return false;  // numerical leak out of a closed mesh
-  double t = -std::log(1.0 - rng.uniform()) / sigma_t[p.hero];
-  if (t < boundary.t) {
-    // Scattering vertex: distance pdf sigma_t e^{-sigma_t t} of each band relative to the hero's.
-    glm::dvec3 attenuation = exp_neg(sigma_t * t);
-    glm::dvec3 pdf = sigma_t * attenuation;
-    p.throughput *= o.sigma_s * attenuation / pdf[p.hero];
-    p.r_u *= pdf / pdf[p.hero];
-    glm::dvec3 x = p.origin + t * p.direction;
-    p.add(medium_next_event(s, p.medium, x, p.direction));
-    glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[p.hero]);
-    glm::dvec3 phase = hg_pdf_bands(glm::dot(next, p.direction), o.g);
-    p.throughput *= phase / phase[p.hero];
-    p.r_u *= phase / phase[p.hero];
-    p.origin = x, p.direction = next;
-    return roulette(p, rng);
-  }
-  // Past the boundary: probability e^{-sigma_t t_b} of each band relative to the hero's.
-  glm::dvec3 attenuation = exp_neg(sigma_t * boundary.t);
-  p.throughput *= attenuation / attenuation[p.hero];
-  p.r_u *= attenuation / attenuation[p.hero];
-  // Boundary from inside: relative index 1/eta; reflect with probability F (1 under total internal reflection).
   glm::dvec3 n = boundary.normal;
   double F = dielectric_reflectance(p.direction, n, 1.0 / o.eta);
   p.origin = boundary.position;
@@ -201,6 +193,91 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
     p.medium = -1;
   }
   return roulette(p, rng);
+}
+
+// A scattering vertex at x, reached with the throughput update already applied: next-event estimation, then a
+// new direction from the hero band's phase function.
+bool scatter(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) {
+  const ObjectData& o = s.rt.object(p.medium);
+  p.add(medium_next_event(s, p.medium, x, p.direction, rng));
+  glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[p.hero]);
+  glm::dvec3 phase = hg_pdf_bands(glm::dot(next, p.direction), o.g);
+  p.throughput *= phase / phase[p.hero];
+  p.r_u *= phase / phase[p.hero];
+  p.origin = x, p.direction = next;
+  return roulette(p, rng);
+}
+
+// Heterogeneous medium: delta tracking against the band majorants sigma_maj = max m sigma_t, sampled with the
+// hero's, with null collisions (pbrt-v4's spectral formulation of Miller et al. 2019: at a tentative point the
+// hero chooses absorption, scattering or a null collision with probabilities sigma_a, sigma_s, sigma_n over its
+// majorant, and every band carries T_maj sigma_{s|n} over the hero's pdf in throughput and r_u). A scattering
+// vertex is returned in x.
+enum class Flight { Scattered, Absorbed, ReachedBoundary };
+Flight delta_track(const ReferenceScene& s, PathState& p, Rng& rng, double boundary_t, glm::dvec3& x) {
+  const ObjectData& o = s.rt.object(p.medium);
+  const glm::dvec3 sigma_maj = o.majorant, sigma_t = o.sigma_a + o.sigma_s;
+  const double mu = sigma_maj[p.hero];
+  double t = 0.0;
+  for (;;) {
+    const double dt = -std::log(1.0 - rng.uniform()) / mu;
+    if (t + dt >= boundary_t) {
+      const glm::dvec3 T = exp_neg(sigma_maj * (boundary_t - t));
+      p.throughput *= T / T[p.hero];
+      p.r_u *= T / T[p.hero];
+      return Flight::ReachedBoundary;
+    }
+    t += dt;
+    x = p.origin + t * p.direction;
+    const double m = o.multiplier(x);
+    const glm::dvec3 sigma_t_x = m * sigma_t, sigma_s_x = std::min(m, 1.0) * o.sigma_s;
+    const glm::dvec3 sigma_a_x = sigma_t_x - sigma_s_x;
+    const glm::dvec3 sigma_n = glm::max(glm::dvec3(0.0), sigma_maj - sigma_t_x);
+    const glm::dvec3 T = exp_neg(sigma_maj * dt);
+    const double u = rng.uniform() * mu;
+    if (u < sigma_a_x[p.hero]) return Flight::Absorbed;
+    if (u < sigma_a_x[p.hero] + sigma_s_x[p.hero]) {
+      const double pdf = T[p.hero] * sigma_s_x[p.hero];
+      p.throughput *= T * sigma_s_x / pdf;
+      p.r_u *= T * sigma_s_x / pdf;
+      return Flight::Scattered;
+    }
+    const double pdf = T[p.hero] * sigma_n[p.hero];
+    if (!(pdf > 0.0)) return Flight::Absorbed;
+    p.throughput *= T * sigma_n / pdf;
+    p.r_u *= T * sigma_n / pdf;
+    if (max_component(p.throughput) <= 0.0) return Flight::Absorbed;
+  }
+}
+
+// Inside a medium: scatter (with next-event estimation) or reach the boundary and reflect or leave.
+bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
+  const ObjectData& o = s.rt.object(p.medium);
+  glm::dvec3 sigma_t = o.sigma_a + o.sigma_s;
+  SurfaceHit boundary = s.rt.intersect(p.origin, p.direction);
+  if (!boundary.hit()) return false;  // numerical leak out of a closed mesh
+  if (o.heterogeneous()) {
+    glm::dvec3 x;
+    switch (delta_track(s, p, rng, boundary.t, x)) {
+      case Flight::Absorbed: return false;
+      case Flight::Scattered: return scatter(s, p, rng, x);
+      case Flight::ReachedBoundary: return leave_or_reflect(s, p, rng, boundary);
+    }
+  }
+  double t = -std::log(1.0 - rng.uniform()) / sigma_t[p.hero];
+  if (t < boundary.t) {
+    // Scattering vertex: distance pdf sigma_t e^{-sigma_t t} of each band relative to the hero's.
+    glm::dvec3 attenuation = exp_neg(sigma_t * t);
+    glm::dvec3 pdf = sigma_t * attenuation;
+    p.throughput *= o.sigma_s * attenuation / pdf[p.hero];
+    p.r_u *= pdf / pdf[p.hero];
+    return scatter(s, p, rng, p.origin + t * p.direction);
+  }
+  // Past the boundary: probability e^{-sigma_t t_b} of each band relative to the hero's.
+  glm::dvec3 attenuation = exp_neg(sigma_t * boundary.t);
+  p.throughput *= attenuation / attenuation[p.hero];
+  p.r_u *= attenuation / attenuation[p.hero];
+  return leave_or_reflect(s, p, rng, boundary);
 }
 
 // Outside: hit a surface; opaque = Lambertian with next-event estimation, translucent = dielectric boundary.
