@@ -1,5 +1,6 @@
 // voxelize_triangles.comp: solid voxelization by parity, step 1 of 2 (voxel-paths, paper Section 2.1 "solid
-// voxelization"). One invocation per triangle of one object: for every voxel column (x, y) whose centre its
+// voxelization"). One invocation per triangle of one object, read in place from the scene's vertex and index
+// buffers (so deforming objects voxelize as they are this frame): for every voxel column (x, y) whose centre its
 // xy projection covers, the crossing of the column's +z ray toggles the flip bit of the first voxel whose centre
 // lies above the crossing. voxelize_scan.comp then XOR-accumulates the flips up each column: a voxel is inside
 // when an odd number of surfaces lie below its centre. Watertight: the edge function of a shared edge is
@@ -7,10 +8,13 @@
 // column through an edge toggles once.
 layout(local_size_x = 64) in;
 
-layout(std430, binding = VOXEL_BINDING_TRIANGLES) readonly buffer TriangleBlock { vec4 corners[]; };
+#include "shared/shader_io.h"
+
+layout(std430, binding = VOXEL_BINDING_TRIANGLES) readonly buffer VertexBlock { VertexGPU vertices[]; };
+layout(std430, binding = VOXEL_BINDING_INDICES) readonly buffer IndexBlock { uint indices[]; };
 layout(std430, binding = VOXEL_BINDING_FLIPS) buffer FlipBlock { uint flips[]; };
 
-uniform uint u_first_triangle;
+uniform uint u_first_index;  // the object's first triangle corner in indices[]
 uniform uint u_triangle_count;
 uniform vec3 u_origin;      // corner of voxel (0, 0, 0) [scene units]
 uniform float u_voxel_size;  // h [scene units]
@@ -35,8 +39,9 @@ bool inside_edge(float e, vec2 a, vec2 b) {
 
 void main() {
   if (gl_GlobalInvocationID.x >= u_triangle_count) return;
-  uint t = 3u * (u_first_triangle + gl_GlobalInvocationID.x);
-  vec3 a = corners[t].xyz, b = corners[t + 1u].xyz, c = corners[t + 2u].xyz;
+  uint t = u_first_index + 3u * gl_GlobalInvocationID.x;
+  vec3 a = vertices[indices[t]].position.xyz, b = vertices[indices[t + 1u]].position.xyz;
+  vec3 c = vertices[indices[t + 2u]].position.xyz;
   // Counter-clockwise in xy; triangles seen edge-on from the column direction cross no column.
   float area2 = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
   if (area2 == 0.0f) return;

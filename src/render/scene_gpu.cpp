@@ -78,6 +78,9 @@ SceneGpu::SceneGpu(const Scene& scene) {
       auto base = static_cast<std::uint32_t>(vertices.size());
       for (std::size_t v = 0; v < world.positions.size(); ++v)
         vertices.push_back({glm::vec4(world.positions[v], static_cast<float>(i)), glm::vec4(world.normals[v], 0.0f)});
+      if (object.translucent())
+        translucent_meshes_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(indices.size()),
+                                       static_cast<std::uint32_t>(object.mesh.indices.size())});
       for (std::uint32_t index : object.mesh.indices) indices.push_back(base + index);
       add_bounds(world.positions);
       if (object.deformation.type != DeformationType::None) {
@@ -100,9 +103,16 @@ SceneGpu::SceneGpu(const Scene& scene) {
   index_count_ = static_cast<GLsizei>(indices.size());
   scene_bounds_ = bounds_of(all_points);
   translucent_bounds_ = translucent_points.empty() ? scene_bounds_ : bounds_of(translucent_points);
+  const std::vector<glm::vec3>& box_points = translucent_points.empty() ? all_points : translucent_points;
+  translucent_lower_ = glm::vec3(1e30f), translucent_upper_ = glm::vec3(-1e30f);
+  for (const glm::vec3& p : box_points)
+    translucent_lower_ = glm::min(translucent_lower_, p), translucent_upper_ = glm::max(translucent_upper_, p);
+  if (box_points.empty()) translucent_lower_ = translucent_upper_ = glm::vec3(0.0f);
   if (!deforming_.empty()) {  // sampled over time: a little margin for the instants between samples
     scene_bounds_.radius *= 1.02f;
     translucent_bounds_.radius *= 1.02f;
+    const glm::vec3 margin = 0.01f * (translucent_upper_ - translucent_lower_);
+    translucent_lower_ -= margin, translucent_upper_ += margin;
   }
   // blobs_ follows `order`, so translucent blobs come first, as draw_translucent() expects.
 

@@ -40,6 +40,20 @@ class SceneGpu {
   void update(double seconds, gpu::GpuTimer* timer);
 
   BoundingSphere translucent_bounds() const { return translucent_bounds_; }  // all bounds if none translucent
+  // Axis-aligned box of the translucent objects, conservative over the animation like translucent_bounds().
+  glm::vec3 translucent_lower() const { return translucent_lower_; }
+  glm::vec3 translucent_upper() const { return translucent_upper_; }
+  // The shared geometry, for passes that read triangles in compute shaders (voxel-paths' voxelizer): vertices
+  // (shader::VertexGPU, updated every frame for deforming objects), indices, and each translucent mesh's range
+  // of indices (blob surfaces are not in these buffers).
+  struct MeshRange {
+    std::uint32_t object;       // index into Scene::objects
+    std::uint32_t first_index;  // into index_buffer()
+    std::uint32_t index_count;
+  };
+  GLuint vertex_buffer() const { return vertex_buffer_; }
+  GLuint index_buffer() const { return index_buffer_; }
+  const std::vector<MeshRange>& translucent_meshes() const { return translucent_meshes_; }
   BoundingSphere scene_bounds() const { return scene_bounds_; }
   bool has_translucent() const { return translucent_index_count_ > 0 || translucent_blob_count_ > 0; }
   std::size_t gpu_memory_bytes() const;
@@ -60,6 +74,8 @@ class SceneGpu {
   GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0, material_buffer_ = 0, object_buffer_ = 0;
   GLsizei translucent_index_count_ = 0, index_count_ = 0;
   BoundingSphere translucent_bounds_, scene_bounds_;
+  glm::vec3 translucent_lower_{0.0f}, translucent_upper_{0.0f};
+  std::vector<MeshRange> translucent_meshes_;
 };
 
 }  // namespace lucent::render

@@ -16,6 +16,7 @@
 #include "methods/voxel_paths/relaxation_solver.h"
 #include "methods/voxel_paths/voxel_dijkstra.h"
 #include "methods/voxel_paths/voxelizer.h"
+#include "render/scene_gpu.h"
 
 namespace {
 
@@ -457,6 +458,43 @@ TEST(VoxelPaths, PointLightCubeFacesScatterLikeItsFrustum) {
              frustum, cube, cube / frustum);
   EXPECT_GT(frustum, 0.02);
   EXPECT_NEAR(cube / frustum, 1.0, 0.03);
+}
+
+}  // namespace
+
+namespace {
+
+// Deforming objects: voxel-paths voxelizes the renderer's own vertex buffer, which SceneGpu deforms every frame.
+// The labels from it at time t equal, voxel for voxel, those of the CPU triangles of scene_at_time(t) (the same
+// deformation code, so the same float positions), and the labels at two instants differ.
+TEST(VoxelPaths, DeformingObjectVoxelizesAsItIsThisFrame) {
+  lucent::test::ensure_gl_context();
+  const lucent::Scene scene = lucent::load_scene(std::string(LUCENT_SCENES_DIR) + "/deforming_inclusion.json");
+  lucent::render::SceneGpu scene_gpu(scene);
+  TriangleSource source{scene_gpu.vertex_buffer(), scene_gpu.index_buffer(), {}};
+  for (const auto& mesh : scene_gpu.translucent_meshes())
+    source.objects.push_back({mesh.first_index, mesh.index_count, mesh.object + 1});
+  ASSERT_EQ(source.objects.size(), 1u);
+  const VoxelGrid grid = grid_around(scene_gpu.translucent_lower(), scene_gpu.translucent_upper(), 48, 2);
+  Voxelizer voxelizer;
+  std::vector<std::vector<std::uint32_t>> at_time;
+  for (double t : {0.0, 0.75}) {
+    scene_gpu.update(t, nullptr);
+    voxelizer.voxelize(source, grid);
+    at_time.push_back(voxelizer.read_labels());
+    voxelizer.voxelize(gather_translucent_triangles(lucent::scene_at_time(scene, t)), grid);
+    const std::vector<std::uint32_t> cpu = voxelizer.read_labels();
+    std::size_t different = 0;
+    for (std::size_t i = 0; i < cpu.size(); ++i) different += cpu[i] != at_time.back()[i] ? 1 : 0;
+    fmt::print("t = {}: {} voxels inside, {} differ from the CPU triangles of scene_at_time\n", t,
+               inside_count(at_time.back()), different);
+    EXPECT_EQ(different, 0u) << "t = " << t;
+    EXPECT_GT(inside_count(at_time.back()), 1000u);
+  }
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < at_time[0].size(); ++i) moved += at_time[0][i] != at_time[1][i] ? 1 : 0;
+  fmt::print("{} voxels change between t = 0 and t = 0.75 s\n", moved);
+  EXPECT_GT(moved, inside_count(at_time[0]) / 20);
 }
 
 }  // namespace

@@ -16,13 +16,14 @@
 namespace lucent::methods::voxel_paths {
 
 // Storage-buffer binding points of the voxel-paths shaders (passed to them as #defines, see shader_defines()).
-inline constexpr int kBindingTriangles = 8;  // vec4[3 * triangles], xyz world position; w: label of the object
+inline constexpr int kBindingTriangles = 8;  // shader::VertexGPU per vertex (the scene's vertex buffer)
 inline constexpr int kBindingFlips = 9;      // uint per voxel: parity of the crossings entering at that voxel
 inline constexpr int kBindingLabels = 10;    // uint per voxel: 0 outside, object index + 1 inside
 inline constexpr int kBindingDistances = 11;  // vec4 per voxel: rgb optical path length n(v) per band
 inline constexpr int kBindingSigmaT = 12;     // vec4 per voxel: rgb edge-cost coefficient [1/scene unit]
 inline constexpr int kBindingChanged = 13;    // uint: set to 1 by a relaxation that lowered a distance
 inline constexpr int kBindingFieldMaterials = 14;  // shader::FieldMaterialGPU per label
+inline constexpr int kBindingIndices = 15;         // uint per triangle corner: indices into the vertices
 inline constexpr int kTextureVolume = 15;          // texture unit: R32F 3D texture of the scene's volume field
 
 // Distances at or above this are "not reached" (outside voxels, or no path from a lit voxel).

@@ -47,12 +47,16 @@ class VoxelPaths final : public Method {
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
         triangles_(checked_triangles(scene, params_.text("extinction") == "sigma_tr")),
-        grid_(grid_around(triangles_.lower, triangles_.upper, params_.integer("resolution"), kPaddingVoxels)),
+        grid_(grid_around(scene_gpu.translucent_lower(), scene_gpu.translucent_upper(), params_.integer("resolution"),
+                          kPaddingVoxels)),
+        source_{scene_gpu.vertex_buffer(), scene_gpu.index_buffer(), {}},
         flux_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_flux.comp", shader_defines())),
         distances_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_distances.comp", shader_defines())),
         radiance_program_(gpu::ShaderProgram::compute("voxel_paths/radiance.comp", shader_defines())),
         shade_program_(gpu::ShaderProgram::compute("voxel_paths/shade.comp",
                                                    render::light_sampling_defines(scene) + shader_defines())) {
+    for (const render::SceneGpu::MeshRange& mesh : scene_gpu.translucent_meshes())
+      source_.objects.push_back({mesh.first_index, mesh.index_count, mesh.object + 1});
     const GLsizei r = grid_.resolution;
     glCreateBuffers(1, &flux_);
     glNamedBufferData(flux_, static_cast<GLsizeiptr>(grid_.voxel_count() * 12), nullptr, GL_DYNAMIC_DRAW);
@@ -102,7 +106,7 @@ class VoxelPaths final : public Method {
     light_gbuffer_.render(context.scene_gpu, context.timer);
     gpu::DebugGroup group("voxel_paths");
     context.timer.begin("voxelize");
-    voxelizer_.voxelize(triangles_, grid_);
+    voxelizer_.voxelize(source_, grid_);
     context.timer.end();
     context.timer.begin("voxel_field");
     field_.fill(grid_, voxelizer_.labels_buffer(), triangles_);
@@ -195,6 +199,7 @@ class VoxelPaths final : public Method {
   render::LightGBuffer light_gbuffer_;
   TranslucentTriangles triangles_;
   VoxelGrid grid_;
+  TriangleSource source_;  // the renderer's own vertex and index buffers (deformed in place every frame)
   Voxelizer voxelizer_;
   CoefficientField field_;
   RelaxationSolver solver_;

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "gpu/gl_debug.h"
+#include "shared/shader_io.h"
 
 namespace lucent::methods::voxel_paths {
 namespace {
@@ -21,44 +22,62 @@ GLuint make_buffer(const char* label) {
 Voxelizer::Voxelizer()
     : triangles_program_(gpu::ShaderProgram::compute("voxel_paths/voxelize_triangles.comp", shader_defines())),
       scan_program_(gpu::ShaderProgram::compute("voxel_paths/voxelize_scan.comp", shader_defines())),
-      triangles_(make_buffer("voxel-paths triangles")),
+      vertices_(make_buffer("voxel-paths uploaded vertices")),
+      indices_(make_buffer("voxel-paths uploaded indices")),
       flips_(make_buffer("voxel-paths flips")),
       labels_(make_buffer("voxel-paths labels")) {}
 
 Voxelizer::~Voxelizer() {
-  GLuint buffers[] = {triangles_, flips_, labels_};
-  glDeleteBuffers(3, buffers);
+  GLuint buffers[] = {vertices_, indices_, flips_, labels_};
+  glDeleteBuffers(4, buffers);
 }
 
 void Voxelizer::voxelize(const TranslucentTriangles& triangles, const VoxelGrid& grid) {
+  std::vector<shader::VertexGPU> vertices(triangles.corners.size());
+  std::vector<std::uint32_t> indices(triangles.corners.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    vertices[i] = {triangles.corners[i] - glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f)};  // w: object index
+    indices[i] = static_cast<std::uint32_t>(i);
+  }
+  glNamedBufferData(vertices_, static_cast<GLsizeiptr>(std::max<std::size_t>(1, vertices.size()) * sizeof(shader::VertexGPU)),
+                    vertices.empty() ? nullptr : vertices.data(), GL_DYNAMIC_DRAW);
+  glNamedBufferData(indices_, static_cast<GLsizeiptr>(std::max<std::size_t>(1, indices.size()) * 4),
+                    indices.empty() ? nullptr : indices.data(), GL_DYNAMIC_DRAW);
+  TriangleSource source{vertices_, indices_, {}};
+  for (const TranslucentTriangles::Range& object : triangles.objects)
+    source.objects.push_back({3 * object.first_triangle, 3 * object.triangle_count, object.label});
+  voxelize(source, grid);
+}
+
+void Voxelizer::voxelize(const TriangleSource& source, const VoxelGrid& grid) {
   gpu::DebugGroup group("voxelize");
-  // Upload; the voxel buffers are reallocated only when the resolution changes.
-  glNamedBufferData(triangles_, static_cast<GLsizeiptr>(std::max<std::size_t>(1, triangles.corners.size()) * 16),
-                    triangles.corners.empty() ? nullptr : triangles.corners.data(), GL_DYNAMIC_DRAW);
+  // The voxel buffers are reallocated only when the resolution changes.
   if (grid.voxel_count() != voxel_count_) {
     voxel_count_ = grid.voxel_count();
     glNamedBufferData(flips_, static_cast<GLsizeiptr>(voxel_count_ * 4), nullptr, GL_DYNAMIC_DRAW);
     glNamedBufferData(labels_, static_cast<GLsizeiptr>(voxel_count_ * 4), nullptr, GL_DYNAMIC_DRAW);
   }
-  bytes_ = voxel_count_ * 8 + triangles.corners.size() * 16;
+  bytes_ = voxel_count_ * 8;
   const GLuint zero = 0;
   glClearNamedBufferData(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingTriangles, triangles_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingTriangles, source.vertices);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingIndices, source.indices);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingFlips, flips_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingLabels, labels_);
   const auto r = static_cast<GLuint>(grid.resolution);
-  for (const TranslucentTriangles::Range& object : triangles.objects) {
+  for (const TriangleSource::Range& object : source.objects) {
     // Crossings of this object's surface, then parity up each column.
     glClearNamedBufferData(flips_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     GLuint p = triangles_program_.id();
     glUseProgram(p);
-    glUniform1ui(glGetUniformLocation(p, "u_first_triangle"), object.first_triangle);
-    glUniform1ui(glGetUniformLocation(p, "u_triangle_count"), object.triangle_count);
+    const GLuint triangle_count = object.index_count / 3;
+    glUniform1ui(glGetUniformLocation(p, "u_first_index"), object.first_index);
+    glUniform1ui(glGetUniformLocation(p, "u_triangle_count"), triangle_count);
     glUniform3fv(glGetUniformLocation(p, "u_origin"), 1, &grid.origin.x);
     glUniform1f(glGetUniformLocation(p, "u_voxel_size"), grid.voxel_size);
     glUniform1i(glGetUniformLocation(p, "u_resolution"), grid.resolution);
-    glDispatchCompute((object.triangle_count + 63) / 64, 1, 1);
+    glDispatchCompute((triangle_count + 63) / 64, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     p = scan_program_.id();
     glUseProgram(p);

@@ -1,5 +1,5 @@
 // voxelizer.h: solid voxelization of the translucent objects on the GPU by parity counting along z
-// (shaders/voxel_paths/voxelize_triangles.comp, voxelize_scan.comp). Objects must be closed meshes; where they
+// (shaders/voxel_paths/voxelize_triangles.comp, voxelize_scan.comp), from triangles already on the GPU. Objects must be closed meshes; where they
 // overlap, the later object's label wins. Cost: one invocation per triangle over the columns its projection
 // covers, then one per column; no rasterization, so no conservative-raster or MSAA requirement.
 #pragma once
@@ -13,6 +13,18 @@
 
 namespace lucent::methods::voxel_paths {
 
+// Triangles to voxelize, read in place on the GPU: shader::VertexGPU vertices, uint indices, one range of
+// indices per object with the label its inside voxels get. The renderer's SceneGpu buffers (deforming objects
+// included: their vertices are updated there every frame) or an upload of TranslucentTriangles.
+struct TriangleSource {
+  GLuint vertices = 0;
+  GLuint indices = 0;
+  struct Range {
+    std::uint32_t first_index, index_count, label;
+  };
+  std::vector<Range> objects;
+};
+
 class Voxelizer {
  public:
   Voxelizer();
@@ -20,7 +32,9 @@ class Voxelizer {
   Voxelizer(const Voxelizer&) = delete;
   Voxelizer& operator=(const Voxelizer&) = delete;
 
-  // Uploads the triangles and labels every voxel of `grid` (0 outside, object index + 1).
+  // Labels every voxel of `grid` (0 outside, the object's label inside).
+  void voxelize(const TriangleSource& source, const VoxelGrid& grid);
+  // Uploads CPU triangles (labels: object index + 1) and voxelizes them.
   void voxelize(const TranslucentTriangles& triangles, const VoxelGrid& grid);
 
   GLuint labels_buffer() const { return labels_; }    // uint per voxel
@@ -29,7 +43,7 @@ class Voxelizer {
 
  private:
   gpu::ShaderProgram triangles_program_, scan_program_;
-  GLuint triangles_ = 0, flips_ = 0, labels_ = 0;
+  GLuint vertices_ = 0, indices_ = 0, flips_ = 0, labels_ = 0;
   std::size_t voxel_count_ = 0, bytes_ = 0;
 };
 
