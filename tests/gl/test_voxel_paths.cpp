@@ -498,3 +498,44 @@ TEST(VoxelPaths, DeformingObjectVoxelizesAsItIsThisFrame) {
 }
 
 }  // namespace
+
+namespace {
+
+// Camera moves reuse the solved radiance volume: the second frame of a renderer whose camera moved runs only the
+// shading pass (no relax step in its timings) and gives the same image, bit for bit, as a fresh renderer that
+// solves for the moved camera; a time change of an animated scene solves again.
+TEST(VoxelPaths, CameraMovesReuseTheSolvedVolume) {
+  lucent::test::ensure_gl_context();
+  lucent::Scene scene = side_lit_sphere(R"({"name": "voxel-paths", "resolution": 32, "light_map_size": 256})");
+  lucent::Camera moved = scene.camera;
+  moved.eye = glm::vec3(2.0f, 1.0f, 5.5f);
+  lucent::OffscreenFramebuffer framebuffer(64, 64);
+  auto has_relax = [](const lucent::Renderer& r) {
+    for (const lucent::StepTiming& step : r.timings().passes)
+      if (step.name == "relax") return true;
+    return false;
+  };
+  lucent::Renderer reused(scene);
+  reused.render(scene.camera, {framebuffer.id(), 64, 64});
+  EXPECT_TRUE(has_relax(reused));
+  reused.render(moved, {framebuffer.id(), 64, 64});
+  EXPECT_FALSE(has_relax(reused));
+  const lucent::ImageRGBA32F second = reused.read_radiance();
+  lucent::Renderer fresh(scene);
+  fresh.render(moved, {framebuffer.id(), 64, 64});
+  const lucent::ImageRGBA32F expected = fresh.read_radiance();
+  ASSERT_EQ(second.pixels.size(), expected.pixels.size());
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < expected.pixels.size(); ++i) different += second.pixels[i] != expected.pixels[i] ? 1 : 0;
+  EXPECT_EQ(different, 0u);
+
+  lucent::Scene animated = lucent::load_scene(std::string(LUCENT_SCENES_DIR) + "/deforming_inclusion.json",
+                                              {"method.resolution=32", "method.light_map_size=128"});
+  lucent::Renderer r(animated);
+  r.render(animated.camera, {framebuffer.id(), 64, 64});
+  r.set_time(0.5);
+  r.render(animated.camera, {framebuffer.id(), 64, 64});
+  EXPECT_TRUE(has_relax(r));
+}
+
+}  // namespace

@@ -94,7 +94,10 @@ class VoxelPaths final : public Method {
   }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
-    (void)restart;
+    // The radiance volume depends on geometry, lights, materials and time, not on the camera: it is solved
+    // again only when something else changed (restart: a new time of an animated scene; other edits rebuild the
+    // method), so camera moves cost the shading pass alone.
+    solve_needed_ = solve_needed_ || restart;
     frame.counts = glm::ivec4(0, 0, 1, 3);  // z: unused; w: shadow taps of the direct shading
     light_gbuffer_.fill_frame(frame);
     frame.biases.w = static_cast<float>(params_.number("roughness"));
@@ -103,6 +106,14 @@ class VoxelPaths final : public Method {
   }
 
   void render(const FrameContext& context) override {
+    if (!solve_needed_) {
+      gpu::DebugGroup group("voxel_paths");
+      context.timer.begin("voxel_shade");
+      shade(context);
+      context.timer.end();
+      return;
+    }
+    solve_needed_ = false;
     light_gbuffer_.render(context.scene_gpu, context.timer);
     gpu::DebugGroup group("voxel_paths");
     context.timer.begin("voxelize");
@@ -209,6 +220,7 @@ class VoxelPaths final : public Method {
   gpu::FrameCounters counters_;
   RelaxationStats stats_;
   int width_ = 0, height_ = 0;
+  bool solve_needed_ = true;
 };
 
 }  // namespace
