@@ -1,0 +1,194 @@
+// scene_sections.cpp: camera, lights, materials, method and render editors of the viewer panel.
+#include "viewer/scene_sections.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include "lucent/material.h"
+#include "methods/method.h"
+#include "viewer/direction_widget.h"
+#include "viewer/param_widgets.h"
+
+namespace lucent::viewer {
+namespace {
+
+// A light's RGB as a colour (max component 1) times an intensity, for a colour picker and a scalar.
+bool colour_and_intensity(const char* label, glm::vec3& rgb, const char* intensity_label, float speed) {
+  float intensity = std::max({rgb.r, rgb.g, rgb.b});
+  glm::vec3 colour = intensity > 0.0f ? rgb / intensity : glm::vec3(1.0f);
+  bool changed = ImGui::ColorEdit3(label, &colour.x, ImGuiColorEditFlags_Float);
+  changed |= ImGui::DragFloat(intensity_label, &intensity, speed, 0.0f, 1e9f, "%.4g", ImGuiSliderFlags_Logarithmic);
+  if (changed) rgb = colour * std::max(intensity, 0.0f);
+  return changed;
+}
+
+bool directional_light(DirectionalLight& light, const Camera& view) {
+  bool changed = direction_sphere("##sphere", light.direction, view, 110.0f);
+  glm::vec2 angles = azimuth_elevation_deg(light.direction);
+  if (ImGui::DragFloat2("azimuth, elevation [deg]", &angles.x, 0.5f, -180.0f, 180.0f, "%.1f")) {
+    angles.y = std::clamp(angles.y, -90.0f, 90.0f);
+    light.direction = travel_from_azimuth_elevation(angles);
+    changed = true;
+  }
+  ImGui::TextDisabled("travels along [%.3f, %.3f, %.3f]", light.direction.x, light.direction.y, light.direction.z);
+  const ParamDecl* radiance = find_scene_param("lights[]", "radiance");
+  std::string unit = radiance ? fmt::format("radiance [{}]", radiance->unit) : "radiance";
+  changed |= colour_and_intensity("colour", light.radiance, unit.c_str(), 0.02f);
+  return changed;
+}
+
+bool point_light(PointLight& light, const Camera& view) {
+  bool changed = scene_vec3("lights[]", "position", light.position);
+  const ParamDecl* intensity = find_scene_param("lights[]", "intensity");
+  std::string unit = intensity ? fmt::format("intensity [{}]", intensity->unit) : "intensity";
+  changed |= colour_and_intensity("colour", light.intensity, unit.c_str(), 1e-4f);
+  if (light.spot) {
+    changed |= direction_sphere("##spot", light.direction, view, 90.0f);
+    changed |= scene_float("lights[]", "inner_deg", light.inner_deg, 0.2f);
+    changed |= scene_float("lights[]", "outer_deg", light.outer_deg, 0.2f);
+    light.inner_deg = std::min(light.inner_deg, light.outer_deg);
+  }
+  return changed;
+}
+
+bool material_editor(Material& m) {
+  bool changed = false;
+  if (ImGui::BeginCombo("preset", m.name.c_str())) {
+    for (const MaterialPreset& preset : material_presets()) {
+      if (ImGui::Selectable(preset.name, m.name == preset.name)) {
+        BssrdfModel model = m.model;
+        m = material_from_preset(preset);
+        m.model = model;
+        changed = true;
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s%s%s", preset.source, *preset.note ? "\n" : "", preset.note);
+    }
+    ImGui::EndCombo();
+  }
+  bool coefficients = scene_vec3("objects[].material", "sigma_a", m.sigma_a, 1e-3f);
+  coefficients |= scene_vec3("objects[].material", "sigma_s", m.sigma_s, 1e-2f);
+  coefficients |= scene_vec3("objects[].material", "g", m.g, 1e-3f);
+  m.sigma_a = glm::max(m.sigma_a, glm::vec3(0.0f));
+  m.sigma_s = glm::max(m.sigma_s, glm::vec3(0.0f));
+  m.g = glm::clamp(m.g, glm::vec3(-0.99f), glm::vec3(0.99f));
+  if (coefficients) m.name = "custom";
+  changed |= coefficients;
+  changed |= scene_float("objects[].material", "eta", m.eta, 0.002f);
+  const ParamDecl* model = find_scene_param("objects[].material", "model");
+  if (model) {
+    ParamValues values;
+    values.set("model", std::string(to_string(m.model)));
+    if (param_widget(*model, values)) {
+      m.model = parse_bssrdf_model(values.text("model")).value_or(m.model);
+      changed = true;
+    }
+  }
+  glm::vec3 sigma_s_prime = m.sigma_s_prime();
+  glm::vec3 albedo = sigma_s_prime / glm::max(m.sigma_a + sigma_s_prime, glm::vec3(1e-12f));
+  ImGui::TextDisabled("sigma_s' [%.3g %.3g %.3g] mm^-1, albedo' [%.3f %.3f %.3f]", sigma_s_prime.x, sigma_s_prime.y,
+                      sigma_s_prime.z, albedo.x, albedo.y, albedo.z);
+  return changed;
+}
+
+}  // namespace
+
+void camera_section(ViewerSession& session) {
+  OrbitCamera& camera = session.camera();
+  float fov = camera.camera().fov_y_deg;
+  if (scene_float("camera", "fov_y_deg", fov, 0.2f)) camera.set_fov(fov);
+  if (ImGui::Button("reset camera (R)")) camera.reset();
+  ImGui::SameLine();
+  std::string readout = camera_readout(camera.camera());
+  if (ImGui::Button("copy")) ImGui::SetClipboardText(readout.c_str());
+  ImGui::SameLine();
+  ImGui::TextDisabled("distance %.3g", camera.distance());
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(readout.c_str());
+  ImGui::PopTextWrapPos();
+}
+
+void lights_section(ViewerSession& session) {
+  Scene& scene = session.edit();
+  const Camera& view = session.camera().camera();
+  bool changed = false;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    DirectionalLight& light = scene.lights[i];
+    if (!light.specular) continue;  // sampled from the environment map
+    ImGui::PushID(static_cast<int>(i));
+    if (ImGui::TreeNodeEx("light", ImGuiTreeNodeFlags_DefaultOpen, "directional light %zu", i)) {
+      changed |= directional_light(light, view);
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+  for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
+    PointLight& light = scene.point_lights[i];
+    ImGui::PushID(static_cast<int>(1000 + i));
+    if (ImGui::TreeNodeEx("light", ImGuiTreeNodeFlags_DefaultOpen, "%s light %zu", light.spot ? "spot" : "point", i)) {
+      changed |= point_light(light, view);
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+  if (scene.environment)
+    ImGui::TextDisabled("environment %s: %d lights", scene.environment->file.c_str(), scene.environment->light_count);
+  if (changed) session.edited();
+}
+
+void materials_section(ViewerSession& session) {
+  Scene& scene = session.edit();
+  bool changed = false;
+  float scale = scene.scale_mm;
+  if (scene_float("scene", "scale_mm", scale, 0.05f)) scene.scale_mm = std::max(scale, 1e-6f), changed = true;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    SceneObject& object = scene.objects[i];
+    ImGui::PushID(static_cast<int>(i));
+    std::string title = fmt::format("{} ({})", object.name, object.material ? object.material->name : "opaque");
+    if (ImGui::TreeNodeEx("object", object.material ? ImGuiTreeNodeFlags_DefaultOpen : 0, "%s", title.c_str())) {
+      if (object.material) changed |= material_editor(*object.material);
+      else changed |= scene_vec3("objects[]", "albedo", object.albedo, 0.005f);
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+  if (changed) session.edited();
+}
+
+void method_section(ViewerSession& session) {
+  Scene& scene = session.edit();
+  if (ImGui::BeginCombo("method", scene.method.c_str())) {
+    std::string chosen;
+    for (const methods::MethodInfo& method : methods::method_registry()) {
+      if (ImGui::Selectable(std::string(method.name).c_str(), method.name == scene.method)) chosen = method.name;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(method.summary).c_str());
+    }
+    ImGui::EndCombo();
+    if (!chosen.empty()) session.set_method(chosen);
+  }
+  for (const ParamSection& section : scene_param_sections())
+    if (section.name == scene.method && param_section_widgets(section, scene.method_params)) session.edited();
+}
+
+void render_section(ViewerSession& session) {
+  Scene& scene = session.edit();
+  bool changed = scene_float("render", "exposure", scene.render.exposure, 0.05f);
+  const ParamDecl* tonemap = find_scene_param("render", "tonemap");
+  if (tonemap) {
+    static const char* kNames[] = {"linear", "reinhard", "aces"};  // ToneMapOperator order
+    ParamValues values;
+    values.set("tonemap", std::string(kNames[static_cast<int>(scene.render.tonemap)]));
+    if (param_widget(*tonemap, values)) {
+      for (int i = 0; i < 3; ++i)
+        if (values.text("tonemap") == kNames[i]) scene.render.tonemap = static_cast<ToneMapOperator>(i);
+      changed = true;
+    }
+  }
+  changed |= scene_vec3("render", "background", scene.render.background, 0.005f);
+  int seed = static_cast<int>(scene.render.seed);
+  if (ImGui::DragInt("seed", &seed, 1.0f, 0, 1 << 30)) scene.render.seed = static_cast<unsigned>(std::max(seed, 0)), changed = true;
+  if (changed) session.edited();
+}
+
+}  // namespace lucent::viewer

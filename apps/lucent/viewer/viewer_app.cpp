@@ -1,0 +1,262 @@
+// viewer_app.cpp: the window loop: input -> orbit camera, panel, one renderer frame into an offscreen
+// framebuffer shown right of the panel, file actions, reload on change.
+#include "viewer/viewer_app.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+#include <epoxy/gl.h>
+// epoxy before GLFW, so that GLFW does not include the system GL header.
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "lucent/lucent.h"
+#include "lucent/scene_writer.h"
+#include "viewer/viewer_panel.h"
+#include "viewer/viewer_session.h"
+
+namespace lucent::viewer {
+namespace {
+
+constexpr int kMinWindowHeight = 480;  // [pixels] room for the panel
+
+void ensure_parent_directory(const std::string& path) {
+  auto parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
+// The rendered view: PNG tone-mapped, EXR linear radiance.
+void write_view(const Renderer& renderer, const std::string& path) {
+  ensure_parent_directory(path);
+  if (std::filesystem::path(path).extension() == ".exr") write_exr(path, renderer.read_radiance());
+  else write_png(path, renderer.read_display());
+}
+
+// The whole window (framebuffer 0, back buffer), before the swap.
+void write_window(const std::string& path, int width, int height) {
+  ImageRGBA8 image{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
+  std::vector<std::uint8_t> rows(image.pixels.size());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  for (int y = 0; y < height; ++y)
+    std::copy_n(&rows[static_cast<std::size_t>(height - 1 - y) * width * 4], static_cast<std::size_t>(width) * 4, image.at(0, y));
+  for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+  ensure_parent_directory(path);
+  write_png(path, image);
+}
+
+// ImGui on a GLFW window with its OpenGL 3 backend; no imgui.ini written.
+class ImGuiLayer {
+ public:
+  explicit ImGuiLayer(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 0.0f;
+    if (!ImGui_ImplGlfw_InitForOpenGL(window, true) || !ImGui_ImplOpenGL3_Init("#version 450"))
+      throw Error("viewer: Dear ImGui cannot initialise its GLFW or OpenGL 3 backend");
+  }
+  ~ImGuiLayer() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  ImGuiLayer(const ImGuiLayer&) = delete;
+  ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+  void begin_frame() {
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+  }
+  void draw() {
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  }
+};
+
+// Mouse drags that start over the view move the camera until released; the panel keeps its own drags.
+class CameraInput {
+ public:
+  void update(OrbitCamera& camera, float view_left, float view_height) {
+    ImGuiIO& io = ImGui::GetIO();
+    bool over_view = io.MousePos.x >= view_left && !io.WantCaptureMouse;
+    for (int button = 0; button < 3; ++button) {
+      if (ImGui::IsMouseClicked(button) && over_view) drag_button_ = button;
+    }
+    if (drag_button_ >= 0 && !ImGui::IsMouseDown(drag_button_)) drag_button_ = -1;
+    if (drag_button_ >= 0 && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+      bool pan = drag_button_ != 0 || io.KeyShift;
+      if (pan) camera.pan(io.MouseDelta.x, io.MouseDelta.y, view_height);
+      else camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
+    }
+    if (over_view && io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+    if (!io.WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_R, false)) camera.reset();
+  }
+
+ private:
+  int drag_button_ = -1;
+};
+
+bool same_camera(const Camera& a, const Camera& b) {
+  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
+}
+
+// The view's size before the window exists: the options, else the scene's render size. A scene that does not
+// load is an error with `frames` (like `lucent render`), else the window opens and shows the message.
+glm::ivec2 initial_view_size(const ViewerOptions& o) {
+  glm::ivec2 size(640, 480);
+  try {
+    Scene scene = o.scene_path.empty() ? default_scene(o.sets) : load_scene(o.scene_path, o.sets);
+    size = {scene.render.width, scene.render.height};
+  } catch (const Error&) {
+    if (o.frames > 0) throw;
+  }
+  if (o.width) size.x = *o.width;
+  if (o.height) size.y = *o.height;
+  if (size.x < 1 || size.y < 1) throw Error(fmt::format("view size {}x{} is empty", size.x, size.y));
+  return size;
+}
+
+class ViewerApp {
+ public:
+  explicit ViewerApp(const ViewerOptions& o) : options_(o), session_(o.scene_path, o.sets) {
+    view_ = initial_view_size(o);
+    std::string title = "lucent view: " + (o.scene_path.empty() ? std::string("built-in default scene") : o.scene_path);
+    window_ = create_window_context(o.panel_width + view_.x, std::max(view_.y, kMinWindowHeight), title);
+    glfwSwapInterval(o.frames > 0 ? 0 : 1);
+    glfwGetFramebufferSize(window_->window(), &framebuffer_.x, &framebuffer_.y);
+    imgui_ = std::make_unique<ImGuiLayer>(window_->window());
+    state_.screenshot_path = o.screenshot.empty() ? state_.screenshot_path : o.screenshot;
+    session_.load(/*strict=*/o.frames > 0);
+  }
+
+  void run() {
+    auto last = std::chrono::steady_clock::now();
+    for (int frame = 0; !glfwWindowShouldClose(window_->window()); ++frame) {
+      if (options_.frames > 0 && frame == options_.frames) break;
+      glfwPollEvents();
+      if (options_.frames == 0) session_.reload_if_changed();
+      follow_window_size();
+      imgui_->begin_frame();
+      input_.update(session_.camera(), static_cast<float>(options_.panel_width), static_cast<float>(view_.y));
+      if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
+        glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
+      bool screenshot_key = !ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_P, false);
+      state_.view_width = view_.x, state_.view_height = view_.y;
+      PanelActions actions = draw_panel(session_, state_, static_cast<float>(options_.panel_width),
+                                        static_cast<float>(framebuffer_.y));
+      render_scene();
+      present();
+      imgui_->draw();
+      actions.screenshot |= screenshot_key;
+      handle(actions);
+      if (options_.frames > 0 && frame + 1 == options_.frames && !options_.screenshot_window.empty())
+        write_window(options_.screenshot_window, framebuffer_.x, framebuffer_.y);
+      window_->swap_buffers();
+      auto now = std::chrono::steady_clock::now();
+      double seconds = std::chrono::duration<double>(now - last).count();
+      last = now;
+      if (seconds > 0.0) state_.frames_per_second = 0.9 * state_.frames_per_second + 0.1 / seconds;
+    }
+    if (options_.frames > 0) finish_batch();
+  }
+
+ private:
+  // A window resized by the user: the view takes all of it right of the panel.
+  void follow_window_size() {
+    glm::ivec2 size;
+    glfwGetFramebufferSize(window_->window(), &size.x, &size.y);
+    if (size == framebuffer_ || size.x <= 0 || size.y <= 0) return;
+    framebuffer_ = size;
+    view_ = glm::max(glm::ivec2(size.x - options_.panel_width, size.y), glm::ivec2(1));
+  }
+
+  // One renderer frame, unless it has converged (`stop after frames`) and the camera has not moved.
+  void render_scene() {
+    if (!target_ || target_size_ != view_) target_ = std::make_unique<OffscreenFramebuffer>(view_.x, view_.y), target_size_ = view_, rendered_ = false;
+    Renderer* renderer = session_.renderer();
+    bool converged = renderer && state_.stop_after_frames > 0 && renderer->accumulated_frames() >= state_.stop_after_frames;
+    bool camera_moved = !same_camera(session_.camera().camera(), last_camera_);
+    if (converged && !camera_moved && rendered_ && renderer == last_renderer_ && !session_.pending()) return;
+    session_.render({target_->id(), view_.x, view_.y});
+    last_camera_ = session_.camera().camera();
+    last_renderer_ = session_.renderer();
+    rendered_ = session_.renderer() != nullptr;
+  }
+
+  // The view right of the panel, top-aligned; the rest dark.
+  void present() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, framebuffer_.x, framebuffer_.y);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (!rendered_) return;
+    int x0 = options_.panel_width, y0 = framebuffer_.y - view_.y;
+    glBlitNamedFramebuffer(target_->id(), 0, 0, 0, view_.x, view_.y, x0, y0, x0 + view_.x, y0 + view_.y,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+
+  void handle(const PanelActions& actions) {
+    try {
+      if (actions.screenshot) {
+        if (!session_.renderer()) throw Error("screenshot: nothing rendered");
+        write_view(*session_.renderer(), state_.screenshot_path);
+        state_.status = "wrote " + state_.screenshot_path;
+      }
+      if (actions.save_scene) {
+        save_scene(session_.scene_for_saving(view_.x, view_.y), state_.scene_save_path);
+        state_.status = fmt::format("wrote {} (lucent render {} reproduces the view)", state_.scene_save_path,
+                                    state_.scene_save_path);
+      }
+      if (actions.reload) session_.load();
+    } catch (const Error& e) {
+      state_.status.clear();
+      session_.set_error(e.what());
+    } catch (const std::filesystem::filesystem_error& e) {
+      state_.status.clear();
+      session_.set_error(e.what());
+    }
+  }
+
+  void finish_batch() {
+    if (!session_.renderer() || !session_.error().empty())
+      throw Error(session_.error().empty() ? "nothing rendered" : session_.error());
+    if (!options_.screenshot.empty()) write_view(*session_.renderer(), options_.screenshot);
+    if (!options_.save_scene.empty()) save_scene(session_.scene_for_saving(view_.x, view_.y), options_.save_scene);
+    fmt::print("{}: {}x{}, {} frame(s) accumulated{}{}\n", session_.scene_path().empty() ? "<built-in default scene>" : session_.scene_path(),
+               view_.x, view_.y, session_.renderer()->accumulated_frames(),
+               options_.screenshot.empty() ? "" : " -> " + options_.screenshot,
+               options_.screenshot_window.empty() ? "" : ", window -> " + options_.screenshot_window);
+  }
+
+  // Declared so that GL objects (target, renderer) go before ImGui, and ImGui before the window's context.
+  ViewerOptions options_;
+  std::unique_ptr<WindowContext> window_;
+  std::unique_ptr<ImGuiLayer> imgui_;
+  ViewerSession session_;
+  std::unique_ptr<OffscreenFramebuffer> target_;
+  glm::ivec2 view_{1}, target_size_{0}, framebuffer_{0};
+  PanelState state_;
+  CameraInput input_;
+  Camera last_camera_;
+  const Renderer* last_renderer_ = nullptr;
+  bool rendered_ = false;
+};
+
+}  // namespace
+
+void run_viewer(const ViewerOptions& options) {
+  ViewerApp app(options);
+  app.run();
+}
+
+}  // namespace lucent::viewer

@@ -1,0 +1,111 @@
+// viewer_panel.cpp: the side panel's layout, status readouts and file actions.
+#include "viewer/viewer_panel.h"
+
+#include <filesystem>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "viewer/scene_sections.h"
+
+namespace lucent::viewer {
+namespace {
+
+void error_box(const std::string& error) {
+  if (error.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(error.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::PopStyleColor();
+  ImGui::Separator();
+}
+
+void convergence_and_timings(ViewerSession& session, PanelState& state) {
+  Renderer* renderer = session.renderer();
+  if (!renderer) {
+    ImGui::TextDisabled("no scene rendered (see the error above)");
+    return;
+  }
+  const FrameTimings& t = renderer->timings();
+  ImGui::Text("%d frames accumulated, %dx%d", renderer->accumulated_frames(), state.view_width, state.view_height);
+  if (ImGui::Button("restart")) session.restart();
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::DragInt("stop after frames (0: never)", &state.stop_after_frames, 1.0f, 0, 1000000);
+  ImGui::Text("%.1f frames/s, GPU %.2f ms/frame, %.1f MiB", state.frames_per_second, t.total_ms,
+              static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0));
+  if (ImGui::TreeNode("GPU passes [ms]")) {
+    if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+      for (const StepTiming& pass : t.passes) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(pass.name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%8.3f", pass.ms);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::Text("BSSRDF samples %llu, translucent pixels %llu, map coverage %.1f%%",
+                static_cast<unsigned long long>(t.bssrdf_samples), static_cast<unsigned long long>(t.translucent_pixels),
+                100.0 * t.map_coverage);
+    ImGui::TextDisabled("%s", renderer->device().c_str());
+    ImGui::TreePop();
+  }
+}
+
+void replace_extension(std::string& path, const char* extension) {
+  path = std::filesystem::path(path).replace_extension(extension).string();
+}
+
+PanelActions files_section(ViewerSession& session, PanelState& state) {
+  PanelActions actions;
+  ImGui::InputText("##screenshot", &state.screenshot_path);
+  ImGui::SameLine();
+  if (ImGui::Button("PNG")) replace_extension(state.screenshot_path, ".png"), actions.screenshot = true;
+  ImGui::SameLine();
+  if (ImGui::Button("EXR")) replace_extension(state.screenshot_path, ".exr"), actions.screenshot = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("PNG: the tone-mapped view (P); EXR: linear radiance");
+  ImGui::InputText("##scene", &state.scene_save_path);
+  ImGui::SameLine();
+  actions.save_scene = ImGui::Button("save scene as");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the scene with this camera, size and frame count: `lucent render` of it reproduces the view");
+  if (!session.scene_path().empty()) {
+    actions.reload = ImGui::Button("reload");
+    ImGui::SameLine();
+    bool watch = session.watching();
+    if (ImGui::Checkbox("reload when the file changes", &watch)) session.set_watching(watch);
+  }
+  if (!state.status.empty()) ImGui::TextWrapped("%s", state.status.c_str());
+  return actions;
+}
+
+}  // namespace
+
+PanelActions draw_panel(ViewerSession& session, PanelState& state, float width, float height) {
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(width, height));
+  ImGui::Begin("lucent", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.48f);  // the rest for labels with units
+  ImGui::TextDisabled("%s", session.scene_path().empty() ? "<built-in default scene>" : session.scene_path().c_str());
+  error_box(session.error());
+  convergence_and_timings(session, state);
+  PanelActions actions;
+  if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) actions = files_section(session, state);
+  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) camera_section(session);
+  if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) lights_section(session);
+  if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) materials_section(session);
+  if (ImGui::CollapsingHeader("Method", ImGuiTreeNodeFlags_DefaultOpen)) method_section(session);
+  if (ImGui::CollapsingHeader("Render")) render_section(session);
+  if (ImGui::CollapsingHeader("Controls")) {
+    ImGui::TextWrapped(
+        "left drag: orbit\nright or middle drag, shift + left drag: pan\nwheel: zoom\nR: reset camera\n"
+        "P: screenshot\nEsc: quit");
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
+  return actions;
+}
+
+}  // namespace lucent::viewer
