@@ -165,6 +165,7 @@ class ViewerApp {
       double seconds = std::chrono::duration<double>(now - last).count();
       last = now;
       if (seconds > 0.0) state_.frames_per_second = 0.9 * state_.frames_per_second + 0.1 / seconds;
+      if (state_.playing) state_.time_seconds += static_cast<float>(seconds);
     }
     if (options_.frames > 0) finish_batch();
   }
@@ -185,7 +186,10 @@ class ViewerApp {
     Renderer* renderer = session_.renderer();
     bool converged = renderer && state_.stop_after_frames > 0 && renderer->accumulated_frames() >= state_.stop_after_frames;
     bool camera_moved = !same_camera(session_.camera().camera(), last_camera_);
-    if (converged && !camera_moved && rendered_ && renderer == last_renderer_ && !session_.pending()) return;
+    const bool time_changed = renderer && renderer->time() != static_cast<double>(state_.time_seconds);
+    if (converged && !camera_moved && !time_changed && rendered_ && renderer == last_renderer_ && !session_.pending())
+      return;
+    if (renderer) renderer->set_time(state_.time_seconds);  // no effect on static scenes
     session_.render({target_->id(), view_.x, view_.y});
     last_camera_ = session_.camera().camera();
     last_renderer_ = session_.renderer();

@@ -33,6 +33,15 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
   ImGui::DragInt("stop after frames (0: never)", &state.stop_after_frames, 1.0f, 0, 1000000);
+  bool animated = false;
+  for (const SceneObject& object : renderer->scene().objects) animated = animated || object.animated();
+  if (animated) {
+    // Deforming objects and blob surfaces: play with the wall clock, or scrub (each new time re-renders).
+    ImGui::Checkbox("play", &state.playing);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(120.0f);
+    if (ImGui::DragFloat("time [s]", &state.time_seconds, 0.02f, 0.0f, 3600.0f, "%.2f")) state.playing = false;
+  }
   ImGui::Text("%.1f frames/s, GPU %.2f ms/frame, %.1f MiB", state.frames_per_second, t.total_ms,
               static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0));
   if (ImGui::TreeNode("GPU passes [ms]")) {

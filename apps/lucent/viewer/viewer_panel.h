@@ -15,6 +15,8 @@ struct PanelState {
   std::string status;                            // result of the last file action
   double frames_per_second = 0.0;                // of the window loop, smoothed
   int view_width = 0, view_height = 0;           // pixels rendered
+  bool playing = false;                          // animated scenes: time advances with the wall clock
+  float time_seconds = 0.0f;                     // animation time shown (Renderer::set_time)
 };
 
 // What the user asked for this frame.
