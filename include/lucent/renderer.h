@@ -70,6 +70,11 @@ class Renderer {
   void set_time(double seconds);
   double time() const;
 
+  // Drops the accumulated frames and whatever the method cached from the scene (voxel-paths' solved volume),
+  // so the next frame computes everything again, as after a scene change but without rebuilding (benchmarks of
+  // a method's full per-frame cost use it).
+  void restart();
+
   int accumulated_frames() const;
   const FrameTimings& timings() const;  // of the last frame
   std::string device() const;           // GL renderer and version

@@ -198,6 +198,7 @@ void Renderer::set_time(double seconds) {
   if (impl_->scene_gpu->animated()) impl_->geometry_dirty = true, impl_->restart = true;
 }
 double Renderer::time() const { return impl_->time_seconds; }
+void Renderer::restart() { impl_->restart = true; }
 int Renderer::accumulated_frames() const { return impl_->method->accumulated_frames(); }
 const FrameTimings& Renderer::timings() const { return impl_->timings; }
 std::string Renderer::device_of_current_context() {
