@@ -87,10 +87,12 @@ TEST(VoxelPaths, VoxelizedBoxIsExactlyItsCells) {
 // GPU relaxation against the CPU Dijkstra on the same voxels: a sphere and a box, three sources each with
 // different initial values per band. Tolerance: 1e-5 relative per voxel and band (both sum the same float
 // edge costs; a GPU may fuse multiply-adds), and the same voxels reached.
-TEST(VoxelPaths, RelaxationConvergesToDijkstra) {
+class Relaxation : public ::testing::TestWithParam<RelaxationSchedule> {};
+
+TEST_P(Relaxation, ConvergesToDijkstra) {
   lucent::test::ensure_gl_context();
   Voxelizer voxelizer;
-  RelaxationSolver solver;
+  RelaxationSolver solver(GetParam());
   CoefficientField field;
   struct Case {
     const char* name;
@@ -209,10 +211,10 @@ TEST(VoxelPaths, SideLitSphereIsBrightestOnTheLitSide) {
 // coefficients converges to the CPU Dijkstra on the same (read-back) coefficients within 1e-5 relative, as in
 // the homogeneous test. Marble veins, skin-like layers and a volume field (GPU trilinear by texelFetch against
 // MediumVolume::multiplier), sigma_t and sigma_tr costs, sphere R = 32.
-TEST(VoxelPaths, HeterogeneousRelaxationConvergesToDijkstra) {
+TEST_P(Relaxation, HeterogeneousConvergesToDijkstra) {
   lucent::test::ensure_gl_context();
   Voxelizer voxelizer;
-  RelaxationSolver solver;
+  RelaxationSolver solver(GetParam());
   CoefficientField field;
   // A volume of multipliers in [0.3, 3.3] on a coarse, anisotropic grid, so that trilinear weights matter.
   auto volume = std::make_shared<lucent::MediumVolume>();
@@ -298,6 +300,12 @@ TEST(VoxelPaths, HeterogeneousRelaxationConvergesToDijkstra) {
     EXPECT_LT(worst_cpu_field, 1e-3f) << c.name;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(VoxelPaths, Relaxation,
+                         ::testing::Values(RelaxationSchedule::kSweep, RelaxationSchedule::kActiveBlocks),
+                         [](const ::testing::TestParamInfo<RelaxationSchedule>& schedule) {
+                           return schedule.param == RelaxationSchedule::kSweep ? std::string("Sweep") : std::string("ActiveBlocks");
+                         });
 
 // The side-lit sphere with marble veins and with skin-like layers (scale_mm 0.4, contrast 20) against
 // the homogeneous one (R = 32): the denser matter darkens the image (mean green lower) and pixels change: mean

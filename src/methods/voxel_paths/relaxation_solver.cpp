@@ -5,20 +5,26 @@
 
 namespace lucent::methods::voxel_paths {
 
-RelaxationSolver::RelaxationSolver()
-    : program_(gpu::ShaderProgram::compute("voxel_paths/relax.comp", shader_defines())) {
-  GLuint buffers[2];
-  glCreateBuffers(2, buffers);
-  distances_ = buffers[0], changed_ = buffers[1];
+RelaxationSolver::RelaxationSolver(RelaxationSchedule schedule)
+    : schedule_(schedule),
+      program_(gpu::ShaderProgram::compute(
+          "voxel_paths/relax.comp",
+          shader_defines() + (schedule == RelaxationSchedule::kActiveBlocks ? "#define VOXEL_ACTIVE_BLOCKS 1\n" : ""))) {
+  GLuint buffers[4];
+  glCreateBuffers(4, buffers);
+  distances_ = buffers[0], changed_ = buffers[1], blocks_[0] = buffers[2], blocks_[1] = buffers[3];
   glNamedBufferData(distances_, 16, nullptr, GL_DYNAMIC_DRAW);
   glNamedBufferData(changed_, 4, nullptr, GL_DYNAMIC_READ);
+  for (GLuint b : blocks_) glNamedBufferData(b, 4, nullptr, GL_DYNAMIC_DRAW);
   gpu::label_object(GL_BUFFER, distances_, "voxel-paths distances");
   gpu::label_object(GL_BUFFER, changed_, "voxel-paths changed flag");
+  gpu::label_object(GL_BUFFER, blocks_[0], "voxel-paths active blocks A");
+  gpu::label_object(GL_BUFFER, blocks_[1], "voxel-paths active blocks B");
 }
 
 RelaxationSolver::~RelaxationSolver() {
-  GLuint buffers[] = {distances_, changed_};
-  glDeleteBuffers(2, buffers);
+  GLuint buffers[] = {distances_, changed_, blocks_[0], blocks_[1]};
+  glDeleteBuffers(4, buffers);
 }
 
 void RelaxationSolver::reset(const VoxelGrid& grid, std::span<const VoxelSource> sources) {
@@ -46,12 +52,29 @@ RelaxationStats RelaxationSolver::solve(const VoxelGrid& grid, GLuint labels_buf
   glUniform1i(glGetUniformLocation(p, "u_resolution"), grid.resolution);
   glUniform1f(glGetUniformLocation(p, "u_voxel_size"), grid.voxel_size);
   const GLuint groups = (static_cast<GLuint>(grid.resolution) + 3) / 4;
+  const bool blocks = schedule_ == RelaxationSchedule::kActiveBlocks;
+  const GLuint zero = 0, one = 1;
+  int current = 0;  // blocks_[current]: the blocks that changed in the previous sweep
+  if (blocks) {
+    const std::size_t count = static_cast<std::size_t>(groups) * groups * groups;
+    if (count != block_count_) {
+      block_count_ = count;
+      for (GLuint b : blocks_) glNamedBufferData(b, static_cast<GLsizeiptr>(count * 4), nullptr, GL_DYNAMIC_DRAW);
+    }
+    glClearNamedBufferData(blocks_[0], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &one);  // first sweep: all
+  }
   RelaxationStats stats;
   while (stats.iterations < max_iterations) {
-    const GLuint zero = 0;
     glClearNamedBufferData(changed_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     for (int i = 0; i < check_every && stats.iterations < max_iterations; ++i, ++stats.iterations) {
+      if (blocks) {
+        glClearNamedBufferData(blocks_[1 - current], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingBlocksIn, blocks_[current]);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingBlocksOut, blocks_[1 - current]);
+        current = 1 - current;
+      }
       glDispatchCompute(groups, groups, groups);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

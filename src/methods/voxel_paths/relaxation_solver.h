@@ -15,6 +15,10 @@
 
 namespace lucent::methods::voxel_paths {
 
+// How sweeps choose their voxels: every inside voxel (kSweep), or only the 4^3 blocks next to a block that
+// changed in the previous sweep (kActiveBlocks; relax.comp explains why the result is the same).
+enum class RelaxationSchedule { kSweep, kActiveBlocks };
+
 struct RelaxationStats {
   int iterations = 0;      // sweeps run
   bool converged = false;  // the last batch changed nothing
@@ -22,7 +26,7 @@ struct RelaxationStats {
 
 class RelaxationSolver {
  public:
-  RelaxationSolver();
+  explicit RelaxationSolver(RelaxationSchedule schedule = RelaxationSchedule::kActiveBlocks);
   ~RelaxationSolver();
   RelaxationSolver(const RelaxationSolver&) = delete;
   RelaxationSolver& operator=(const RelaxationSolver&) = delete;
@@ -40,9 +44,10 @@ class RelaxationSolver {
   std::vector<glm::vec3> read_distances() const;
 
  private:
+  RelaxationSchedule schedule_;
   gpu::ShaderProgram program_;
-  GLuint distances_ = 0, changed_ = 0;
-  std::size_t voxel_count_ = 0;
+  GLuint distances_ = 0, changed_ = 0, blocks_[2] = {0, 0};
+  std::size_t voxel_count_ = 0, block_count_ = 0;
 };
 
 }  // namespace lucent::methods::voxel_paths

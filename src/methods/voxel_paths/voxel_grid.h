@@ -24,6 +24,8 @@ inline constexpr int kBindingSigmaT = 12;     // vec4 per voxel: rgb edge-cost c
 inline constexpr int kBindingChanged = 13;    // uint: set to 1 by a relaxation that lowered a distance
 inline constexpr int kBindingFieldMaterials = 14;  // shader::FieldMaterialGPU per label
 inline constexpr int kBindingIndices = 15;         // uint per triangle corner: indices into the vertices
+inline constexpr int kBindingBlocksIn = 16;        // uint per 4^3 block: lowered a value in the previous sweep
+inline constexpr int kBindingBlocksOut = 17;       // uint per 4^3 block: lowered a value in this sweep
 inline constexpr int kTextureVolume = 15;          // texture unit: R32F 3D texture of the scene's volume field
 
 // Distances at or above this are "not reached" (outside voxels, or no path from a lit voxel).
