@@ -85,6 +85,30 @@ bool material_editor(Material& m) {
       changed = true;
     }
   }
+  // Heterogeneous medium (voxel-paths and volpath; the diffusion models ignore it): the field's type, feature size
+  // and contrast from the same declarations as the scene parser; a volume keeps the file it was loaded from.
+  if (const ParamDecl* type = find_scene_param("objects[].material.field", "type")) {
+    ParamValues values;
+    values.set("type", std::string(to_string(m.field.type)));
+    if (param_widget(*type, values)) {
+      const std::string& name = values.text("type");
+      MediumFieldType next = name == "marble"    ? MediumFieldType::Marble
+                             : name == "layered" ? MediumFieldType::Layered
+                             : name == "volume"  ? MediumFieldType::Volume
+                                                 : MediumFieldType::None;
+      if (next != MediumFieldType::Volume || m.field.volume) {
+        m.field.type = next;
+        changed = true;
+      }
+    }
+    if (m.field.type == MediumFieldType::Marble || m.field.type == MediumFieldType::Layered) {
+      changed |= scene_float("objects[].material.field", "scale_mm", m.field.scale_mm, 0.05f);
+      changed |= scene_float("objects[].material.field", "contrast", m.field.contrast, 0.02f);
+    } else if (m.field.volume) {
+      ImGui::TextDisabled("volume %s (%dx%dx%d, m up to %.3g)", m.field.volume->source.c_str(), m.field.volume->size.x,
+                          m.field.volume->size.y, m.field.volume->size.z, static_cast<double>(m.field.volume->max_value));
+    }
+  }
   glm::vec3 sigma_s_prime = m.sigma_s_prime();
   glm::vec3 albedo = sigma_s_prime / glm::max(m.sigma_a + sigma_s_prime, glm::vec3(1e-12f));
   ImGui::TextDisabled("sigma_s' [%.3g %.3g %.3g] mm^-1, albedo' [%.3f %.3f %.3f]", sigma_s_prime.x, sigma_s_prime.y,
