@@ -17,3 +17,11 @@ $L render scenes/candle_melting.json $S --animate --frames 2 --set render.fps=1.
 cp out/gallery/candle_melting_0001.png docs/images/candle_melting.png
 $L render scenes/bunny_spot.json $S --frames 4 --set render.height=240 --set method.map_size=256 \
   --set method.light_map_size=512 -o docs/images/bunny_spot.png
+# voxel-paths: heterogeneous media (a material's "field")
+$L render scenes/bunny_marble_veins.json $S --set render.height=240 -o docs/images/bunny_marble_veins.png
+$L render scenes/bunny_marble_veins.json $S --set render.height=240 --set method.extinction='"sigma_t"' \
+  -o docs/images/bunny_marble_veins_sigma_t.png
+$L render scenes/deforming_inclusion.json $S --set render.height=240 --animate --frames 2 --set render.fps=1.33 \
+  -o out/gallery/deforming_inclusion.png
+cp out/gallery/deforming_inclusion_0000.png docs/images/deforming_inclusion_t0.png
+cp out/gallery/deforming_inclusion_0001.png docs/images/deforming_inclusion_t075.png
