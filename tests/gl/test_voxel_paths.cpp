@@ -550,3 +550,44 @@ TEST(VoxelPaths, CameraMovesReuseTheSolvedVolume) {
 }
 
 }  // namespace
+
+namespace {
+
+// entry_depth d: every lit voxel of a homogeneous object starts d h sigma_t later, so every shortest path, and
+// hence every pixel, is darker by exactly exp(-d h sigma_t) per band (up to the RGBA16F radiance texture's
+// rounding, 2^-11 relative per value: tolerance 3e-3 on the ratio).
+TEST(VoxelPaths, EntryDepthDarkensEveryPixelByItsTransmittance) {
+  lucent::test::ensure_gl_context();
+  auto render = [](double entry_depth) {
+    lucent::Scene scene = side_lit_sphere(fmt::format(
+        R"({{"name": "voxel-paths", "resolution": 32, "light_map_size": 256, "specular": false, "entry_depth": {}}})",
+        entry_depth));
+    lucent::OffscreenFramebuffer framebuffer(64, 64);
+    lucent::Renderer renderer(scene);
+    renderer.render(scene.camera, {framebuffer.id(), 64, 64});
+    return renderer.read_radiance();
+  };
+  const lucent::ImageRGBA32F base = render(0.0), deeper = render(1.0);
+  const lucent::Scene scene = side_lit_sphere(R"({"name": "voxel-paths"})");
+  const TranslucentTriangles triangles = gather_translucent_triangles(scene);
+  const VoxelGrid grid = grid_around(triangles.lower, triangles.upper, 32, 2);
+  const glm::vec3 sigma_t = scene.objects[0].material->sigma_t() * scene.scale_mm;
+  int covered = 0;
+  float worst = 0.0f;
+  for (std::size_t i = 0; i < 64 * 64; ++i) {
+    if (base.pixels[4 * i + 3] <= 0.0f) continue;
+    for (int band = 0; band < 3; ++band) {
+      const float a = base.pixels[4 * i + static_cast<std::size_t>(band)];
+      if (a < 1e-3f) continue;
+      const float expected = std::exp(-grid.voxel_size * sigma_t[band]);
+      worst = std::max(worst, std::abs(deeper.pixels[4 * i + static_cast<std::size_t>(band)] / a - expected) / expected);
+    }
+    ++covered;
+  }
+  fmt::print("{} covered pixels, h = {:.4f}, worst relative deviation from exp(-h sigma_t) {:.2e}\n", covered,
+             grid.voxel_size, worst);
+  ASSERT_GT(covered, 500);
+  EXPECT_LT(worst, 3e-3f);
+}
+
+}  // namespace

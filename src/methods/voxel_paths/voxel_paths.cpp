@@ -25,6 +25,8 @@ constexpr ParamDecl kParams[] = {
     {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer"},
     {"check_every", ParamType::Int, "8", "sweeps", 1, 256, "", "relaxation sweeps between reads of the changed flag"},
     {"max_iterations", ParamType::Int, "1024", "sweeps", 1, 65536, "", "relaxation sweeps at most per frame"},
+    {"entry_depth", ParamType::Float, "0", "voxels", 0, 4, "",
+     "lit voxels also pay the optical depth of this many voxels of their own medium (0: the paper's n0 = -ln(F_t P))"},
     {"solver", ParamType::Enum, "\"blocks\"", "", 0, 0, "blocks|sweep",
      "relaxation schedule: only 4^3 blocks next to a change (blocks) or every voxel every sweep (same result)"},
     {"extinction", ParamType::Enum, "\"sigma_t\"", "", 0, 0, "sigma_t|sigma_tr",
@@ -177,9 +179,12 @@ class VoxelPaths final : public Method {
       glDispatchCompute((size + 7) / 8, (size + 7) / 8, static_cast<GLuint>(lights[l].views.y));
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingSigmaT, field_.buffer());
     glUseProgram(distances_program_.id());
     set_grid_uniforms(distances_program_.id());
     glUniform1f(glGetUniformLocation(distances_program_.id(), "u_flux_unit"), flux_unit_);
+    glUniform1f(glGetUniformLocation(distances_program_.id(), "u_entry_depth"),
+                static_cast<float>(params_.number("entry_depth")));
     glDispatchCompute((r + 3) / 4, (r + 3) / 4, (r + 3) / 4);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
