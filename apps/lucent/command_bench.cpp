@@ -260,7 +260,8 @@ struct Bench {
         // per step, so every step is written to the cache and an interrupted run resumes where it stopped.
         const double current = ref.samples_per_pixel;
         double wanted = current * 1.1 * std::pow(noise * ratio / std::max(smallest, 1e-9), 2.0);
-        int spp = static_cast<int>(std::min<double>(max_spp, std::clamp(wanted, 1.25 * current, 2.0 * current)));
+        int spp = static_cast<int>(std::min<double>(
+            max_spp, std::max(current + 1.0, std::ceil(std::clamp(wanted, 1.25 * current, 2.0 * current)))));
         ref = reference_image(group[0]->scene_path, group[0]->sets, integrator, spp);
       }
       for (std::size_t i = 0; i < group.size(); ++i) attach_error(*group[i], run_name, integrator, ref, errors[i]);

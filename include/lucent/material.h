@@ -37,6 +37,11 @@ struct MediumField {
   float contrast = 4.0f;   // marble, layered: m ranges over [1, 1 + contrast]
   std::string file;        // volume: the JSON header it was loaded from (as written in the scene)
   std::shared_ptr<const MediumVolume> volume;  // volume: the loaded grid
+  // The world-space box the field spans. Unset: the object's world bounds as it is. scene_at_time() sets it to
+  // the undeformed object's bounds, so a deforming object moves through a field fixed where it rests, in the
+  // references as in voxel-paths.
+  bool has_bounds = false;
+  glm::vec3 bounds_lower{0.0f}, bounds_upper{0.0f};
   bool heterogeneous() const { return type != MediumFieldType::None; }
   float max_multiplier() const;  // the largest m anywhere (1 for none)
   // m at world point p of an object with world-space bounds [lower, upper]; one scene unit is scale_mm mm.

@@ -101,6 +101,7 @@ std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header
   auto volume = std::make_shared<MediumVolume>();
   volume->source = header_path;
   volume->size = read_size(header, header_path);
+  if (header.contains("format") && !header["format"].is_string()) fail(header_path, "format: must be \"float32\" or \"uint8\"");
   const std::string format = header.value("format", std::string("float32"));
   if (format != "float32" && format != "uint8") fail(header_path, fmt::format("format: '{}' is not float32 or uint8", format));
   glm::vec2 range(0.0f, 1.0f);
@@ -119,10 +120,14 @@ std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header
   if (!raw) fail(header_path, fmt::format("data: cannot open '{}'", data.string()));
   const std::size_t count = voxel_count(volume->size);
   const std::size_t bytes_per = format == "uint8" ? 1 : 4;
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = fs::file_size(data, size_error);
+  if (size_error || file_bytes != count * bytes_per)  // checked before reading: a wrong path may be a huge file
+    fail(header_path, fmt::format("data: '{}' has {} bytes, size {}x{}x{} {} needs {}", data.string(),
+                                  size_error ? 0 : file_bytes, volume->size.x, volume->size.y, volume->size.z, format,
+                                  count * bytes_per));
   std::vector<char> bytes((std::istreambuf_iterator<char>(raw)), std::istreambuf_iterator<char>());
-  if (bytes.size() != count * bytes_per)
-    fail(header_path, fmt::format("data: '{}' has {} bytes, size {}x{}x{} {} needs {}", data.string(), bytes.size(),
-                                  volume->size.x, volume->size.y, volume->size.z, format, count * bytes_per));
+  if (bytes.size() != count * bytes_per) fail(header_path, fmt::format("data: could not read '{}'", data.string()));
   volume->values.resize(count);
   static_assert(std::endian::native == std::endian::little, "volume files are little-endian");
   for (std::size_t i = 0; i < count; ++i) {

@@ -39,6 +39,7 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     d.scale_mm = scale_mm;
     d.lower = glm::vec3(std::numeric_limits<float>::max()), d.upper = -d.lower;
     for (const glm::vec3& p : d.positions) d.lower = glm::min(d.lower, p), d.upper = glm::max(d.upper, p);
+    if (m.field.has_bounds) d.lower = m.field.bounds_lower, d.upper = m.field.bounds_upper;
     d.majorant = static_cast<double>(m.field.max_multiplier()) * (d.sigma_a + d.sigma_s);
   }
   return d;

@@ -1,4 +1,5 @@
 // deformation.cpp: per-frame vertex deformations of SceneObject (scene.h) and scene_at_time().
+#include <limits>
 #include <algorithm>
 #include <cmath>
 
@@ -60,6 +61,14 @@ TriangleMesh deformed_mesh(const TriangleMesh& mesh, const Deformation& d, doubl
 Scene scene_at_time(const Scene& scene, double seconds) {
   Scene frozen = scene;
   for (SceneObject& object : frozen.objects) {
+    if (object.material && object.material->field.heterogeneous() && !object.material->field.has_bounds) {
+      // The field stays where the undeformed object is (voxel-paths places it there too).
+      MediumField& field = object.material->field;
+      field.bounds_lower = glm::vec3(std::numeric_limits<float>::max()), field.bounds_upper = -field.bounds_lower;
+      for (const glm::vec3& p : transformed(object.mesh, object.world_from_object).positions)
+        field.bounds_lower = glm::min(field.bounds_lower, p), field.bounds_upper = glm::max(field.bounds_upper, p);
+      field.has_bounds = object.blob_resolution == 0;
+    }
     if (object.blob_resolution > 0) {
       object.mesh = geometry::extract_blob_isosurface(geometry::blob_grid(object.blob_resolution),
                                                       static_cast<float>(seconds));

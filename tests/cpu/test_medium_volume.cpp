@@ -90,6 +90,7 @@ TEST(MediumVolume, BadFilesNameTheFileAndTheProblem) {
   EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}, {"format", "float16"}}),
             h + ": format: 'float16' is not float32 or uint8");
   EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}, {"range", {0, 2}}}), h + ": range: only for format uint8");
+  EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}, {"format", 3}}), h + ": format: must be \"float32\" or \"uint8\"");
   EXPECT_EQ(error_for({{"size", {2, 1, 1}}}), h + ": missing key \"data\" (the raw file)");
   const float negative[2] = {1.0f, -0.5f};
   write_bytes(raw.path(), negative, 8);
@@ -136,6 +137,28 @@ TEST(MediumField, BadFieldsGiveOneClearError) {
             "./missing.json: cannot open the volume header");
   EXPECT_EQ(scene_error(scene_with_field({{"type", "marble"}, {"veins", 2}})),
             "test.json: /objects/0/material/field/veins: unknown key; known keys: type, scale_mm, contrast, file");
+}
+
+}  // namespace
+}  // namespace lucent
+
+namespace lucent {
+namespace {
+
+// A deforming object's field stays where the undeformed object is: scene_at_time records the rest bounds, which
+// the references use (voxel-paths uses the same, from the undeformed mesh), while the deformed mesh's own box moves.
+TEST(MediumField, StaysAtTheRestBoundsOfADeformingObject) {
+  const Scene scene = load_scene(std::string(LUCENT_SCENES_DIR) + "/deforming_inclusion.json");
+  const MediumField& rest = scene_at_time(scene, 0.0).objects[0].material->field;
+  const Scene bent = scene_at_time(scene, 0.75);
+  const MediumField& field = bent.objects[0].material->field;
+  ASSERT_TRUE(rest.has_bounds && field.has_bounds);
+  EXPECT_EQ(field.bounds_lower, rest.bounds_lower);
+  EXPECT_EQ(field.bounds_upper, rest.bounds_upper);
+  glm::vec3 lower(1e30f), upper(-1e30f);
+  for (const glm::vec3& p : transformed(bent.objects[0].mesh, bent.objects[0].world_from_object).positions)
+    lower = glm::min(lower, p), upper = glm::max(upper, p);
+  EXPECT_GT(glm::length(upper - field.bounds_upper) + glm::length(lower - field.bounds_lower), 0.1f);
 }
 
 }  // namespace

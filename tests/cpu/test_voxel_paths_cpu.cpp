@@ -3,6 +3,7 @@
 // heterogeneous fields (heterogeneous_field.h) and per-voxel coefficients.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include "methods/voxel_paths/coefficient_field.h"
 #include "methods/voxel_paths/voxel_dijkstra.h"
 #include "methods/voxel_paths/voxel_grid.h"
+#include "../test_support.h"
 
 namespace {
 
@@ -217,6 +219,32 @@ TEST(VoxelPathsCpu, CoefficientFieldScalesTheMaterial) {
     }
     EXPECT_GE(veined[grid.index({4, 4, 5})].g, none[grid.index({4, 4, 5})].g);
   }
+}
+
+// Two objects may share one volume file (one texture, each label over its own bounds); two different files are
+// an error naming the second object.
+TEST(VoxelPathsCpu, ObjectsShareOneVolumeFile) {
+  auto volume_of = [](const std::string& source) {
+    auto v = std::make_shared<lucent::MediumVolume>();
+    v->source = source, v->size = glm::ivec3(1), v->values = {1.0f}, v->max_value = 1.0f;
+    return v;
+  };
+  lucent::Scene scene;
+  for (int i = 0; i < 2; ++i) {
+    lucent::SceneObject object;
+    object.name = fmt::format("box{}", i);
+    object.mesh = lucent::make_box(glm::vec3(1.0f));
+    lucent::Material material;
+    material.sigma_a = glm::vec3(0.1f), material.sigma_s = glm::vec3(1.0f);
+    material.field.type = lucent::MediumFieldType::Volume;
+    material.field.volume = volume_of("volumes/a.json");  // loaded twice: two pointers, one file
+    object.material = material;
+    scene.objects.push_back(object);
+  }
+  EXPECT_NO_THROW(gather_translucent_triangles(scene));
+  scene.objects[1].material->field.volume = volume_of("volumes/b.json");
+  EXPECT_EQ(lucent::test::error_message([&] { gather_translucent_triangles(scene); }),
+            "<built-in default>: voxel-paths supports one volume field per scene (object 'box1' has a second)");
 }
 
 // The medium where the field is m: m < 1 thins it at constant albedo (sigma_s scales too), m > 1 adds absorbing

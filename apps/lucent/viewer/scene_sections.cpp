@@ -59,8 +59,10 @@ bool material_editor(Material& m) {
     for (const MaterialPreset& preset : material_presets()) {
       if (ImGui::Selectable(preset.name, m.name == preset.name)) {
         BssrdfModel model = m.model;
+        MediumField field = m.field;
         m = material_from_preset(preset);
         m.model = model;
+        m.field = field;
         changed = true;
       }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s%s%s", preset.source, *preset.note ? "\n" : "", preset.note);

@@ -65,10 +65,12 @@ RelaxationStats RelaxationSolver::solve(const VoxelGrid& grid, GLuint labels_buf
   }
   RelaxationStats stats;
   while (stats.iterations < max_iterations) {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glClearNamedBufferData(changed_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     for (int i = 0; i < check_every && stats.iterations < max_iterations; ++i, ++stats.iterations) {
       if (blocks) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the previous sweep wrote the buffer being cleared
         glClearNamedBufferData(blocks_[1 - current], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingBlocksIn, blocks_[current]);

@@ -40,10 +40,10 @@ TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effec
     const MediumField& medium = object.material->field;
     field.field = glm::vec4(static_cast<float>(medium.type), medium.scale_mm / scene.scale_mm, medium.contrast, 0.0f);
     if (medium.type == MediumFieldType::Volume) {
-      if (out.volume && out.volume != medium.volume)
+      if (out.volume && medium.volume && out.volume->source != medium.volume->source)
         throw Error(fmt::format("{}: voxel-paths supports one volume field per scene (object '{}' has a second)",
                                 scene.source, object.name));
-      out.volume = medium.volume;
+      if (!out.volume) out.volume = medium.volume;
     }
     TriangleMesh mesh = transformed(object.mesh, object.world_from_object);
     auto first = static_cast<std::uint32_t>(out.corners.size() / 3);
@@ -53,7 +53,9 @@ TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effec
       out.corners.emplace_back(p, static_cast<float>(label));
       object_lower = glm::min(object_lower, p), object_upper = glm::max(object_upper, p);
     }
-    field.lower = glm::vec4(object_lower, 0.0f), field.upper = glm::vec4(object_upper, 0.0f);
+    const MediumField& medium_field = object.material->field;
+    field.lower = glm::vec4(medium_field.has_bounds ? medium_field.bounds_lower : object_lower, 0.0f);
+    field.upper = glm::vec4(medium_field.has_bounds ? medium_field.bounds_upper : object_upper, 0.0f);
     lower = glm::min(lower, object_lower), upper = glm::max(upper, object_upper);
     out.objects.push_back({first, static_cast<std::uint32_t>(mesh.indices.size() / 3), label});
   }

@@ -118,7 +118,6 @@ class VoxelPaths final : public Method {
       context.timer.end();
       return;
     }
-    solve_needed_ = false;
     light_gbuffer_.render(context.scene_gpu, context.timer);
     gpu::DebugGroup group("voxel_paths");
     context.timer.begin("voxelize");
@@ -138,6 +137,7 @@ class VoxelPaths final : public Method {
     radiance();
     shade(context);
     context.timer.end();
+    solve_needed_ = false;  // only after a complete solve: a throw above leaves the next frame to solve again
   }
 
   int accumulated_frames() const override { return 1; }
