@@ -149,7 +149,8 @@ namespace {
 // the references use (voxel-paths uses the same, from the undeformed mesh), while the deformed mesh's own box moves.
 TEST(MediumField, StaysAtTheRestBoundsOfADeformingObject) {
   const Scene scene = load_scene(std::string(LUCENT_SCENES_DIR) + "/deforming_inclusion.json");
-  const MediumField& rest = scene_at_time(scene, 0.0).objects[0].material->field;
+  const Scene still = scene_at_time(scene, 0.0);
+  const MediumField& rest = still.objects[0].material->field;
   const Scene bent = scene_at_time(scene, 0.75);
   const MediumField& field = bent.objects[0].material->field;
   ASSERT_TRUE(rest.has_bounds && field.has_bounds);
