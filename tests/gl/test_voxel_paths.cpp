@@ -36,6 +36,17 @@ lucent::Scene scene_with(lucent::TriangleMesh mesh, glm::vec3 translation = glm:
   return scene;
 }
 
+// The inside voxel whose centre is nearest `target`.
+std::size_t nearest_inside_voxel(const VoxelGrid& grid, const std::vector<std::uint32_t>& labels, glm::vec3 target) {
+  std::size_t best = 0;
+  float best_distance = 1e30f;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    float d = glm::length(grid.center(grid.voxel(i)) - target);
+    if (labels[i] != 0 && d < best_distance) best = i, best_distance = d;
+  }
+  return best;
+}
+
 std::size_t inside_count(const std::vector<std::uint32_t>& labels) {
   std::size_t n = 0;
   for (std::uint32_t label : labels) n += label != 0 ? 1 : 0;
@@ -112,15 +123,9 @@ TEST_P(Relaxation, ConvergesToDijkstra) {
     // Sources: the inside voxels nearest three points, with per-band initial values.
     std::vector<VoxelSource> sources;
     const glm::vec3 targets[3] = {{0.9f, 0.0f, 0.0f}, {-0.3f, -0.4f, 0.1f}, {0.0f, 0.2f, -0.2f}};
-    for (int s = 0; s < 3; ++s) {
-      std::size_t best = 0;
-      float best_distance = 1e30f;
-      for (std::size_t i = 0; i < labels.size(); ++i) {
-        float d = glm::length(grid.center(grid.voxel(i)) - targets[s]);
-        if (labels[i] != 0 && d < best_distance) best = i, best_distance = d;
-      }
-      sources.push_back({best, glm::vec3(0.1f * static_cast<float>(s), 2.0f - static_cast<float>(s), 0.5f)});
-    }
+    for (int s = 0; s < 3; ++s)
+      sources.push_back({nearest_inside_voxel(grid, labels, targets[s]),
+                         glm::vec3(0.1f * static_cast<float>(s), 2.0f - static_cast<float>(s), 0.5f)});
     const std::vector<glm::vec3> expected = dijkstra_optical_paths(grid, labels, triangles.sigma_t, sources);
     solver.reset(grid, sources);
     glFinish();
@@ -263,15 +268,8 @@ TEST_P(Relaxation, HeterogeneousConvergesToDijkstra) {
     // Sources: the inside voxels nearest two points.
     std::vector<VoxelSource> sources;
     const glm::vec3 targets[2] = {{0.9f, 0.0f, 0.0f}, {-0.3f, -0.4f, 0.1f}};
-    for (int s = 0; s < 2; ++s) {
-      std::size_t best = 0;
-      float best_distance = 1e30f;
-      for (std::size_t i = 0; i < labels.size(); ++i) {
-        float d = glm::length(grid.center(grid.voxel(i)) - targets[s]);
-        if (labels[i] != 0 && d < best_distance) best = i, best_distance = d;
-      }
-      sources.push_back({best, glm::vec3(0.5f * static_cast<float>(s), 1.0f, 0.25f)});
-    }
+    for (int s = 0; s < 2; ++s)
+      sources.push_back({nearest_inside_voxel(grid, labels, targets[s]), glm::vec3(0.5f * static_cast<float>(s), 1.0f, 0.25f)});
     const std::vector<glm::vec3> expected = dijkstra_optical_paths_per_voxel(grid, labels, gpu, sources);
     const std::vector<glm::vec3> from_cpu_field = dijkstra_optical_paths_per_voxel(grid, labels, cpu, sources);
     solver.reset(grid, sources);
