@@ -29,20 +29,26 @@ struct Probe {
   double half_length;  // of the probe segment along n_o
 };
 
-// All hits of `object` on the segment of the line through `point` along n_o within half_length of the plane.
-std::vector<SurfaceHit> probe_hits(const ReferenceScene& s, const Probe& p, int object, glm::dvec3 point) {
-  std::vector<SurfaceHit> hits;
+// The number of hits of `object` on the segment of the line through `point` along n_o within half_length of the
+// plane (at most 64). With `chosen`, one of them uniformly, by reservoir sampling (nothing is stored: this runs
+// for every sample).
+std::size_t probe_hits(const ReferenceScene& s, const Probe& p, int object, glm::dvec3 point, Rng* rng = nullptr,
+                       SurfaceHit* chosen = nullptr) {
+  std::size_t count = 0;
   double offset = glm::dot(point - p.x_o, p.n_o);
   glm::dvec3 start = point + (p.half_length - offset) * p.n_o;
   double travelled = 0.0;
-  while (travelled < 2.0 * p.half_length && hits.size() < 64) {
+  while (travelled < 2.0 * p.half_length && count < 64) {
     SurfaceHit hit = s.rt.intersect(start, -p.n_o, 2.0 * p.half_length - travelled);
     if (!hit.hit()) break;
-    if (hit.object == object) hits.push_back(hit);
+    if (hit.object == object) {
+      ++count;
+      if (chosen && rng->uniform() * static_cast<double>(count) < 1.0) *chosen = hit;
+    }
     travelled += hit.t;
     start = hit.position;
   }
-  return hits;
+  return count;
 }
 
 double probe_plane_pdf(const Probe& p, double rho) {
@@ -51,26 +57,32 @@ double probe_plane_pdf(const Probe& p, double rho) {
   return sum / 3.0 / (2.0 * M_PI * std::max(rho, 1e-12));
 }
 
-// Area-measure density of the probe technique at x_i (0 outside the probe segment).
-double probe_pdf(const ReferenceScene& s, const Probe& p, int object, glm::dvec3 x_i, glm::dvec3 n_i) {
+// Area-measure density of the probe technique at x_i, given the number of the object's hits on the probe line
+// through x_i (0 outside the probe segment).
+double probe_pdf(const Probe& p, glm::dvec3 x_i, glm::dvec3 n_i, std::size_t hits_on_line) {
   glm::dvec3 d = x_i - p.x_o;
   double along = glm::dot(d, p.n_o);
-  if (std::abs(along) > p.half_length) return 0.0;
+  if (std::abs(along) > p.half_length || hits_on_line == 0) return 0.0;
   double rho = glm::length(d - along * p.n_o);
-  std::size_t count = probe_hits(s, p, object, x_i).size();
-  if (count == 0) return 0.0;
-  return probe_plane_pdf(p, rho) * std::abs(glm::dot(n_i, p.n_o)) / static_cast<double>(count);
+  return probe_plane_pdf(p, rho) * std::abs(glm::dot(n_i, p.n_o)) / static_cast<double>(hits_on_line);
 }
 
-bool sample_probe(const ReferenceScene& s, const Probe& p, int object, Rng& rng, SurfaceHit& out) {
+// The same, for an x_i drawn by area sampling: the hits on its line are traced (only inside the segment).
+double probe_pdf(const ReferenceScene& s, const Probe& p, int object, glm::dvec3 x_i, glm::dvec3 n_i) {
+  if (std::abs(glm::dot(x_i - p.x_o, p.n_o)) > p.half_length) return 0.0;
+  return probe_pdf(p, x_i, n_i, probe_hits(s, p, object, x_i));
+}
+
+// A probe sample; `hits_on_line` returns the number of hits it chose from (the pdf's divisor: the same line
+// through the chosen x_i, so it is not traced again).
+bool sample_probe(const ReferenceScene& s, const Probe& p, int object, Rng& rng, SurfaceHit& out,
+                  std::size_t& hits_on_line) {
   int channel = std::min(2, static_cast<int>(rng.uniform() * 3.0));
   double rho = -std::log(1.0 - rng.uniform()) / p.sigma_tr[channel];
   double alpha = 2.0 * M_PI * rng.uniform();
   glm::dvec3 point = p.x_o + rho * (std::cos(alpha) * p.t1 + std::sin(alpha) * p.t2);
-  std::vector<SurfaceHit> hits = probe_hits(s, p, object, point);
-  if (hits.empty()) return false;
-  out = hits[std::min(hits.size() - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(hits.size())))];
-  return true;
+  hits_on_line = probe_hits(s, p, object, point, &rng, &out);
+  return hits_on_line > 0;
 }
 
 // E * integral of S_d T12 cos over the lit surface for one x_i (the integrand, before dividing by the pdf).
@@ -119,17 +131,21 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
   probe.half_length = 10.0 / std::min({probe.sigma_tr.x, probe.sigma_tr.y, probe.sigma_tr.z});
 
   glm::dvec3 x_i, n_i;
-  if (rng.uniform() < kAreaFraction) {
-    SurfaceSample a = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform());
+  const bool by_area = rng.uniform() < kAreaFraction;
+  std::size_t hits_on_line = 0;
+  if (by_area) {
+    SurfaceSample a = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
     x_i = a.position, n_i = a.normal;
   } else {
     SurfaceHit hit;
-    if (!sample_probe(s, probe, object, rng, hit)) return glm::dvec3(0.0);
+    if (!sample_probe(s, probe, object, rng, hit, hits_on_line)) return glm::dvec3(0.0);
     x_i = hit.position, n_i = hit.normal;
   }
   glm::dvec3 f = integrand(s, o, media, x_i, n_i, x_o, n_o);
   if (f == glm::dvec3(0.0)) return f;
-  double pdf = kAreaFraction / o.area + (1.0 - kAreaFraction) * probe_pdf(s, probe, object, x_i, n_i);
+  const double probe_density =
+      by_area ? probe_pdf(s, probe, object, x_i, n_i) : probe_pdf(probe, x_i, n_i, hits_on_line);
+  double pdf = kAreaFraction / o.area + (1.0 - kAreaFraction) * probe_density;
   return f / pdf;
 }
 
@@ -144,7 +160,7 @@ glm::dvec3 emergent_irradiance(const ReferenceScene& s, const SurfaceHit& hit, g
   int object = translucent[std::min(translucent.size() - 1,
                                     static_cast<std::size_t>(rng.uniform() * static_cast<double>(translucent.size())))];
   const ObjectData& o = s.rt.object(object);
-  SurfaceSample v = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform());
+  SurfaceSample v = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
   glm::dvec3 to_v = v.position - hit.position;
   double d = glm::length(to_v);
   glm::dvec3 w = to_v / d;
@@ -160,8 +176,9 @@ glm::dvec3 emergent_irradiance(const ReferenceScene& s, const SurfaceHit& hit, g
 
 }  // namespace
 
-glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng) {
-  SurfaceHit hit = s.rt.intersect(origin, direction);
+glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
+                           const SurfaceHit* first_hit) {
+  const SurfaceHit hit = first_hit ? *first_hit : s.rt.intersect(origin, direction);
   if (!hit.hit()) return glm::dvec3(s.scene.render.background);
   const ObjectData& o = s.rt.object(hit.object);
   glm::dvec3 n = hit.normal;

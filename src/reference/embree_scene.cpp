@@ -19,12 +19,18 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
   d.normals = std::move(world.normals);
   d.indices = std::move(world.indices);
   double total = 0.0;
+  std::vector<double> areas;
   for (std::size_t t = 0; t + 2 < d.indices.size(); t += 3) {
-    glm::dvec3 a = d.positions[d.indices[t]], b = d.positions[d.indices[t + 1]], c = d.positions[d.indices[t + 2]];
-    total += 0.5 * glm::length(glm::cross(b - a, c - a));
-    d.triangle_cdf.push_back(total);
+    ObjectData::Corners c;
+    for (std::size_t k = 0; k < 3; ++k)
+      c.position[k] = d.positions[d.indices[t + k]], c.normal[k] = d.normals[d.indices[t + k]];
+    glm::dvec3 a = c.position[0], b = c.position[1], e = c.position[2];
+    areas.push_back(0.5 * glm::length(glm::cross(b - a, e - a)));
+    total += areas.back();
+    d.corners.push_back(c);
   }
-  for (double& v : d.triangle_cdf) v /= total;
+  if (total > 0.0) d.triangle_by_area = AliasTable(areas);
+  else if (object.material) throw Error("reference: a translucent object's mesh has no surface area to sample");
   d.area = total;
   d.albedo = object.albedo;
   if (object.material) {
@@ -99,11 +105,9 @@ SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& di
   hit.object = object_of_geometry_[rh.hit.geomID];
   hit.t = rh.ray.tfar;
   hit.position = origin + hit.t * direction;
-  const ObjectData& d = objects_[static_cast<std::size_t>(hit.object)];
-  std::size_t t = 3 * static_cast<std::size_t>(rh.hit.primID);
+  const ObjectData::Corners& c = objects_[static_cast<std::size_t>(hit.object)].corners[rh.hit.primID];
   double u = rh.hit.u, v = rh.hit.v;
-  glm::dvec3 n = (1.0 - u - v) * glm::dvec3(d.normals[d.indices[t]]) + u * glm::dvec3(d.normals[d.indices[t + 1]]) +
-                 v * glm::dvec3(d.normals[d.indices[t + 2]]);
+  glm::dvec3 n = (1.0 - u - v) * glm::dvec3(c.normal[0]) + u * glm::dvec3(c.normal[1]) + v * glm::dvec3(c.normal[2]);
   hit.normal = glm::normalize(n);
   glm::dvec3 ng = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
   hit.geometric_normal = glm::dot(ng, hit.normal) < 0.0 ? -ng : ng;
@@ -125,17 +129,13 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
   return ray.tfar < 0.0f;
 }
 
-SurfaceSample EmbreeScene::sample_surface(int object, double u0, double u1, double u2) const {
+SurfaceSample EmbreeScene::sample_surface(int object, double u0, double u1, double u2, double u3) const {
   const ObjectData& d = objects_[static_cast<std::size_t>(object)];
-  auto it = std::lower_bound(d.triangle_cdf.begin(), d.triangle_cdf.end(), u0);
-  std::size_t t = 3 * static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - d.triangle_cdf.begin(),
-                                                                          static_cast<std::ptrdiff_t>(d.triangle_cdf.size()) - 1));
+  const ObjectData::Corners& c = d.corners[d.triangle_by_area.sample(u0, u1)];
   // Uniform barycentrics (square-root mapping).
-  double s = std::sqrt(u1), b0 = 1.0 - s, b1 = u2 * s, b2 = 1.0 - b0 - b1;
-  glm::dvec3 p = b0 * glm::dvec3(d.positions[d.indices[t]]) + b1 * glm::dvec3(d.positions[d.indices[t + 1]]) +
-                 b2 * glm::dvec3(d.positions[d.indices[t + 2]]);
-  glm::dvec3 n = b0 * glm::dvec3(d.normals[d.indices[t]]) + b1 * glm::dvec3(d.normals[d.indices[t + 1]]) +
-                 b2 * glm::dvec3(d.normals[d.indices[t + 2]]);
+  double s = std::sqrt(u2), b0 = 1.0 - s, b1 = u3 * s, b2 = 1.0 - b0 - b1;
+  glm::dvec3 p = b0 * glm::dvec3(c.position[0]) + b1 * glm::dvec3(c.position[1]) + b2 * glm::dvec3(c.position[2]);
+  glm::dvec3 n = b0 * glm::dvec3(c.normal[0]) + b1 * glm::dvec3(c.normal[1]) + b2 * glm::dvec3(c.normal[2]);
   return {p, glm::normalize(n), 1.0 / d.area};
 }
 

@@ -41,8 +41,12 @@ struct ReferenceScene {
   const EmbreeScene& rt;
 };
 
-glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng);
-glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng);
+// `first_hit`, when given, is the hit of the ray (origin, direction) already traced: a pixel's camera rays through
+// its centre all share it, so the renderer traces it once per pixel instead of once per sample.
+glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
+                            const SurfaceHit* first_hit = nullptr);
+glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
+                           const SurfaceHit* first_hit = nullptr);
 
 // A point or spot light's intensity toward `direction` (unit, from the light), in scene units (E = I / d^2).
 glm::dvec3 point_light_intensity(const ReferenceScene& s, const PointLight& light, glm::dvec3 direction);

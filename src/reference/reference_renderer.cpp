@@ -86,12 +86,33 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
     tbb::parallel_for(row0 * width, row1 * width, [&](int index) {
       int x = index % width, y = index / width;
       auto pixel = static_cast<std::size_t>(index);
+      // Without jitter every sample's camera ray goes through the pixel centre: trace it once. A pixel whose ray
+      // misses everything shows the background, exactly, in every sample (both integrators), so its sums are
+      // written without sampling.
+      glm::dvec3 centre_origin, centre_direction;
+      SurfaceHit centre_hit;
+      if (!settings.jitter) {
+        camera_ray(scene.camera, width, height, x + 0.5, y + 0.5, centre_origin, centre_direction);
+        centre_hit = rt.intersect(centre_origin, centre_direction);
+        if (!centre_hit.hit()) {
+          const glm::dvec3 background(scene.render.background);
+          const double count = total_samples - first_sample;
+          sums.sum[pixel] += count * background;
+          sums.sum2[pixel] += count * background * background;
+          return;
+        }
+      }
       for (int sample = first_sample; sample < total_samples; ++sample) {
         Rng rng(settings.seed, (static_cast<std::uint64_t>(pixel) << 24) ^ static_cast<std::uint64_t>(sample));
-        double jx = settings.jitter ? rng.uniform() : 0.5, jy = settings.jitter ? rng.uniform() : 0.5;
-        glm::dvec3 origin, direction;
-        camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
-        glm::dvec3 L = radiance(rs, origin, direction, rng);
+        glm::dvec3 L;
+        if (settings.jitter) {
+          glm::dvec3 origin, direction;
+          double jx = rng.uniform(), jy = rng.uniform();
+          camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
+          L = radiance(rs, origin, direction, rng, nullptr);
+        } else {
+          L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit);
+        }
         if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
         sums.sum[pixel] += L;
         sums.sum2[pixel] += L * L;

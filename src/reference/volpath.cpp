@@ -281,8 +281,8 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
 }
 
 // Outside: hit a surface; opaque = Lambertian with next-event estimation, translucent = dielectric boundary.
-bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce) {
-  SurfaceHit hit = s.rt.intersect(p.origin, p.direction);
+bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce, const SurfaceHit* known_hit) {
+  const SurfaceHit hit = known_hit ? *known_hit : s.rt.intersect(p.origin, p.direction);
   if (!hit.hit()) {
     if (bounce == 0) p.add(glm::dvec3(s.scene.render.background));
     return false;
@@ -316,13 +316,15 @@ bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce) {
 
 }  // namespace
 
-glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng) {
+glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
+                            const SurfaceHit* first_hit) {
   PathState p;
   p.origin = origin, p.direction = direction;
   p.hero = std::min(2, static_cast<int>(rng.uniform() * 3.0));
   int bounce = 0;
   while (bounce < kMaxSurfaceBounces) {
-    bool alive = p.medium >= 0 ? medium_step(s, p, rng) : surface_step(s, p, rng, bounce++);
+    const SurfaceHit* known = bounce == 0 ? first_hit : nullptr;
+    bool alive = p.medium >= 0 ? medium_step(s, p, rng) : surface_step(s, p, rng, bounce++, known);
     if (!alive) break;
   }
   return p.radiance;
