@@ -10,6 +10,8 @@ namespace {
 
 constexpr int kMaxSurfaceBounces = 64;
 constexpr int kRouletteAfter = 8;  // events before Russian roulette on the throughput starts
+// Fixed-point iterations for the refracted light path stop when the direction moves by less than this [rad].
+constexpr double kRefractionTolerance = 1e-7;
 
 double mean(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
 double max_component(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
@@ -33,24 +35,26 @@ struct RefractedBeam {
 RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 light_dir) {
   const ObjectData& o = s.rt.object(object);
   RefractedBeam beam;
-  glm::dvec3 toward = -light_dir;
+  glm::dvec3 toward = -light_dir, inside(0.0);
   SurfaceHit hit;
-  for (int iteration = 0; iteration < 16; ++iteration) {
+  bool converged = false;
+  for (int iteration = 0; iteration < 16 && !converged; ++iteration) {
     hit = s.rt.intersect(x, toward);
     if (!hit.hit() || hit.object != object) return beam;
     if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;  // the boundary faces away from the light
-    glm::dvec3 inside = refract(light_dir, hit.normal, o.eta);
-    glm::dvec3 next = -inside;
-    bool converged = glm::length(next - toward) < 1e-9;
-    toward = next;
-    if (converged) break;
+    inside = refract(light_dir, hit.normal, o.eta);
+    converged = glm::length(-inside - toward) < kRefractionTolerance;
+    toward = -inside;
   }
-  hit = s.rt.intersect(x, toward);
-  if (!hit.hit() || hit.object != object || glm::dot(hit.normal, light_dir) >= 0.0) return beam;
-  // Only a converged solution is a light path: the light refracted at the entry must travel along -toward.
-  // (Accepting an unconverged direction let cos(theta_t) approach 0 and the compression blow up.)
-  glm::dvec3 inside = refract(light_dir, hit.normal, o.eta);
-  if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;
+  // Converged: the last hit is the entry point (its ray differs from the light path's by under the tolerance).
+  // Otherwise the last direction is traced once more and accepted only if the light refracted there travels
+  // along it. (Accepting an unconverged direction let cos(theta_t) approach 0 and the compression blow up.)
+  if (!converged) {
+    hit = s.rt.intersect(x, toward);
+    if (!hit.hit() || hit.object != object || glm::dot(hit.normal, light_dir) >= 0.0) return beam;
+    inside = refract(light_dir, hit.normal, o.eta);
+    if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;
+  }
   beam.entry = hit.position;
   beam.direction = inside;
   beam.distance = hit.t;
@@ -74,24 +78,26 @@ RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec
 RefractedBeam find_refracted_point_beam(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 x_l) {
   const ObjectData& o = s.rt.object(object);
   RefractedBeam beam;
-  glm::dvec3 toward = glm::normalize(x_l - x);
+  glm::dvec3 toward = glm::normalize(x_l - x), light_dir(0.0), inside(0.0);
   SurfaceHit hit;
-  for (int iteration = 0; iteration < 32; ++iteration) {
+  bool converged = false;
+  for (int iteration = 0; iteration < 32 && !converged; ++iteration) {
     hit = s.rt.intersect(x, toward);
     if (!hit.hit() || hit.object != object) return beam;
-    glm::dvec3 light_dir = glm::normalize(hit.position - x_l);
+    light_dir = glm::normalize(hit.position - x_l);
     if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;  // the boundary faces away from the light
-    glm::dvec3 next = -refract(light_dir, hit.normal, o.eta);
-    bool converged = glm::length(next - toward) < 1e-9;
-    toward = next;
-    if (converged) break;
+    inside = refract(light_dir, hit.normal, o.eta);
+    converged = glm::length(-inside - toward) < kRefractionTolerance;
+    toward = -inside;
   }
-  hit = s.rt.intersect(x, toward);
-  if (!hit.hit() || hit.object != object) return beam;
-  glm::dvec3 light_dir = glm::normalize(hit.position - x_l);
-  if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;
-  glm::dvec3 inside = refract(light_dir, hit.normal, o.eta);
-  if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;  // not converged: no light path
+  if (!converged) {  // as for directional lights: trace the last direction once more and check it
+    hit = s.rt.intersect(x, toward);
+    if (!hit.hit() || hit.object != object) return beam;
+    light_dir = glm::normalize(hit.position - x_l);
+    if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;
+    inside = refract(light_dir, hit.normal, o.eta);
+    if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;  // not converged: no light path
+  }
   double cos_i = -glm::dot(light_dir, hit.normal), cos_t = -glm::dot(inside, hit.normal);
   if (cos_i <= 1e-9 || cos_t <= 1e-9) return beam;
   double D = glm::length(hit.position - x_l) * cos_i, d = hit.t * cos_t;
@@ -254,9 +260,9 @@ Flight delta_track(const ReferenceScene& s, PathState& p, Rng& rng, double bound
 bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
   const ObjectData& o = s.rt.object(p.medium);
   glm::dvec3 sigma_t = o.sigma_a + o.sigma_s;
-  SurfaceHit boundary = s.rt.intersect(p.origin, p.direction);
-  if (!boundary.hit()) return false;  // numerical leak out of a closed mesh
   if (o.heterogeneous()) {
+    SurfaceHit boundary = s.rt.intersect(p.origin, p.direction);
+    if (!boundary.hit()) return false;  // numerical leak out of a closed mesh
     glm::dvec3 x;
     switch (delta_track(s, p, rng, boundary.t, x)) {
       case Flight::Absorbed: return false;
@@ -264,8 +270,11 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
       case Flight::ReachedBoundary: return leave_or_reflect(s, p, rng, boundary);
     }
   }
+  // The free flight first, then the boundary searched only up to it: in a dense medium most flights end long
+  // before the boundary, and a ray limited to the flight visits few BVH nodes.
   double t = -std::log(1.0 - rng.uniform()) / sigma_t[p.hero];
-  if (t < boundary.t) {
+  SurfaceHit boundary = s.rt.intersect(p.origin, p.direction, t);
+  if (!boundary.hit()) {
     // Scattering vertex: distance pdf sigma_t e^{-sigma_t t} of each band relative to the hero's.
     glm::dvec3 attenuation = exp_neg(sigma_t * t);
     glm::dvec3 pdf = sigma_t * attenuation;
