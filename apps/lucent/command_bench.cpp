@@ -376,14 +376,23 @@ void run(const std::string& config_path, const std::string& output) {
   fs::create_directories(bench.out / "images");
   bench.context = create_headless_context();
   json results = json::array();
-  for (const json& r : bench.config.at("runs")) {
+  // The tables are rewritten after every run, so a long bench (references refined for hours) that is stopped
+  // keeps the results of the runs it finished ("complete": false until the last one).
+  auto write_results = [&](bool complete) {
+    json doc = {{"config", config_path}, {"device", Renderer::device_of_current_context()}, {"complete", complete},
+                {"results", results}};
+    std::ofstream(bench.out / "results.json") << doc.dump(2) << "\n";
+    std::ofstream(bench.out / "results.md") << markdown(results);
+    write_tsv(results, bench.out / "results.tsv");
+  };
+  const json& runs = bench.config.at("runs");
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const json& r = runs[i];
     std::string run_name = r.value("name", fs::path(r.at("scene").get<std::string>()).stem().string());
     bench.run(r, run_name, results);
+    write_results(i + 1 == runs.size());
   }
-  json doc = {{"config", config_path}, {"device", Renderer::device_of_current_context()}, {"results", results}};
-  std::ofstream(bench.out / "results.json") << doc.dump(2) << "\n";
-  std::ofstream(bench.out / "results.md") << markdown(results);
-  write_tsv(results, bench.out / "results.tsv");
+  if (runs.empty()) write_results(true);
   for (const json& plot : bench.config.value("plots", json::array())) {
     std::string command = fmt::format("gnuplot -e \"tsv='{}'; out='{}'\" {}", (bench.out / "results.tsv").string(),
                                       (bench.out / plot.at("output").get<std::string>()).string(),
