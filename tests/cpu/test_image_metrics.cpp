@@ -7,7 +7,10 @@
 
 #include "image/image_metrics.h"
 #include "lucent/scene.h"
+#include "reference/embree_scene.h"
+#include "reference/integrators.h"
 #include "reference/reference_renderer.h"
+#include "reference/rng.h"
 
 namespace {
 
@@ -61,6 +64,46 @@ TEST(ReferenceRenderer, ResumingAddsSamplesExactly) {
     for (std::size_t i = 0; i < whole.mean.pixels.size(); ++i)
       EXPECT_NEAR(resumed.mean.pixels[i], whole.mean.pixels[i], 1e-5 * std::abs(whole.mean.pixels[i]) + 1e-7)
           << "value " << i;
+  }
+}
+
+// Without jitter the renderer traces each pixel's centre ray once and hands the hit to the integrator; pixels whose
+// ray misses get the background without sampling. Both must give what the integrators give when they trace the
+// camera ray themselves, sample by sample with the same random streams.
+TEST(ReferenceRenderer, SharedCentreHitAndBackgroundPixelsEqualPerSampleTracing) {
+  lucent::Scene scene = lucent::parse_scene(R"({
+    "scale_mm": 10, "camera": { "eye": [0, 0, 5], "target": [0, 0, 0], "fov_y_deg": 30 },
+    "lights": [{ "direction": [0.6, -0.8, 0], "radiance": [1, 1, 1] }],
+    "objects": [{ "shape": "sphere", "radius": 1, "segments": 24, "material": "Potato" }],
+    "render": { "width": 8, "height": 6, "background": [0.2, 0.3, 0.4] } })", "centre", ".");
+  lucent::reference::EmbreeScene rt(scene);
+  lucent::reference::ReferenceScene rs{scene, rt};
+  for (auto integrator : {lucent::reference::Integrator::Bssrdf, lucent::reference::Integrator::Volpath}) {
+    lucent::reference::ReferenceSettings settings;
+    settings.integrator = integrator;
+    settings.samples_per_pixel = 3;
+    auto image = lucent::reference::render_reference(scene, settings);
+    auto radiance = integrator == lucent::reference::Integrator::Volpath ? lucent::reference::volpath_radiance
+                                                                         : lucent::reference::bssrdf_radiance;
+    int background_pixels = 0;
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const std::size_t pixel = static_cast<std::size_t>(y * 8 + x);
+        glm::dvec3 origin, direction, sum(0.0);
+        lucent::reference::camera_ray(scene.camera, 8, 6, x + 0.5, y + 0.5, origin, direction);
+        for (int sample = 0; sample < 3; ++sample) {
+          lucent::reference::Rng rng(settings.seed, (static_cast<std::uint64_t>(pixel) << 24) ^ static_cast<std::uint64_t>(sample));
+          sum += radiance(rs, origin, direction, rng, nullptr);
+        }
+        if (!rt.intersect(origin, direction).hit()) ++background_pixels;
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(image.mean.pixels[4 * pixel + static_cast<std::size_t>(c)], sum[c] / 3.0, 1e-6 * std::abs(sum[c]) + 1e-9)
+              << "pixel " << x << "," << y << " band " << c;
+      }
+    EXPECT_GT(background_pixels, 0);
+    EXPECT_LT(background_pixels, 48);
+    EXPECT_EQ(image.mean.pixels[2], 0.4f);  // corner pixel: the background, exactly, with no noise
+    EXPECT_EQ(image.standard_error.pixels[2], 0.0f);
   }
 }
 
