@@ -372,6 +372,8 @@ void run(const std::string& config_path, const std::string& output) {
   Bench bench;
   bench.config = json::parse(file, nullptr, false, true);
   if (bench.config.is_discarded()) throw Error(fmt::format("{}: malformed JSON", config_path));
+  if (!bench.config.contains("runs") || !bench.config["runs"].is_array())
+    throw Error(fmt::format("{}: \"runs\" must be an array of runs", config_path));
   bench.out = output.empty() ? fs::path("out/bench") / fs::path(config_path).stem() : fs::path(output);
   fs::create_directories(bench.out / "images");
   bench.context = create_headless_context();
@@ -381,11 +383,17 @@ void run(const std::string& config_path, const std::string& output) {
   auto write_results = [&](bool complete) {
     json doc = {{"config", config_path}, {"device", Renderer::device_of_current_context()}, {"complete", complete},
                 {"results", results}};
-    std::ofstream(bench.out / "results.json") << doc.dump(2) << "\n";
-    std::ofstream(bench.out / "results.md") << markdown(results);
-    write_tsv(results, bench.out / "results.tsv");
+    // Written beside and renamed over, so a bench stopped mid-write leaves the previous complete files.
+    auto replace = [&](const char* name, const std::function<void(const fs::path&)>& write) {
+      const fs::path final_path = bench.out / name, partial = bench.out / (std::string(name) + ".partial");
+      write(partial);
+      fs::rename(partial, final_path);
+    };
+    replace("results.json", [&](const fs::path& p) { std::ofstream(p) << doc.dump(2) << "\n"; });
+    replace("results.md", [&](const fs::path& p) { std::ofstream(p) << markdown(results); });
+    replace("results.tsv", [&](const fs::path& p) { write_tsv(results, p); });
   };
-  const json& runs = bench.config.at("runs");
+  const json& runs = bench.config["runs"];
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const json& r = runs[i];
     std::string run_name = r.value("name", fs::path(r.at("scene").get<std::string>()).stem().string());

@@ -49,6 +49,7 @@ class AliasTable {
   // u0 chooses the column, u1 the coin; both uniform in [0, 1).
   std::size_t sample(double u0, double u1) const {
     const std::size_t n = keep_.size();
+    if (n == 0) throw std::logic_error("AliasTable: sampling an empty table");
     std::size_t j = static_cast<std::size_t>(u0 * static_cast<double>(n));
     if (j >= n) j = n - 1;
     return u1 < keep_[j] ? j : alias_[j];

@@ -154,8 +154,8 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
 // area, a shadow ray, and the emergent radiance T21 B(x_v) / pi estimated by one nested sample.
 glm::dvec3 emergent_irradiance(const ReferenceScene& s, const SurfaceHit& hit, glm::dvec3 n, Rng& rng) {
   std::vector<int> translucent;
-  for (int i = 0; i < s.rt.object_count(); ++i)
-    if (s.rt.object(i).translucent) translucent.push_back(i);
+  for (int i = 0; i < s.rt.object_count(); ++i)  // (an empty surface, e.g. blobs at some instant, emits nothing)
+    if (s.rt.object(i).translucent && s.rt.object(i).area > 0.0) translucent.push_back(i);
   if (translucent.empty()) return glm::dvec3(0.0);
   int object = translucent[std::min(translucent.size() - 1,
                                     static_cast<std::size_t>(rng.uniform() * static_cast<double>(translucent.size())))];

@@ -29,8 +29,7 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     total += areas.back();
     d.corners.push_back(c);
   }
-  if (total > 0.0) d.triangle_by_area = AliasTable(areas);
-  else if (object.material) throw Error("reference: a translucent object's mesh has no surface area to sample");
+  if (total > 0.0) d.triangle_by_area = AliasTable(areas);  // else never sampled: nothing can hit it either
   d.area = total;
   d.albedo = object.albedo;
   if (object.material) {
@@ -45,6 +44,7 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     d.scale_mm = scale_mm;
     d.lower = glm::vec3(std::numeric_limits<float>::max()), d.upper = -d.lower;
     for (const glm::vec3& p : d.positions) d.lower = glm::min(d.lower, p), d.upper = glm::max(d.upper, p);
+    d.mesh_lower = d.lower, d.mesh_upper = d.upper;
     if (m.field.has_bounds) d.lower = m.field.bounds_lower, d.upper = m.field.bounds_upper;
     d.majorant = static_cast<double>(m.field.max_multiplier()) * (d.sigma_a + d.sigma_s);
   }
@@ -87,7 +87,8 @@ EmbreeScene::~EmbreeScene() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const {
+SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max,
+                                  double t_min) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh{};
@@ -95,7 +96,7 @@ SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& di
   rh.ray.org_z = static_cast<float>(origin.z);
   rh.ray.dir_x = static_cast<float>(direction.x), rh.ray.dir_y = static_cast<float>(direction.y);
   rh.ray.dir_z = static_cast<float>(direction.z);
-  rh.ray.tnear = static_cast<float>(epsilon_);
+  rh.ray.tnear = static_cast<float>(t_min < 0.0 ? epsilon_ : t_min);
   rh.ray.tfar = static_cast<float>(std::min(t_max, 1e30));
   rh.ray.mask = 0xffffffffu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;

@@ -33,6 +33,7 @@ struct ObjectData {
   MediumField field;
   float scale_mm = 1.0f;                          // mm per scene unit (the field's feature sizes are in mm)
   glm::vec3 lower{0.0f}, upper{0.0f};
+  glm::vec3 mesh_lower{0.0f}, mesh_upper{0.0f};   // the mesh's own bounds (lower/upper may be the field's)
   glm::dvec3 majorant{0.0};                       // [1/scene unit]
   bool heterogeneous() const { return field.heterogeneous(); }
   double multiplier(const glm::dvec3& p) const { return field.multiplier(glm::vec3(p), lower, upper, scale_mm); }
@@ -40,8 +41,9 @@ struct ObjectData {
   AliasTable triangle_by_area;                    // picks a triangle with probability area / total area
   std::vector<glm::vec3> positions, normals;      // world space
   std::vector<std::uint32_t> indices;
-  // The same triangles with their corners side by side (one cache line each), for the random accesses of hits
-  // and area samples: a hit's normal from the indexed arrays cost three scattered loads after the index load.
+  // The same triangles with their corners side by side (72 bytes, at most two cache lines), for the random
+  // accesses of hits and area samples: a hit's normal from the indexed arrays cost three scattered loads after
+  // the index load.
   struct Corners {
     glm::vec3 position[3], normal[3];
   };
@@ -60,7 +62,10 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  SurfaceHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
+  // The closest hit in (t_min, t_max]; t_min defaults to ray_epsilon() (rays leaving a surface point). Rays from
+  // a medium's interior pass 0: a vertex within epsilon of the boundary must not skip it.
+  SurfaceHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30,
+                       double t_min = -1.0) const;
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
 
   const ObjectData& object(int index) const { return objects_[static_cast<std::size_t>(index)]; }

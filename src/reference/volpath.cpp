@@ -260,8 +260,10 @@ Flight delta_track(const ReferenceScene& s, PathState& p, Rng& rng, double bound
 bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
   const ObjectData& o = s.rt.object(p.medium);
   glm::dvec3 sigma_t = o.sigma_a + o.sigma_s;
+  // Medium rays start inside (scattering vertices, or boundary points offset inward): no epsilon skip, so a vertex
+  // within epsilon of the boundary still finds it.
   if (o.heterogeneous()) {
-    SurfaceHit boundary = s.rt.intersect(p.origin, p.direction);
+    SurfaceHit boundary = s.rt.intersect(p.origin, p.direction, 1e30, 0.0);
     if (!boundary.hit()) return false;  // numerical leak out of a closed mesh
     glm::dvec3 x;
     switch (delta_track(s, p, rng, boundary.t, x)) {
@@ -273,14 +275,20 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
   // The free flight first, then the boundary searched only up to it: in a dense medium most flights end long
   // before the boundary, and a ray limited to the flight visits few BVH nodes.
   double t = -std::log(1.0 - rng.uniform()) / sigma_t[p.hero];
-  SurfaceHit boundary = s.rt.intersect(p.origin, p.direction, t);
+  SurfaceHit boundary = s.rt.intersect(p.origin, p.direction, t, 0.0);
   if (!boundary.hit()) {
+    // A numerical leak (a vertex that escaped a closed mesh, or t infinite in a band without extinction) ends
+    // the path once the vertex would leave the mesh's bounds.
+    const glm::dvec3 x = p.origin + t * p.direction;
+    if (!std::isfinite(t) || glm::any(glm::lessThan(x, glm::dvec3(o.mesh_lower))) ||
+        glm::any(glm::greaterThan(x, glm::dvec3(o.mesh_upper))))
+      return false;
     // Scattering vertex: distance pdf sigma_t e^{-sigma_t t} of each band relative to the hero's.
     glm::dvec3 attenuation = exp_neg(sigma_t * t);
     glm::dvec3 pdf = sigma_t * attenuation;
     p.throughput *= o.sigma_s * attenuation / pdf[p.hero];
     p.r_u *= pdf / pdf[p.hero];
-    return scatter(s, p, rng, p.origin + t * p.direction);
+    return scatter(s, p, rng, x);
   }
   // Past the boundary: probability e^{-sigma_t t_b} of each band relative to the hero's.
   glm::dvec3 attenuation = exp_neg(sigma_t * boundary.t);

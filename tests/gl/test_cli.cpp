@@ -45,6 +45,12 @@ TEST(Cli, MissingMeshFile) {
                         "lucent: " + scene + ": /objects/0/mesh: " + mesh + ": no such file");
 }
 
+TEST(Cli, BenchRunsMustBeAnArray) {
+  std::string config = write_file("bench_runs_object.json", R"({"runs": {"name": "marble"}})");
+  expect_one_line_error(run("bench " + config + " -o " + lucent::test::output_path("bench_runs_object")),
+                        "lucent: " + config + ": \"runs\" must be an array of runs");
+}
+
 TEST(Cli, MalformedJson) {
   std::string scene = write_file("malformed.json", R"({"objects": [ )");
   Result r = run("render " + scene);
