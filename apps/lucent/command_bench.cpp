@@ -15,11 +15,13 @@
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "image/image_metrics.h"
 #include "lucent/lucent.h"
+#include "progress_bar.h"
 #include "reference/reference_renderer.h"
 
 namespace lucent::cli {
@@ -118,7 +120,11 @@ struct Bench {
     settings.samples_per_pixel = spp - (cached ? cached->samples_per_pixel : 0);
     fmt::print(stderr, "  reference {} {} spp ({}x{}){}...\n", integrator, spp, scene.render.width,
                scene.render.height, cached ? fmt::format(", resuming from {} spp", cached->samples_per_pixel) : "");
+    // A refinement step can take an hour: the same progress bar and time left as `lucent reference`.
+    ProgressBar progress(fmt::format("  reference {} {} spp", integrator, spp), 1000);
+    settings.progress = [&](double done) { progress.update(static_cast<int>(done * 1000.0)); };
     reference::ReferenceImage image = reference::render_reference(scene, settings, cached ? &*cached : nullptr);
+    progress.finish();
     if (cached) image.seconds += cached->seconds;
     fs::create_directories(exr.parent_path());
     write_exr(exr.string(), image.mean);
@@ -366,7 +372,22 @@ void write_tsv(const json& results, const fs::path& path) {
   }
 }
 
-void run(const std::string& config_path, const std::string& output) {
+// The runs to execute: all, or those named by --run (in the configuration's order). A name that is not a run of the
+// configuration is an error naming it and the runs there are.
+std::vector<std::size_t> selected_runs(const json& runs, const std::vector<std::string>& only,
+                                       const std::string& config_path) {
+  std::vector<std::string> names;
+  for (const json& r : runs) names.push_back(r.value("name", fs::path(r.at("scene").get<std::string>()).stem().string()));
+  for (const std::string& name : only)
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw Error(fmt::format("{}: --run {}: no such run; runs: {}", config_path, name, fmt::join(names, ", ")));
+  std::vector<std::size_t> selected;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (only.empty() || std::find(only.begin(), only.end(), names[i]) != only.end()) selected.push_back(i);
+  return selected;
+}
+
+void run(const std::string& config_path, const std::string& output, const std::vector<std::string>& only) {
   std::ifstream file(config_path);
   if (!file) throw Error(fmt::format("{}: cannot open bench configuration", config_path));
   Bench bench;
@@ -374,6 +395,8 @@ void run(const std::string& config_path, const std::string& output) {
   if (bench.config.is_discarded()) throw Error(fmt::format("{}: malformed JSON", config_path));
   if (!bench.config.contains("runs") || !bench.config["runs"].is_array())
     throw Error(fmt::format("{}: \"runs\" must be an array of runs", config_path));
+  const json& runs = bench.config["runs"];
+  const std::vector<std::size_t> selected = selected_runs(runs, only, config_path);
   bench.out = output.empty() ? fs::path("out/bench") / fs::path(config_path).stem() : fs::path(output);
   fs::create_directories(bench.out / "images");
   bench.context = create_headless_context();
@@ -383,6 +406,7 @@ void run(const std::string& config_path, const std::string& output) {
   auto write_results = [&](bool complete) {
     json doc = {{"config", config_path}, {"device", Renderer::device_of_current_context()}, {"complete", complete},
                 {"results", results}};
+    if (!only.empty()) doc["only_runs"] = only;  // --run: the other runs of the configuration were not run
     // Written beside and renamed over, so a bench stopped mid-write leaves the previous complete files.
     auto replace = [&](const char* name, const std::function<void(const fs::path&)>& write) {
       const fs::path final_path = bench.out / name, partial = bench.out / (std::string(name) + ".partial");
@@ -393,14 +417,13 @@ void run(const std::string& config_path, const std::string& output) {
     replace("results.md", [&](const fs::path& p) { std::ofstream(p) << markdown(results); });
     replace("results.tsv", [&](const fs::path& p) { write_tsv(results, p); });
   };
-  const json& runs = bench.config["runs"];
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const json& r = runs[i];
+  for (std::size_t k = 0; k < selected.size(); ++k) {
+    const json& r = runs[selected[k]];
     std::string run_name = r.value("name", fs::path(r.at("scene").get<std::string>()).stem().string());
     bench.run(r, run_name, results);
-    write_results(i + 1 == runs.size());
+    write_results(k + 1 == selected.size());
   }
-  if (runs.empty()) write_results(true);
+  if (selected.empty()) write_results(true);
   for (const json& plot : bench.config.value("plots", json::array())) {
     std::string command = fmt::format("gnuplot -e \"tsv='{}'; out='{}'\" {}", (bench.out / "results.tsv").string(),
                                       (bench.out / plot.at("output").get<std::string>()).string(),
@@ -415,10 +438,14 @@ void run(const std::string& config_path, const std::string& output) {
 void add_bench_command(CLI::App& app) {
   auto config = std::make_shared<std::string>();
   auto output = std::make_shared<std::string>();
+  auto only = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("bench", "run a benchmark matrix (bench/*.json) against the CPU references");
   cmd->add_option("config", *config, "benchmark configuration (JSON), e.g. bench/accuracy.json")->required();
   cmd->add_option("-o,--output", *output, "output folder (default out/bench/<config name>)");
-  cmd->callback([config, output] { run(*config, *output); });
+  cmd->add_option("--run", *only,
+                  "run only this run of the configuration (repeatable); its references are cached and refined as in "
+                  "the full matrix, e.g. --run grapefruit");
+  cmd->callback([config, output, only] { run(*config, *output, *only); });
 }
 
 }  // namespace lucent::cli

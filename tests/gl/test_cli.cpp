@@ -1,11 +1,13 @@
 // test_cli.cpp: the `lucent` tool from outside: bad input gives one clear line and a non-zero exit; bssrdf
 // prints the model's values; render writes a non-black image; help is generated from the declarations.
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 
 #include <gtest/gtest.h>
@@ -49,6 +51,87 @@ TEST(Cli, BenchRunsMustBeAnArray) {
   std::string config = write_file("bench_runs_object.json", R"({"runs": {"name": "marble"}})");
   expect_one_line_error(run("bench " + config + " -o " + lucent::test::output_path("bench_runs_object")),
                         "lucent: " + config + ": \"runs\" must be an array of runs");
+}
+
+// The bench from outside, on a tiny matrix: --run runs one run of the configuration; its error equals the RMSE
+// computed here from the files it wrote (the method's EXR and the cached reference); the reference was refined
+// until its noise is noise_ratio times below the noise-corrected RMSE (or max_spp); a second bench reuses the
+// cached reference instead of rendering it again; an unknown run name is one clear error.
+TEST(Cli, BenchRunsOneRunAndRefinesItsReferenceToTheNoiseRatio) {
+  namespace fs = std::filesystem;
+  const fs::path dir = lucent::test::output_path("bench_one_run");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = (dir / "sphere.json").string(), config = (dir / "bench.json").string();
+  std::ofstream(scene) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0.5, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}]})";
+  constexpr double kRatio = 3.0;
+  constexpr int kFirstSpp = 4, kMaxSpp = 4096;
+  nlohmann::json bench = {
+      {"set", {"render.width=24", "render.height=16", "method.K=4", "method.N=4", "method.map_size=32",
+               "method.light_map_size=64", "method.specular=false", "render.background=[0,0,0]"}},
+      {"references",
+       {{"bssrdf", {{"spp", kFirstSpp}, {"noise_ratio", kRatio}, {"max_spp", kMaxSpp}, {"rmse_floor", 1e-4}}}}},
+      {"runs",
+       {{{"name", "skin"}, {"scene", scene}, {"variants", {{{"name", "one"}, {"id", "one"}, {"frames", 1}}}}},
+        {{"name", "marble"},
+         {"scene", scene},
+         {"set", {R"(objects.0.material={"preset": "Marble"})"}},
+         {"variants", {{{"name", "four frames"}, {"id", "four"}, {"frames", 4}}}}}}}};
+  std::ofstream(config) << bench.dump(2);
+  const std::string out = (dir / "out").string();
+
+  Result first = run("bench " + config + " --run marble -o " + out);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  auto results = nlohmann::json::parse(std::ifstream(fs::path(out) / "results.json"));
+  EXPECT_EQ(results["only_runs"], nlohmann::json::array({"marble"}));
+  EXPECT_TRUE(results["complete"].get<bool>());
+  ASSERT_EQ(results["results"].size(), 1u);
+  const nlohmann::json& error = results["results"][0]["error"]["bssrdf"];
+
+  // Only the marble run's reference was rendered: one metadata file in the cache.
+  std::vector<fs::path> metadata;
+  for (const auto& entry : fs::directory_iterator(fs::path(out) / "references"))
+    if (entry.path().extension() == ".json") metadata.push_back(entry.path());
+  ASSERT_EQ(metadata.size(), 1u);
+  auto meta = nlohmann::json::parse(std::ifstream(metadata[0]));
+  const int spp = meta["samples_per_pixel"].get<int>();
+  EXPECT_EQ(spp, error["reference_spp"].get<int>());
+  EXPECT_GT(spp, kFirstSpp) << "the first reference already met the ratio: the test no longer checks refinement";
+
+  // RMSE of sqrt(dr^2+dg^2+db^2) and the reference's noise, from the written files.
+  fs::path ref_exr = metadata[0];
+  ref_exr.replace_extension(".exr");
+  fs::path ref_stderr = metadata[0];
+  ref_stderr.replace_extension(".stderr.exr");
+  const lucent::ImageRGBA32F method = lucent::read_exr((fs::path(out) / "images" / "marble_four.exr").string());
+  const lucent::ImageRGBA32F reference = lucent::read_exr(ref_exr.string());
+  const lucent::ImageRGBA32F standard_error = lucent::read_exr(ref_stderr.string());
+  ASSERT_EQ(method.pixels.size(), reference.pixels.size());
+  double squared = 0.0, variance = 0.0;
+  const std::size_t n = method.pixels.size() / 4;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      double d = double(method.pixels[4 * i + c]) - reference.pixels[4 * i + c];
+      squared += d * d;
+      variance += double(standard_error.pixels[4 * i + c]) * standard_error.pixels[4 * i + c];
+    }
+  const double rmse = std::sqrt(squared / double(n)), noise = std::sqrt(variance / double(n));
+  EXPECT_NEAR(error["rmse_rgb"].get<double>(), rmse, 1e-9 * rmse);
+  EXPECT_GT(rmse, 1e-3) << "a black image or reference would meet any ratio";
+  const double corrected = std::sqrt(std::max(0.0, rmse * rmse - noise * noise));
+  EXPECT_TRUE(noise * kRatio <= std::max(corrected, 1e-4) || spp >= kMaxSpp)
+      << "noise " << noise << " x " << kRatio << " > corrected RMSE " << corrected << " at " << spp << " spp";
+
+  // A second bench finds the reference in the cache: not rendered again (same metadata), same error.
+  Result second = run("bench " + config + " --run marble -o " + out);
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(metadata[0])), meta);
+  auto again = nlohmann::json::parse(std::ifstream(fs::path(out) / "results.json"));
+  EXPECT_EQ(again["results"][0]["error"]["bssrdf"]["rmse_rgb"], error["rmse_rgb"]);
+
+  expect_one_line_error(run("bench " + config + " --run marbel -o " + out),
+                        "lucent: " + config + ": --run marbel: no such run; runs: skin, marble");
 }
 
 TEST(Cli, MalformedJson) {
