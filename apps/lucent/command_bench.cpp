@@ -18,6 +18,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_config.h"
 #include "commands.h"
 #include "image/image_metrics.h"
 #include "lucent/lucent.h"
@@ -377,7 +378,7 @@ void write_tsv(const json& results, const fs::path& path) {
 std::vector<std::size_t> selected_runs(const json& runs, const std::vector<std::string>& only,
                                        const std::string& config_path) {
   std::vector<std::string> names;
-  for (const json& r : runs) names.push_back(r.value("name", fs::path(r.at("scene").get<std::string>()).stem().string()));
+  for (const json& r : runs) names.push_back(run_name(r));
   for (const std::string& name : only)
     if (std::find(names.begin(), names.end(), name) == names.end())
       throw Error(fmt::format("{}: --run {}: no such run; runs: {}", config_path, name, fmt::join(names, ", ")));
@@ -393,10 +394,26 @@ void run(const std::string& config_path, const std::string& output, const std::v
   Bench bench;
   bench.config = json::parse(file, nullptr, false, true);
   if (bench.config.is_discarded()) throw Error(fmt::format("{}: malformed JSON", config_path));
-  if (!bench.config.contains("runs") || !bench.config["runs"].is_array())
-    throw Error(fmt::format("{}: \"runs\" must be an array of runs", config_path));
+  validate_bench_config(bench.config, config_path);
   const json& runs = bench.config["runs"];
   const std::vector<std::size_t> selected = selected_runs(runs, only, config_path);
+  // Every variant's scene, with its overrides, is loaded once before anything renders: a bad override in the last
+  // run is an error now, not after the references of the first runs.
+  for (std::size_t i : selected) {
+    const json& r = runs[i];
+    const json variants = r.value("variants", json::array({json::object()}));
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      std::vector<std::string> sets = strings(bench.config, "set");
+      for (const auto& s : strings(r, "set")) sets.push_back(s);
+      for (const auto& s : strings(variants[v], "set")) sets.push_back(s);
+      try {
+        load_scene(r.at("scene").get<std::string>(), sets);
+      } catch (const Error& e) {
+        throw Error(fmt::format("{}: /runs/{}{}: {}", config_path, i,
+                                r.contains("variants") ? fmt::format("/variants/{}", v) : "", e.what()));
+      }
+    }
+  }
   bench.out = output.empty() ? fs::path("out/bench") / fs::path(config_path).stem() : fs::path(output);
   fs::create_directories(bench.out / "images");
   bench.context = create_headless_context();
@@ -419,8 +436,7 @@ void run(const std::string& config_path, const std::string& output, const std::v
   };
   for (std::size_t k = 0; k < selected.size(); ++k) {
     const json& r = runs[selected[k]];
-    std::string run_name = r.value("name", fs::path(r.at("scene").get<std::string>()).stem().string());
-    bench.run(r, run_name, results);
+    bench.run(r, run_name(r), results);
     write_results(k + 1 == selected.size());
   }
   if (selected.empty()) write_results(true);

@@ -1,0 +1,146 @@
+// bench_config.cpp: see bench_config.h. The keys are declared like the scene file's (ParamDecl), so types, ranges
+// and unknown keys get the scene parser's messages.
+#include "bench_config.h"
+
+#include <filesystem>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "lucent/error.h"
+#include "params/param_json.h"
+
+namespace lucent::cli {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kMaxSpp = 1 << 30;
+
+constexpr ParamDecl kBenchParams[] = {
+    {"description", ParamType::String, "\"\"", "", 0, 0, "", "what the matrix measures, free text"},
+};
+constexpr ParamDecl kReferenceParams[] = {
+    {"spp", ParamType::Int, "256", "samples/pixel", 1, kMaxSpp, "", "samples per pixel of the first reference"},
+    {"noise_ratio", ParamType::Float, "0", "", 0, 1e6, "",
+     "refine until the reference's noise is this many times below the smallest noise-corrected RMSE (0: no refinement)"},
+    {"max_spp", ParamType::Int, "", "samples/pixel", 1, kMaxSpp, "", "refinement stops here (default: spp)"},
+    {"rmse_floor", ParamType::Float, "0.001", "", 0, 1e3, "", "errors below this are not resolved further"},
+};
+constexpr ParamDecl kRunParams[] = {
+    {"name", ParamType::String, "", "", 0, 0, "", "run name (default: the scene file's stem)"},
+    {"scene", ParamType::String, "", "", 0, 0, "", "scene file (required)"},
+    {"restart_every_frame", ParamType::Bool, "false", "", 0, 1, "", "recompute cached state every frame"},
+};
+constexpr ParamDecl kVariantParams[] = {
+    {"name", ParamType::String, "\"default\"", "", 0, 0, "", "variant name in the tables"},
+    {"id", ParamType::String, "", "", 0, 0, "", "file stem of its images (default: the name)"},
+    {"frames", ParamType::Int, "", "frames", 1, 1e6, "", "frames rendered (default: the scene's render.frames)"},
+    {"coverage", ParamType::Bool, "false", "", 0, 1, "", "measure the maps' coverage of the visible surface"},
+    {"equal_time", ParamType::Bool, "false", "", 0, 1, "", "also measure a bssrdf reference given the same time"},
+    {"restart_every_frame", ParamType::Bool, "false", "", 0, 1, "", "recompute cached state every frame"},
+};
+constexpr ParamDecl kPlotParams[] = {
+    {"output", ParamType::String, "", "", 0, 0, "", "PNG written into the output folder (required)"},
+    {"script", ParamType::String, "", "", 0, 0, "", "gnuplot script (required)"},
+};
+
+[[noreturn]] void fail(const JsonLocation& where, const std::string& problem) {
+  throw Error(fmt::format("{}: {}", where.str(), problem));
+}
+
+void require_key(const json& object, const char* key, const JsonLocation& where, const char* what) {
+  if (!object.contains(key)) fail(where.child(key), fmt::format("missing; {}", what));
+}
+
+void require_array(const json& value, const JsonLocation& where, const char* of) {
+  if (!value.is_array()) fail(where, fmt::format("expected an array of {}, got {}", of, value.dump()));
+}
+
+// "set": ["render.width=160", "objects.0.material.model=\"standard\"", ...]; what the values mean is checked when
+// the scenes are loaded.
+void check_overrides(const json& object, const JsonLocation& where) {
+  if (!object.contains("set")) return;
+  const JsonLocation at = where.child("set");
+  require_array(object["set"], at, "\"key=value\" strings");
+  for (std::size_t i = 0; i < object["set"].size(); ++i) {
+    const json& s = object["set"][i];
+    if (!s.is_string() || s.get<std::string>().find('=') == 0 || s.get<std::string>().find('=') == std::string::npos)
+      fail(at.child(i), fmt::format("expected \"key=value\", got {}", s.dump()));
+  }
+}
+
+}  // namespace
+
+std::string run_name(const json& run) {
+  if (run.contains("name")) return run["name"].get<std::string>();
+  return std::filesystem::path(run.at("scene").get<std::string>()).stem().string();
+}
+
+void validate_bench_config(const json& config, const std::string& path) {
+  const JsonLocation root{path, ""};
+  read_params(config, {"bench", kBenchParams}, root, {"set", "references", "runs", "plots"});
+  check_overrides(config, root);
+  require_key(config, "runs", root, "an array of runs, each {\"scene\": ..., \"variants\": [...]}");
+  if (!config["runs"].is_array()) throw Error(fmt::format("{}: \"runs\" must be an array of runs", path));
+
+  std::map<std::string, std::size_t> runs;  // name -> index
+  for (std::size_t i = 0; i < config["runs"].size(); ++i) {
+    const json& run = config["runs"][i];
+    const JsonLocation at = root.child("runs").child(i);
+    read_params(run, {"run", kRunParams}, at, {"set", "variants"});
+    require_key(run, "scene", at, "the scene file of this run");
+    check_overrides(run, at);
+    const std::string name = run_name(run);
+    if (auto [other, inserted] = runs.emplace(name, i); !inserted)
+      fail(at, fmt::format("run name '{}' is also the name of /runs/{}", name, other->second));
+    if (!run.contains("variants")) continue;
+    require_array(run["variants"], at.child("variants"), "variants");
+    std::map<std::string, std::size_t> ids;
+    for (std::size_t v = 0; v < run["variants"].size(); ++v) {
+      const json& variant = run["variants"][v];
+      const JsonLocation vat = at.child("variants").child(v);
+      read_params(variant, {"variant", kVariantParams}, vat, {"set"});
+      check_overrides(variant, vat);
+      const std::string id = variant.value("id", variant.value("name", std::string("default")));
+      if (auto [other, inserted] = ids.emplace(id, v); !inserted)
+        fail(vat, fmt::format("variant id '{}' is also the id of variant {} (their images would overwrite each other)",
+                              id, other->second));
+    }
+  }
+
+  if (config.contains("references")) {
+    const JsonLocation at = root.child("references");
+    require_object(config["references"], at);
+    for (const auto& [integrator, spec] : config["references"].items()) {
+      const JsonLocation iat = at.child(integrator);
+      if (integrator != "bssrdf" && integrator != "volpath") fail(iat, "unknown integrator; known: bssrdf, volpath");
+      read_params(spec, {"reference", kReferenceParams}, iat, {"only_runs"});
+      const int spp = spec.value("spp", 256);
+      if (spec.contains("max_spp") && spec["max_spp"].get<int>() < spp)
+        fail(iat.child("max_spp"), fmt::format("{} is below spp {}", spec["max_spp"].get<int>(), spp));
+      if (!spec.contains("only_runs")) continue;
+      require_array(spec["only_runs"], iat.child("only_runs"), "run names");
+      for (std::size_t k = 0; k < spec["only_runs"].size(); ++k) {
+        const json& name = spec["only_runs"][k];
+        if (!name.is_string() || !runs.count(name.get<std::string>()))
+          fail(iat.child("only_runs").child(k), fmt::format("{} is not the name of a run", name.dump()));
+      }
+    }
+  }
+
+  if (config.contains("plots")) {
+    require_array(config["plots"], root.child("plots"), "plots");
+    for (std::size_t i = 0; i < config["plots"].size(); ++i) {
+      const JsonLocation at = root.child("plots").child(i);
+      const json& plot = config["plots"][i];
+      read_params(plot, {"plot", kPlotParams}, at);
+      require_key(plot, "output", at, "the PNG to write, e.g. \"fig13.png\"");
+      require_key(plot, "script", at, "a gnuplot script, e.g. \"bench/fig13.gp\"");
+      const std::string script = plot["script"].get<std::string>();
+      if (!std::filesystem::exists(script)) fail(at.child("script"), fmt::format("{}: no such file", script));
+    }
+  }
+}
+
+}  // namespace lucent::cli

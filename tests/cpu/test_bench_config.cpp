@@ -1,0 +1,109 @@
+// test_bench_config.cpp: a `lucent bench` configuration is checked before anything renders: exact messages for
+// unknown keys, wrong types, out-of-range values, duplicate names and missing files; every shipped bench/*.json
+// passes.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bench_config.h"
+#include "../test_support.h"
+
+namespace {
+
+using lucent::cli::validate_bench_config;
+using nlohmann::json;
+
+// The message for `text` as the file "b.json", or "" when it is valid.
+std::string problem(const std::string& text) {
+  return lucent::test::error_message([&] { validate_bench_config(json::parse(text), "b.json"); });
+}
+
+const char* kRun = R"({"name": "marble", "scene": "scenes/bunny_marble.json"})";
+
+std::string with_run(const std::string& run_text) { return R"({"runs": [)" + run_text + "]}"; }
+
+TEST(BenchConfig, ShippedConfigurationsAreValid) {
+  const std::filesystem::path bench = std::filesystem::path(LUCENT_SCENES_DIR).parent_path() / "bench";
+  int checked = 0;
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(bench.parent_path());  // plot scripts are named relative to the repository
+  for (const auto& entry : std::filesystem::directory_iterator(bench)) {
+    if (entry.path().extension() != ".json") continue;
+    EXPECT_EQ(lucent::test::error_message([&] {
+                validate_bench_config(json::parse(std::ifstream(entry.path())), entry.path().string());
+              }),
+              "");
+    ++checked;
+  }
+  std::filesystem::current_path(cwd);
+  EXPECT_GE(checked, 6);
+}
+
+TEST(BenchConfig, UnknownKeysAreNamedWithTheKnownOnes) {
+  EXPECT_EQ(problem(R"({"run": []})"),
+            "b.json: /run: unknown key; known keys: description, set, references, runs, plots");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "varients": []})")),
+            "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frame": 4}]})")),
+            "b.json: /runs/0/variants/0/frame: unknown key; known keys: name, id, frames, coverage, equal_time, "
+            "restart_every_frame, set");
+  EXPECT_EQ(problem(R"({"runs": [], "references": {"volpth": {"spp": 4}}})"),
+            "b.json: /references/volpth: unknown integrator; known: bssrdf, volpath");
+  EXPECT_EQ(problem(R"({"runs": [], "references": {"bssrdf": {"sp": 4}}})"),
+            "b.json: /references/bssrdf/sp: unknown key; known keys: spp, noise_ratio, max_spp, rmse_floor, only_runs");
+}
+
+TEST(BenchConfig, TypesAndRanges) {
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frames": "x"}]})")),
+            "b.json: /runs/0/variants/0/frames: expected a number, got \"x\"");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frames": 0}]})")),
+            "b.json: /runs/0/variants/0/frames: 0 is out of range; allowed range [1, 1e+06] frames");
+  EXPECT_EQ(problem(R"({"runs": [], "references": {"bssrdf": {"spp": -4}}})"),
+            "b.json: /references/bssrdf/spp: -4 is out of range; allowed range [1, 1.07374e+09] samples/pixel");
+  EXPECT_EQ(problem(R"({"runs": [], "references": {"volpath": {"spp": 2.5}}})"),
+            "b.json: /references/volpath/spp: 2.5 is not an integer");
+  EXPECT_EQ(problem(R"({"runs": [], "references": {"bssrdf": {"spp": 64, "max_spp": 32}}})"),
+            "b.json: /references/bssrdf/max_spp: 32 is below spp 64");
+  EXPECT_EQ(problem(R"({"runs": [], "references": {"bssrdf": {"noise_ratio": "nan"}}})"),
+            "b.json: /references/bssrdf/noise_ratio: NaN is not allowed; allowed range [0, 1e+06]");
+  EXPECT_EQ(problem(R"({"runs": {"name": "marble"}})"), "b.json: \"runs\" must be an array of runs");
+  EXPECT_EQ(problem(R"({"runs": [3]})"), "b.json: /runs/0: expected a JSON object, got 3");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": {"frames": 4}})")),
+            "b.json: /runs/0/variants: expected an array of variants, got {\"frames\":4}");
+}
+
+TEST(BenchConfig, OverridesAreKeyValueStrings) {
+  EXPECT_EQ(problem(R"({"set": ["render.width"], "runs": []})"),
+            "b.json: /set/0: expected \"key=value\", got \"render.width\"");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "set": ["=3"]})")),
+            "b.json: /runs/0/set/0: expected \"key=value\", got \"=3\"");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"set": [4]}]})")),
+            "b.json: /runs/0/variants/0/set/0: expected \"key=value\", got 4");
+}
+
+TEST(BenchConfig, MissingScenesAndDuplicateNames) {
+  EXPECT_EQ(problem(R"({})"),
+            "b.json: /runs: missing; an array of runs, each {\"scene\": ..., \"variants\": [...]}");
+  EXPECT_EQ(problem(with_run(R"({"name": "a"})")), "b.json: /runs/0/scene: missing; the scene file of this run");
+  EXPECT_EQ(problem(with_run(std::string(kRun) + ", " + kRun)),
+            "b.json: /runs/1: run name 'marble' is also the name of /runs/0");
+  // Without names, two runs of the same scene file collide too.
+  EXPECT_EQ(problem(with_run(R"({"scene": "a/bunny.json"}, {"scene": "b/bunny.json"})")),
+            "b.json: /runs/1: run name 'bunny' is also the name of /runs/0");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"name": "one"}, {"id": "one"}]})")),
+            "b.json: /runs/0/variants/1: variant id 'one' is also the id of variant 0 (their images would overwrite "
+            "each other)");
+  EXPECT_EQ(problem(R"({"runs": [)" + std::string(kRun) + R"(], "references": {"bssrdf": {"only_runs": ["marbel"]}}})"),
+            "b.json: /references/bssrdf/only_runs/0: \"marbel\" is not the name of a run");
+  EXPECT_EQ(problem(R"({"runs": [], "plots": [{"output": "a.png", "script": "/nonexistent/a.gp"}]})"),
+            "b.json: /plots/0/script: /nonexistent/a.gp: no such file");
+  EXPECT_EQ(problem(R"({"runs": [], "plots": [{"script": "/nonexistent/a.gp"}]})"),
+            "b.json: /plots/0/output: missing; the PNG to write, e.g. \"fig13.png\"");
+  EXPECT_EQ(problem(R"({"runs": [)" + std::string(kRun) + R"(], "references": {"bssrdf": {"only_runs": ["marble"]}}})"),
+            "");
+}
+
+}  // namespace
