@@ -130,7 +130,7 @@ TEST(Cli, BenchRunsOneRunAndRefinesItsReferenceToTheNoiseRatio) {
   auto again = nlohmann::json::parse(std::ifstream(fs::path(out) / "results.json"));
   EXPECT_EQ(again["results"][0]["error"]["bssrdf"]["rmse_rgb"], error["rmse_rgb"]);
 
-  expect_one_line_error(run("bench " + config + " --run marbel -o " + out),
+  expect_one_line_error(run("bench --run marbel " + config + " -o " + out),  // one name per --run
                         "lucent: " + config + ": --run marbel: no such run; runs: skin, marble");
 }
 
