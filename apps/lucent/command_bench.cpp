@@ -461,7 +461,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--run", *only,
                   "run only this run of the configuration (repeatable); its references are cached and refined as in "
                   "the full matrix, e.g. --run grapefruit")
-      ->expected(1)  // one name per --run, so `bench --run a CONFIG` keeps CONFIG as the configuration
+      ->allow_extra_args(false)  // one name per --run, so `bench --run a CONFIG` keeps CONFIG as the configuration
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->callback([config, output, only] { run(*config, *output, *only); });
 }
