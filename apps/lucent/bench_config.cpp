@@ -45,10 +45,6 @@ constexpr ParamDecl kPlotParams[] = {
     {"script", ParamType::String, "", "", 0, 0, "", "gnuplot script (required)"},
 };
 
-[[noreturn]] void fail(const JsonLocation& where, const std::string& problem) {
-  throw Error(fmt::format("{}: {}", where.str(), problem));
-}
-
 void require_key(const json& object, const char* key, const JsonLocation& where, const char* what) {
   if (!object.contains(key)) fail(where.child(key), fmt::format("missing; {}", what));
 }

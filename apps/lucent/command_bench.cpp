@@ -49,6 +49,14 @@ std::vector<std::string> strings(const json& j, const char* key) {
   return out;
 }
 
+// A variant's overrides: the configuration's, then its run's, then its own ("set" lists of "key=value").
+std::vector<std::string> variant_overrides(const json& config, const json& run, const json& variant) {
+  std::vector<std::string> sets = strings(config, "set");
+  for (const auto& s : strings(run, "set")) sets.push_back(s);
+  for (const auto& s : strings(variant, "set")) sets.push_back(s);
+  return sets;
+}
+
 // Overrides that change the image of a reference: not the method or its parameters ("method.K=8",
 // "method={...}") or frame counts, and for volpath not the diffusion model either (the physics does not use it).
 std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator) {
@@ -171,9 +179,7 @@ struct Bench {
 
   Rendered render_variant(const json& run, const json& variant, const std::string& run_name) {
     Rendered r;
-    r.sets = strings(config, "set");
-    for (const auto& s : strings(run, "set")) r.sets.push_back(s);
-    for (const auto& s : strings(variant, "set")) r.sets.push_back(s);
+    r.sets = variant_overrides(config, run, variant);
     r.scene_path = run.at("scene");
     r.scene = load_scene(r.scene_path, r.sets);
     const Scene& scene = r.scene;
@@ -403,11 +409,8 @@ void run(const std::string& config_path, const std::string& output, const std::v
     const json& r = runs[i];
     const json variants = r.value("variants", json::array({json::object()}));
     for (std::size_t v = 0; v < variants.size(); ++v) {
-      std::vector<std::string> sets = strings(bench.config, "set");
-      for (const auto& s : strings(r, "set")) sets.push_back(s);
-      for (const auto& s : strings(variants[v], "set")) sets.push_back(s);
       try {
-        load_scene(r.at("scene").get<std::string>(), sets);
+        load_scene(r.at("scene").get<std::string>(), variant_overrides(bench.config, r, variants[v]));
       } catch (const Error& e) {
         throw Error(fmt::format("{}: /runs/{}{}: {}", config_path, i,
                                 r.contains("variants") ? fmt::format("/variants/{}", v) : "", e.what()));

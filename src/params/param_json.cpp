@@ -8,11 +8,12 @@
 #include "lucent/error.h"
 
 namespace lucent {
-namespace {
 
-[[noreturn]] void fail(const JsonLocation& where, const std::string& problem) {
+void fail(const JsonLocation& where, const std::string& problem) {
   throw Error(fmt::format("{}: {}", where.str(), problem));
 }
+
+namespace {
 
 std::string allowed_range(const ParamDecl& p) {
   if (p.min <= -1e29 && p.max >= 1e29) return "any finite number";

@@ -25,6 +25,9 @@ struct JsonLocation {
 ParamValues read_params(const nlohmann::json& object, const ParamSection& section, const JsonLocation& where,
                         std::initializer_list<std::string_view> also_allowed = {});
 
+// Throws lucent::Error("<file>: <pointer>: <problem>"): the one error format of every JSON input.
+[[noreturn]] void fail(const JsonLocation& where, const std::string& problem);
+
 // Throws unless `value` is a JSON object.
 void require_object(const nlohmann::json& value, const JsonLocation& where);
 

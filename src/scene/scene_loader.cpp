@@ -97,10 +97,6 @@ constexpr ParamDecl kRenderParams[] = {
     {"fps", ParamType::Float, "30", "frames/s", 1e-3, 1e4, "", "animation frame rate (lucent render --animate)"},
 };
 
-[[noreturn]] void fail(const JsonLocation& where, const std::string& problem) {
-  throw Error(fmt::format("{}: {}", where.str(), problem));
-}
-
 glm::vec3 unit(glm::vec3 v, const JsonLocation& where) {
   float len = glm::length(v);
   if (!(len > 1e-12f)) fail(where, "must be a non-zero vector");
