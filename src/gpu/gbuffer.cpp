@@ -1,6 +1,9 @@
 // gbuffer.cpp: G-buffer textures and framebuffer.
 #include "gpu/gbuffer.h"
 
+#include <algorithm>
+#include <cstdint>
+
 #include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
@@ -38,9 +41,17 @@ GBuffer::GBuffer(int size_x, int size_y, int layers, const std::string& name)
   const GLenum draw_buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(framebuffer_, 2, draw_buffers);
   label_object(GL_FRAMEBUFFER, framebuffer_, name);
+  const std::uint64_t bytes = static_cast<std::uint64_t>(size_x) * static_cast<std::uint64_t>(size_y) *
+                              static_cast<std::uint64_t>(std::max(1, layers)) * (16 + 8 + 4);
+  if (glGetError() == GL_OUT_OF_MEMORY)
+    throw Error(fmt::format("{}: out of GPU memory for {}x{}x{} texels ({:.1f} MiB)", name, size_x, size_y,
+                            std::max(1, layers), static_cast<double>(bytes) / (1024.0 * 1024.0)));
   GLenum status = glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
-    throw Error(fmt::format("{}: framebuffer incomplete (status 0x{:x})", name, status));
+    throw Error(fmt::format("{}: framebuffer of {}x{}x{} texels ({:.1f} MiB) incomplete (status 0x{:x}): the driver "
+                            "refused its size or format",
+                            name, size_x, size_y, std::max(1, layers), static_cast<double>(bytes) / (1024.0 * 1024.0),
+                            status));
 }
 
 GBuffer::~GBuffer() {

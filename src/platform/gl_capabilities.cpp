@@ -1,6 +1,8 @@
 // gl_capabilities.cpp: version and limit checks shared by the EGL and GLFW contexts.
 #include "platform/gl_capabilities.h"
 
+#include <unistd.h>
+
 #include <epoxy/gl.h>
 #include <fmt/format.h>
 
@@ -39,6 +41,11 @@ GLCapabilities check_capabilities() {
   caps.is_nvidia = caps.renderer.find("NVIDIA") != std::string::npos;
   caps.max_array_texture_layers = get_integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
   caps.max_geometry_shader_invocations = get_integer(GL_MAX_GEOMETRY_SHADER_INVOCATIONS);
+  constexpr GLenum kTotalAvailableMemoryNvx = 0x9048;  // GPU_MEMORY_INFO_TOTAL_AVAILABLE_MEMORY_NVX, in KiB
+  if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info"))
+    caps.device_memory_bytes = static_cast<std::uint64_t>(get_integer(kTotalAvailableMemoryNvx)) * 1024u;
+  else if (caps.is_llvmpipe)
+    caps.device_memory_bytes = static_cast<std::uint64_t>(sysconf(_SC_PHYS_PAGES)) * static_cast<std::uint64_t>(sysconf(_SC_PAGE_SIZE));
   require_limit("GL_MAX_ARRAY_TEXTURE_LAYERS", caps.max_array_texture_layers, 64);
   require_limit("GL_MAX_GEOMETRY_SHADER_INVOCATIONS", caps.max_geometry_shader_invocations, 32);
   require_limit("GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS", get_integer(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS), 256);
@@ -49,5 +56,14 @@ GLCapabilities check_capabilities() {
 }
 
 const GLCapabilities& current_capabilities() { return g_capabilities; }
+
+void require_device_memory(std::uint64_t bytes, const std::string& what) {
+  const std::uint64_t available = g_capabilities.device_memory_bytes;
+  if (available == 0 || bytes <= available) return;
+  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+  throw Error(fmt::format("{}: {:.1f} GiB of GPU memory needed; the device ({}) has {:.1f} GiB", what,
+                          static_cast<double>(bytes) / kGiB, g_capabilities.renderer,
+                          static_cast<double>(available) / kGiB));
+}
 
 }  // namespace lucent::platform

@@ -1,5 +1,6 @@
 // gl_capabilities.h: the one place for driver capabilities, required limits and workarounds.
 #pragma once
+#include <cstdint>
 #include <string>
 
 namespace lucent::platform {
@@ -11,10 +12,17 @@ struct GLCapabilities {
   bool is_nvidia = false;
   int max_array_texture_layers = 0;
   int max_geometry_shader_invocations = 0;
+  std::uint64_t device_memory_bytes = 0;  // NVIDIA: the GPU's memory (GL_NVX_gpu_memory_info); llvmpipe: the
+                                          // machine's RAM; 0 when the driver does not say
 };
 
 // Queries the current context and throws lucent::Error naming the missing version or limit.
 GLCapabilities check_capabilities();
 const GLCapabilities& current_capabilities();
+
+// Throws lucent::Error("<what>: 49.3 GiB of GPU memory needed; the device (llvmpipe) has 23.4 GiB") when `bytes`
+// exceed the device's memory, so a too-large allocation fails at once with the parameters that asked for it
+// instead of as an incomplete framebuffer (or, on llvmpipe, the kernel's out-of-memory killer).
+void require_device_memory(std::uint64_t bytes, const std::string& what);
 
 }  // namespace lucent::platform

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include "gpu/frame_counters.h"
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
+#include "platform/gl_capabilities.h"
 #include "lucent/error.h"
 #include "render/light_gbuffer.h"
 
@@ -62,10 +64,21 @@ GLuint make_radiosity_texture(int size, int layers) {
   return texture;
 }
 
+// The maps and their G-buffer grow as map_size^2 K: too much is refused before anything is allocated, naming the
+// parameters, since a failed allocation shows only later as an incomplete framebuffer (on llvmpipe: the OOM killer).
+const ParamValues& with_memory_checked(const ParamValues& params) {
+  const auto size = static_cast<std::uint64_t>(params.integer("map_size"));
+  const auto K = static_cast<std::uint64_t>(params.integer("K"));
+  // G-buffer RGBA32F + RGBA16F + DEPTH32F per texel, and the RGBA32F maps with their mip chain (4/3).
+  const std::uint64_t bytes = size * size * K * (16 + 8 + 4) + size * size * K * 16 * 4 / 3;
+  platform::require_device_memory(bytes, "the scattered-radiosity maps and their G-buffer");
+  return params;
+}
+
 class RadiosityMaps final : public Method {
  public:
-  RadiosityMaps(const Scene& scene, const render::SceneGpu& scene_gpu)
-      : params_(scene.method_params),
+  RadiosityMaps(const Scene& scene, const render::SceneGpu& scene_gpu) try
+      : params_(with_memory_checked(scene.method_params)),
         map_directions_(choose_map_directions(scene)),
         K_(static_cast<int>(map_directions_.size())),
         map_size_(params_.integer("map_size")),
@@ -89,6 +102,12 @@ class RadiosityMaps final : public Method {
     build_views(scene_gpu);
     warn_about_pearling(scene);
     warn_about_low_albedo(scene);
+  } catch (const Error& e) {
+    // A driver's refusal (out of memory, an incomplete framebuffer) named with the parameters that size the buffers.
+    const ParamValues& p = scene.method_params;
+    throw Error(fmt::format("method.map_size {}, method.K {}, method.light_map_size {}, method.vpl_map_size {}: {}",
+                            p.integer("map_size"), p.integer("K"), p.integer("light_map_size"),
+                            p.integer("vpl_map_size"), e.what()));
   }
 
   ~RadiosityMaps() override {
