@@ -8,6 +8,7 @@
 
 #include "bssrdf/model.h"
 #include "commands.h"
+#include "option_checks.h"
 #include "lucent/error.h"
 #include "lucent/material.h"
 #include "lucent/scene.h"
@@ -39,6 +40,9 @@ glm::vec3 unit_vec(const std::vector<float>& v, const char* name) {
 Material material_of(const BssrdfOptions& o) {
   Material m;
   if (!o.material.empty()) {
+    if (!o.sigma_a.empty() || !o.sigma_s.empty() || !o.sigma_s_prime.empty() || !o.g.empty())
+      throw Error(fmt::format("--material {}: give either a preset or coefficients (--sigma-a, --sigma-s, "
+                              "--sigma-s-prime, --g), not both", o.material));
     const MaterialPreset* preset = find_material_preset(o.material);
     if (!preset) throw Error(fmt::format("--material: unknown material '{}' (see: lucent materials)", o.material));
     m = material_from_preset(*preset);
@@ -96,16 +100,16 @@ void add_bssrdf_command(CLI::App& app) {
   cmd->add_option("--model", options->model, doc("model") + ": directional | standard | photon-beam")
       ->capture_default_str();
   cmd->add_option("--material", options->material, doc("preset"));
-  cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',');
-  cmd->add_option("--sigma-s", options->sigma_s, doc("sigma_s") + ", R,G,B")->delimiter(',');
-  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',');
-  cmd->add_option("--g", options->g, doc("g"))->delimiter(',');
-  cmd->add_option("--eta", options->eta, doc("eta"));
-  cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->capture_default_str();
-  cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->capture_default_str();
-  cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->capture_default_str();
-  cmd->add_option("--xo", options->xo, "exit point X,Y,Z [mm]")->delimiter(',')->capture_default_str();
-  cmd->add_option("--no", options->no, "exit normal")->delimiter(',')->capture_default_str();
+  cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',')->check(finite_number());
+  cmd->add_option("--sigma-s", options->sigma_s, doc("sigma_s") + ", R,G,B")->delimiter(',')->check(finite_number());
+  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',')->check(finite_number());
+  cmd->add_option("--g", options->g, doc("g"))->delimiter(',')->check(finite_number());
+  cmd->add_option("--eta", options->eta, doc("eta"))->check(number_in(1, 3));
+  cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->check(finite_number())->capture_default_str();
+  cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->check(finite_number())->capture_default_str();
+  cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->check(finite_number())->capture_default_str();
+  cmd->add_option("--xo", options->xo, "exit point X,Y,Z [mm]")->delimiter(',')->check(finite_number())->capture_default_str();
+  cmd->add_option("--no", options->no, "exit normal")->delimiter(',')->check(finite_number())->capture_default_str();
   cmd->add_flag("--json", options->json, "print JSON");
   cmd->callback([options] { run(*options); });
 }

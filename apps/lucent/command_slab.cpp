@@ -1,11 +1,14 @@
 // command_slab.cpp: `lucent slab`: total diffuse reflectance and transmittance of a slab or half-space by Monte
 // Carlo photon transport (the random walk and Fresnel code of the volumetric path tracer), with standard errors.
+#include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "option_checks.h"
 #include "lucent/error.h"
 #include "reference/slab.h"
 
@@ -26,10 +29,14 @@ void run(SlabOptions o) {
     o.config.thickness = std::numeric_limits<double>::infinity();
   } else {
     try {
-      o.config.thickness = std::stod(o.thickness);
+      std::size_t used = 0;
+      o.config.thickness = std::stod(o.thickness, &used);
+      if (used != o.thickness.size()) throw std::invalid_argument(o.thickness);
     } catch (const std::exception&) {
       throw Error(fmt::format("--thickness: '{}' is not a number or inf", o.thickness));
     }
+    if (!std::isfinite(o.config.thickness))
+      throw Error(fmt::format("--thickness: {} is not a finite number (write inf for a half-space)", o.thickness));
   }
   if (o.incidence != "normal" && o.incidence != "diffuse")
     throw Error(fmt::format("--incidence: '{}' is not one of normal, diffuse", o.incidence));
@@ -71,9 +78,13 @@ void add_slab_command(CLI::App& app) {
   cmd->add_option("--incidence", o->incidence, "normal (collimated) | diffuse (Lambertian)")->capture_default_str();
   cmd->add_option("--incidence-deg", o->config.incidence_deg, "angle of the collimated beam [degrees]")
       ->capture_default_str();
-  cmd->add_option("--photons", o->config.photons, "photons to trace")->capture_default_str();
-  cmd->add_option("--seed", o->config.seed, "random seed")->capture_default_str();
-  cmd->add_option("--threads", o->config.threads, "threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--photons", o->config.photons, "photons to trace")
+      ->check(whole_number_in(1, 1e12))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->config.seed, "random seed")->check(whole_number_in(0, 1.8e19))->capture_default_str();
+  cmd->add_option("--threads", o->config.threads, "threads (0 = all cores)")
+      ->check(whole_number_in(0, 4096))
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON");
   cmd->callback([o] { run(*o); });
 }

@@ -1,10 +1,14 @@
 // main.cpp: `lucent`: render scenes, evaluate BSSRDF models at a point, list material presets.
+#include <csignal>
 #include <iostream>
 
 #include "commands.h"
 #include "lucent/error.h"
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) makes write() fail with EFBIG, reported like a full disk, instead of killing the
+  // process mid-write: outputs are written to temporaries and renamed, so the old file stays intact either way.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"lucent: real-time translucent materials with physically based subsurface scattering"};
   app.require_subcommand(1);
   lucent::cli::add_render_command(app);
@@ -20,7 +24,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // A bad command line is one line naming the option, like every other input error.
+    std::cerr << "lucent: " << e.what() << " (lucent --help lists the options)\n";
+    return 1;
   } catch (const lucent::Error& e) {
     std::cerr << "lucent: " << e.what() << "\n";
     return 1;
