@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <sstream>
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
@@ -23,7 +24,7 @@
 #include "image/image_metrics.h"
 #include "lucent/lucent.h"
 #include "progress_bar.h"
-#include "reference/reference_renderer.h"
+#include "reference/reference_files.h"
 
 namespace lucent::cli {
 namespace {
@@ -108,19 +109,20 @@ struct Bench {
     std::optional<reference::ReferenceImage> cached;
     if (fs::exists(exr.parent_path()))
       for (const auto& entry : fs::directory_iterator(exr.parent_path())) {
-        if (entry.path().extension() != ".json") continue;
-        json m = json::parse(std::ifstream(entry.path()), nullptr, false);
-        if (m.is_discarded() || m.value("scene", "") != scene_path || m.value("integrator", "") != integrator) continue;
-        if (relevant_overrides(m.value("overrides", std::vector<std::string>{}), integrator) !=
-            relevant_overrides(sets, integrator))
-          continue;
-        if (cached && cached->samples_per_pixel >= m.value("samples_per_pixel", 0)) continue;  // keep the best
-        fs::path cached_exr = entry.path();
-        cached_exr.replace_extension(".exr");
-        cached = reference::ReferenceImage{read_exr(cached_exr.string()),
-                                           read_exr(reference::reference_sidecar(cached_exr.string(), ".stderr.exr")),
-                                           m["samples_per_pixel"], m["seconds"]};
-        exr = cached_exr;
+        const std::string name = entry.path().filename().string();
+        if (entry.path().extension() != ".exr" || name.ends_with(".stderr.exr")) continue;
+        const reference::ReferenceFiles files = reference::reference_files(entry.path().string());
+        std::optional<json> m;
+        try {
+          m = reference::read_reference_metadata(files);
+        } catch (const Error& e) {
+          fmt::print(stderr, "lucent: warning: {}; that cached reference is ignored\n", e.what());
+        }
+        if (!m || m->value("scene", "") != scene_path || m->value("integrator", "") != integrator) continue;
+        if (relevant_overrides(strings(*m, "overrides"), integrator) != relevant_overrides(sets, integrator)) continue;
+        if (cached && cached->samples_per_pixel >= (*m)["samples_per_pixel"].get<int>()) continue;  // keep the best
+        cached = reference::load_reference(files).image;
+        exr = entry.path();
       }
     if (cached && cached->samples_per_pixel >= spp) return *cached;
     Scene scene = load_scene(scene_path, sets);
@@ -135,13 +137,8 @@ struct Bench {
     reference::ReferenceImage image = reference::render_reference(scene, settings, cached ? &*cached : nullptr);
     progress.finish();
     if (cached) image.seconds += cached->seconds;
-    fs::create_directories(exr.parent_path());
-    write_exr(exr.string(), image.mean);
-    write_exr(reference::reference_sidecar(exr.string(), ".stderr.exr"), image.standard_error);
-    std::ofstream(reference::reference_sidecar(exr.string(), ".json"))
-        << json{{"scene", scene_path}, {"overrides", sets}, {"integrator", integrator},
-                {"samples_per_pixel", image.samples_per_pixel}, {"seconds", image.seconds}}
-               .dump(2);
+    reference::save_reference(reference::reference_files(exr.string()), image,
+                              {{"scene", scene_path}, {"overrides", sets}, {"integrator", integrator}});
     return image;
   }
 
@@ -360,8 +357,8 @@ std::string markdown(const json& results) {
 }
 
 // One line per result: run, variant, every numeric parameter, median total ms, coverage, RMSEs.
-void write_tsv(const json& results, const fs::path& path) {
-  std::ofstream tsv(path);
+std::string tsv_text(const json& results) {
+  std::ostringstream tsv;
   tsv << "run\tvariant\tK\tN\tscale_mm\ttotal_ms\tradiosity_maps_ms\tcoverage\trmse_bssrdf\trmse_volpath\trmse_equal_time_bssrdf"
          "\tmethod\toccupancy\n";
   for (const json& r : results) {
@@ -377,6 +374,7 @@ void write_tsv(const json& results, const fs::path& path) {
         << (r.contains("equal_time_bssrdf") ? std::to_string(r["equal_time_bssrdf"]["rmse_rgb"].get<double>()) : "nan")
         << "\t" << r.value("method", std::string("?")) << "\t" << r.value("occupancy", 0.0) << "\n";
   }
+  return tsv.str();
 }
 
 // The runs to execute: all, or those named by --run (in the configuration's order). A name that is not a run of the
@@ -405,12 +403,14 @@ void run(const std::string& config_path, const std::string& output, const std::v
   const std::vector<std::size_t> selected = selected_runs(runs, only, config_path);
   // Every variant's scene, with its overrides, is loaded once before anything renders: a bad override in the last
   // run is an error now, not after the references of the first runs.
+  std::vector<std::string> inputs = {config_path};
   for (std::size_t i : selected) {
     const json& r = runs[i];
     const json variants = r.value("variants", json::array({json::object()}));
     for (std::size_t v = 0; v < variants.size(); ++v) {
       try {
-        load_scene(r.at("scene").get<std::string>(), variant_overrides(bench.config, r, variants[v]));
+        const Scene scene = load_scene(r.at("scene").get<std::string>(), variant_overrides(bench.config, r, variants[v]));
+        for (std::string& input : scene_input_files(scene)) inputs.push_back(std::move(input));
       } catch (const Error& e) {
         throw Error(fmt::format("{}: /runs/{}{}: {}", config_path, i,
                                 r.contains("variants") ? fmt::format("/variants/{}", v) : "", e.what()));
@@ -418,7 +418,10 @@ void run(const std::string& config_path, const std::string& output, const std::v
     }
   }
   bench.out = output.empty() ? fs::path("out/bench") / fs::path(config_path).stem() : fs::path(output);
-  fs::create_directories(bench.out / "images");
+  check_outputs({{(bench.out / "results.json").string(), "--output", {}},
+                 {(bench.out / "images" / "probe.png").string(), "--output (images)", {}},
+                 {(bench.out / "references" / "probe.exr").string(), "--output (reference cache)", {}}},
+                inputs);
   bench.context = create_headless_context();
   json results = json::array();
   // The tables are rewritten after every run, so a long bench (references refined for hours) that is stopped
@@ -427,15 +430,12 @@ void run(const std::string& config_path, const std::string& output, const std::v
     json doc = {{"config", config_path}, {"device", Renderer::device_of_current_context()}, {"complete", complete},
                 {"results", results}};
     if (!only.empty()) doc["only_runs"] = only;  // --run: the other runs of the configuration were not run
-    // Written beside and renamed over, so a bench stopped mid-write leaves the previous complete files.
-    auto replace = [&](const char* name, const std::function<void(const fs::path&)>& write) {
-      const fs::path final_path = bench.out / name, partial = bench.out / (std::string(name) + ".partial");
-      write(partial);
-      fs::rename(partial, final_path);
-    };
-    replace("results.json", [&](const fs::path& p) { std::ofstream(p) << doc.dump(2) << "\n"; });
-    replace("results.md", [&](const fs::path& p) { std::ofstream(p) << markdown(results); });
-    replace("results.tsv", [&](const fs::path& p) { write_tsv(results, p); });
+    // One set, each written beside and renamed over: a bench stopped mid-write leaves the previous complete files.
+    OutputSet tables;
+    tables.add((bench.out / "results.json").string(), doc.dump(2) + "\n");
+    tables.add((bench.out / "results.md").string(), markdown(results));
+    tables.add((bench.out / "results.tsv").string(), tsv_text(results));
+    tables.commit();
   };
   for (std::size_t k = 0; k < selected.size(); ++k) {
     const json& r = runs[selected[k]];

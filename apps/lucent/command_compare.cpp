@@ -6,9 +6,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "option_checks.h"
 #include "image/image_metrics.h"
 #include "lucent/error.h"
-#include "reference/reference_renderer.h"
+#include "lucent/output_file.h"
+#include "reference/reference_files.h"
 
 namespace lucent::cli {
 namespace {
@@ -28,10 +30,17 @@ nlohmann::json to_json(const ImageError& e) {
 }
 
 void run(const CompareOptions& o) {
+  std::string se_path = reference::reference_files(o.b).standard_error;
+  check_outputs({{o.diff, "--diff", {".png"}}}, {o.a, o.b, se_path});
   ImageRGBA32F a = read_exr(o.a), b = read_exr(o.b);
-  std::string se_path = reference::reference_sidecar(o.b, ".stderr.exr");
+  if (a.width != b.width || a.height != b.height)
+    throw Error(fmt::format("{} is {}x{} but {} is {}x{}; compare needs images of one size", o.a, a.width, a.height,
+                            o.b, b.width, b.height));
   std::optional<ImageRGBA32F> se;
   if (std::filesystem::exists(se_path)) se = read_exr(se_path);
+  if (se && (se->width != b.width || se->height != b.height))
+    throw Error(fmt::format("{} is {}x{} but its reference {} is {}x{}", se_path, se->width, se->height, o.b, b.width,
+                            b.height));
   ImageError linear = image_error(a, b, se ? &*se : nullptr);
   ImageError display = display_error(a, b, o.exposure);
   if (!o.diff.empty()) {
@@ -60,8 +69,11 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("a", o->a, "image to measure (EXR)")->required();
   cmd->add_option("b", o->b, "reference (EXR); B.stderr.exr is used when present")->required();
   cmd->add_option("--diff", o->diff, "write a heat map of sqrt(dr^2+dg^2+db^2) (PNG)");
-  cmd->add_option("--diff-scale", o->scale, "radiance difference shown as white (default 4 x RMSE)");
-  cmd->add_option("--exposure", o->exposure, "exposure [stops] for the tone-mapped comparison")->capture_default_str();
+  cmd->add_option("--diff-scale", o->scale, "radiance difference shown as white (default 4 x RMSE)")
+      ->check(number_in(1e-30, 1e30));
+  cmd->add_option("--exposure", o->exposure, "exposure [stops] for the tone-mapped comparison")
+      ->check(number_in(-30, 30, false, "stops"))
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON");
   cmd->callback([o] { run(*o); });
 }
@@ -73,8 +85,13 @@ void add_tonemap_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("tonemap", "tone-map an EXR to PNG (ACES, sRGB), as lucent render does");
   cmd->add_option("input", *input, "linear EXR")->required();
   cmd->add_option("-o,--output", *output, "PNG")->required();
-  cmd->add_option("--exposure", *exposure, "exposure [stops]")->capture_default_str();
-  cmd->callback([input, output, exposure] { write_png(*output, to_display(read_exr(*input), *exposure)); });
+  cmd->add_option("--exposure", *exposure, "exposure [stops]")
+      ->check(number_in(-30, 30, false, "stops"))
+      ->capture_default_str();
+  cmd->callback([input, output, exposure] {
+    check_outputs({{*output, "--output", {".png"}}}, {*input});
+    write_png(*output, to_display(read_exr(*input), *exposure));
+  });
 }
 
 }  // namespace lucent::cli

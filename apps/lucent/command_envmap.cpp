@@ -12,6 +12,7 @@
 #include "lucent/environment.h"
 #include "lucent/error.h"
 #include "lucent/image.h"
+#include "lucent/output_file.h"
 
 namespace lucent::cli {
 namespace {
@@ -36,8 +37,9 @@ void add_make_command(CLI::App& app) {
   cmd->add_option("-o,--output", output, "output file, .hdr or .exr")->required();
   cmd->add_option("--width", width, "width in pixels (height = width / 2)")->check(CLI::Range(2, 16384));
   cmd->callback([] {
+    lucent::check_outputs({{output, "--output", {".hdr", ".exr"}}}, {});
     const lucent::ImageRGBA32F image = lucent::environment_map_to_image(map_named(kind, width));
-    if (output.ends_with(".exr")) {
+    if (lucent::lowercase_extension(output) == ".exr") {
       lucent::write_exr(output, image);
     } else {
       lucent::write_hdr(output, image);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "option_checks.h"
 #include "lucent/lucent.h"
 #include "progress_bar.h"
 
@@ -69,11 +70,6 @@ std::string default_png_path(const std::string& scene_path) {
   return (std::filesystem::path("out") / (stem + ".png")).string();
 }
 
-void ensure_parent_directory(const std::string& path) {
-  auto parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-}
-
 void warn_if_black(const ImageRGBA32F& image) {
   float peak = 0.0f;
   for (std::size_t i = 0; i < image.pixels.size(); i += 4)
@@ -89,7 +85,6 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
   OffscreenFramebuffer target(width, height);
   std::filesystem::path base = std::filesystem::path(png).replace_extension("");
-  ensure_parent_directory(png);
   ProgressBar progress("animating", o.quiet ? 1 : frames);
   std::vector<FrameTimings> timings;
   for (int f = 0; f < frames; ++f) {
@@ -105,9 +100,17 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
   std::string pattern = base.string() + "_%04d.png", mp4 = base.string() + ".mp4";
   bool have_ffmpeg = std::system("command -v ffmpeg > /dev/null 2>&1") == 0;
   if (have_ffmpeg) {
+    // ffmpeg writes a temporary file that replaces the MP4 only when complete, as lucent's own outputs do.
+    std::filesystem::path partial = base.parent_path() / ("." + base.filename().string() + ".lucent-tmp.mp4");
     std::string command = fmt::format("ffmpeg -loglevel error -y -framerate {} -i '{}' -pix_fmt yuv420p '{}'",
-                                      scene.render.fps, pattern, mp4);
-    if (std::system(command.c_str()) != 0) throw Error(fmt::format("{}: ffmpeg failed: {}", mp4, command));
+                                      scene.render.fps, pattern, partial.string());
+    std::error_code ec;
+    if (std::system(command.c_str()) != 0) {
+      std::filesystem::remove(partial, ec);
+      throw Error(fmt::format("{}: ffmpeg failed: {}", mp4, command));
+    }
+    std::filesystem::rename(partial, mp4, ec);
+    if (ec) throw Error(fmt::format("{}: cannot write: {}", mp4, ec.message()));
   }
   if (!o.quiet) {
     fmt::print("{}: {} frames at {} fps, {} sample(s) each -> {}{}\n", scene.source, frames, scene.render.fps,
@@ -122,6 +125,15 @@ void run(const RenderOptions& o) {
   if (o.seed) overrides.push_back(fmt::format("render.seed={}", *o.seed));
   Scene scene = o.scene_path.empty() ? default_scene(overrides) : load_scene(o.scene_path, overrides);
   std::string png = o.png.empty() ? default_png_path(o.scene_path) : o.png;
+  // Outputs are checked before the first frame: never an input, a known format, a directory that takes files.
+  std::vector<OutputPath> outputs = {{png, "--output", {".png"}}, {o.exr, "--exr", {".exr"}}};
+  if (o.animate) {
+    std::filesystem::path base = std::filesystem::path(png).replace_extension("");
+    if (!o.exr.empty()) throw Error("--exr: not written with --animate (each frame is a PNG)");
+    outputs.push_back({fmt::format("{}_{:04d}.png", base.string(), 0), "--output (first frame)", {".png"}});
+    outputs.push_back({base.string() + ".mp4", "--output (video)", {".mp4"}});
+  }
+  check_outputs(outputs, scene_input_files(scene));
   if (o.animate) return run_animation(o, scene, png);
   auto context = create_headless_context();
   Renderer renderer(scene);
@@ -138,12 +150,8 @@ void run(const RenderOptions& o) {
 
   ImageRGBA32F radiance = renderer.read_radiance();
   warn_if_black(radiance);
-  ensure_parent_directory(png);
   write_png(png, renderer.read_display());
-  if (!o.exr.empty()) {
-    ensure_parent_directory(o.exr);
-    write_exr(o.exr, radiance);
-  }
+  if (!o.exr.empty()) write_exr(o.exr, radiance);
   if (!o.quiet) {
     fmt::print("{}: {}x{}, {} frame(s) accumulated -> {}{}\n", scene.source, width, height,
                renderer.accumulated_frames(), png, o.exr.empty() ? "" : " and " + o.exr);
@@ -166,8 +174,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("scene", options->scene_path, "scene file (JSON); the built-in default scene when omitted");
   cmd->add_option("-o,--output", options->png, "tone-mapped PNG (default: out/<scene>.png)");
   cmd->add_option("--exr", options->exr, "also write linear radiance as EXR");
-  cmd->add_option("--frames", options->frames, "frames to accumulate (render.frames)");
-  cmd->add_option("--seed", options->seed, "random seed (render.seed)");
+  cmd->add_option("--frames", options->frames, "frames to accumulate (render.frames)")->check(whole_number_in(1, 1e6));
+  cmd->add_option("--seed", options->seed, "random seed (render.seed)")->check(whole_number_in(0, 4294967295.0));
   cmd->add_option("--set", options->sets, "override a scene value, e.g. --set method.K=8 --set render.width=320");
   cmd->add_flag("-q,--quiet", options->quiet, "print nothing but errors");
   cmd->add_flag("--animate", options->animate,

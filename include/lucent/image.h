@@ -24,7 +24,8 @@ struct ImageRGBA8 {
   const std::uint8_t* at(int x, int y) const { return &pixels[4 * (static_cast<std::size_t>(y) * width + x)]; }
 };
 
-// Each throws lucent::Error naming the path when the file cannot be written or read.
+// Each throws lucent::Error naming the path when the file cannot be written or read. Writing replaces the file
+// atomically (lucent/output_file.h): a failed write leaves the previous file as it was.
 void write_png(const std::string& path, const ImageRGBA8& image);
 void write_exr(const std::string& path, const ImageRGBA32F& image);  // RGBA, 32-bit float channels
 ImageRGBA8 read_png(const std::string& path);
@@ -33,5 +34,10 @@ ImageRGBA32F read_exr(const std::string& path);
 // alpha is dropped on write and reads as 1.
 void write_hdr(const std::string& path, const ImageRGBA32F& image);
 ImageRGBA32F read_hdr(const std::string& path);
+
+// The bytes of each format, for writing several files as one set (lucent::OutputSet). Throw lucent::Error.
+std::string encode_png(const ImageRGBA8& image);
+std::string encode_exr(const ImageRGBA32F& image);
+std::string encode_hdr(const ImageRGBA32F& image);
 
 }  // namespace lucent

@@ -8,6 +8,7 @@
 #include "lucent/medium_volume.h"
 #include "lucent/mesh.h"
 #include "lucent/offscreen_framebuffer.h"
+#include "lucent/output_file.h"
 #include "lucent/params.h"
 #include "lucent/renderer.h"
 #include "lucent/scene.h"

@@ -19,7 +19,8 @@ std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "stand
 // A grid of density multipliers m >= 0 loaded from a file (a heterogeneous medium; lucent/medium_volume.h reads
 // it). Values at voxel centres, x fastest, then y, then z; the grid spans the object's world-space bounds.
 struct MediumVolume {
-  std::string source;           // file it came from, for messages
+  std::string source;           // file it came from, for messages (the JSON header)
+  std::string data_file;        // the raw values the header names
   glm::ivec3 size{0};           // voxels per axis, each >= 1
   std::vector<float> values;    // size.x * size.y * size.z multipliers
   float max_value = 0.0f;       // largest value: the majorant of delta tracking

@@ -76,6 +76,7 @@ struct SceneObject {
   int blob_resolution = 0;            // > 0: the animated implicit blob surface (geometry/blob_field.h), extracted
                                       // on the GPU every frame on a grid of this many cells along its long axis
   TriangleMesh mesh;                  // object space
+  std::string mesh_file;              // the file the mesh was read from (empty for procedural shapes)
   glm::mat4 world_from_object{1.0f};
   std::optional<Material> material;   // translucent when set
   glm::vec3 albedo{0.8f};             // diffuse reflectance of an opaque object
@@ -125,6 +126,10 @@ TriangleMesh deformed_mesh(const TriangleMesh& mesh, const Deformation& deformat
 // The scene frozen at time t: deformations applied and blob surfaces extracted (on the CPU) into plain meshes,
 // e.g. for the CPU references of an animated scene.
 Scene scene_at_time(const Scene& scene, double seconds);
+
+// Every file the scene was built from (the scene file, meshes, environment map, volume header and data): the
+// inputs an output must never overwrite (lucent/output_file.h).
+std::vector<std::string> scene_input_files(const Scene& scene);
 
 // The declarations the parser checks, per section, for help and docs.
 std::vector<ParamSection> scene_param_sections();

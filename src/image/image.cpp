@@ -1,6 +1,6 @@
 // image.cpp: image files. PNG (8-bit RGBA) and Radiance HDR (RGBE) through stb_image / stb_image_write, EXR
-// (RGBA, 32-bit float channels, so values round-trip exactly) through OpenEXR 3. Failures throw lucent::Error
-// naming the path.
+// (RGBA, 32-bit float channels, so values round-trip exactly) through OpenEXR 3. Images are encoded in memory and
+// written by write_file (temporary file + rename, lucent/output_file.h). Failures throw lucent::Error naming the path.
 #include "lucent/image.h"
 
 #include <cstddef>
@@ -12,10 +12,12 @@
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
 #include "lucent/error.h"
+#include "lucent/output_file.h"
 
 // stb is compiled here and only here, with internal linkage so it cannot clash with another copy in the program.
 #pragma GCC diagnostic push
@@ -72,13 +74,41 @@ Imf::FrameBuffer rgba_frame_buffer(const float* pixels, const Imath::Box2i& wind
   return frame_buffer;
 }
 
-void write_exr_pixels(const std::string& path, const ImageRGBA32F& image) {
+// An EXR written into memory, so the file itself is written once, complete, by write_file.
+class MemoryStream final : public Imf::OStream {
+ public:
+  MemoryStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    const std::size_t end = position_ + static_cast<std::size_t>(n);
+    if (bytes_.size() < end) bytes_.resize(end);
+    std::copy(c, c + n, bytes_.begin() + static_cast<std::ptrdiff_t>(position_));
+    position_ = end;
+  }
+  std::uint64_t tellp() override { return position_; }
+  void seekp(std::uint64_t pos) override { position_ = static_cast<std::size_t>(pos); }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  std::string bytes_;
+  std::size_t position_ = 0;
+};
+
+std::string exr_bytes(const ImageRGBA32F& image) {
   check_pixel_count(image);
   Imf::Header header(image.width, image.height);
   for (const char* name : kChannelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-  Imf::OutputFile file(path.c_str(), header);
-  file.setFrameBuffer(rgba_frame_buffer(image.pixels.data(), header.dataWindow(), image.width));
-  file.writePixels(image.height);
+  MemoryStream stream;
+  {
+    Imf::OutputFile file(stream, header);
+    file.setFrameBuffer(rgba_frame_buffer(image.pixels.data(), header.dataWindow(), image.width));
+    file.writePixels(image.height);
+  }  // the file's destructor writes the line offset table
+  return stream.take();
+}
+
+// stb_image_write hands the encoded bytes to this callback, in pieces.
+void append_to_string(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
 }
 
 ImageRGBA32F read_exr_pixels(const std::string& path) {
@@ -99,17 +129,62 @@ ImageRGBA32F read_exr_pixels(const std::string& path) {
 
 }  // namespace
 
-void write_png(const std::string& path, const ImageRGBA8& image) {
+std::string encode_png(const ImageRGBA8& image) {
   try {
     check_pixel_count(image);
   } catch (const std::exception& e) {
-    throw Error(fmt::format("{}: cannot write PNG: {}", path, e.what()));
+    throw Error(fmt::format("cannot encode PNG: {}", e.what()));
   }
+  std::string bytes;
   const int stride = kChannels * image.width;
-  if (stbi_write_png(path.c_str(), image.width, image.height, kChannels, image.pixels.data(), stride) == 0) {
-    throw Error(fmt::format("{}: cannot write PNG", path));
+  if (stbi_write_png_to_func(append_to_string, &bytes, image.width, image.height, kChannels, image.pixels.data(),
+                             stride) == 0)
+    throw Error("cannot encode PNG");
+  return bytes;
+}
+
+std::string encode_exr(const ImageRGBA32F& image) {
+  try {
+    return exr_bytes(image);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("cannot encode EXR: {}", e.what()));
   }
 }
+
+std::string encode_hdr(const ImageRGBA32F& image) {
+  try {
+    check_pixel_count(image);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("cannot encode HDR: {}", e.what()));
+  }
+  std::vector<float> rgb(3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  for (std::size_t i = 0; i < rgb.size() / 3; ++i)
+    for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = image.pixels[kChannels * i + c];
+  std::string bytes;
+  if (stbi_write_hdr_to_func(append_to_string, &bytes, image.width, image.height, 3, rgb.data()) == 0)
+    throw Error("cannot encode HDR");
+  return bytes;
+}
+
+namespace {
+
+// Encodes with `encode` and writes `path`; an encoding failure names the path too.
+template <class Image, class Encode>
+void encode_and_write(const std::string& path, const Image& image, Encode encode) {
+  std::string bytes;
+  try {
+    bytes = encode(image);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", path, e.what()));
+  }
+  write_file(path, bytes);
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const ImageRGBA8& image) { encode_and_write(path, image, encode_png); }
+void write_exr(const std::string& path, const ImageRGBA32F& image) { encode_and_write(path, image, encode_exr); }
+void write_hdr(const std::string& path, const ImageRGBA32F& image) { encode_and_write(path, image, encode_hdr); }
 
 ImageRGBA8 read_png(const std::string& path) {
   int width = 0, height = 0, channels_in_file = 0;
@@ -123,33 +198,11 @@ ImageRGBA8 read_png(const std::string& path) {
   return image;
 }
 
-void write_exr(const std::string& path, const ImageRGBA32F& image) {
-  try {
-    write_exr_pixels(path, image);
-  } catch (const std::exception& e) {
-    throw Error(fmt::format("{}: cannot write EXR: {}", path, e.what()));
-  }
-}
-
 ImageRGBA32F read_exr(const std::string& path) {
   try {
     return read_exr_pixels(path);
   } catch (const std::exception& e) {
     throw Error(fmt::format("{}: cannot read EXR: {}", path, e.what()));
-  }
-}
-
-void write_hdr(const std::string& path, const ImageRGBA32F& image) {
-  try {
-    check_pixel_count(image);
-  } catch (const std::exception& e) {
-    throw Error(fmt::format("{}: cannot write HDR: {}", path, e.what()));
-  }
-  std::vector<float> rgb(3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
-  for (std::size_t i = 0; i < rgb.size() / 3; ++i)
-    for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = image.pixels[kChannels * i + c];
-  if (stbi_write_hdr(path.c_str(), image.width, image.height, 3, rgb.data()) == 0) {
-    throw Error(fmt::format("{}: cannot write HDR", path));
   }
 }
 

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lucent/error.h"
+#include "lucent/output_file.h"
 #include "media/heterogeneous_field.h"
 
 namespace lucent {
@@ -116,6 +117,7 @@ std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header
   }
   if (!header.contains("data") || !header["data"].is_string()) fail(header_path, "missing key \"data\" (the raw file)");
   fs::path data = fs::path(header_path).parent_path() / header["data"].get<std::string>();
+  volume->data_file = data.string();
   std::ifstream raw(data, std::ios::binary);
   if (!raw) fail(header_path, fmt::format("data: cannot open '{}'", data.string()));
   const std::size_t count = voxel_count(volume->size);
@@ -149,15 +151,15 @@ void save_medium_volume(const MediumVolume& volume, const std::string& header_pa
   if (volume.values.size() != voxel_count(volume.size)) fail(header_path, "volume values do not match its size");
   fs::path raw = fs::path(header_path);
   raw.replace_extension(".raw");
-  std::ofstream data(raw, std::ios::binary);
-  data.write(reinterpret_cast<const char*>(volume.values.data()),
-             static_cast<std::streamsize>(volume.values.size() * sizeof(float)));
-  if (!data) fail(raw.string(), "cannot write the volume data");
-  std::ofstream(header_path) << json{{"size", {volume.size.x, volume.size.y, volume.size.z}},
-                                     {"format", "float32"},
-                                     {"data", raw.filename().string()}}
-                                    .dump(2)
-                             << "\n";
+  OutputSet files;  // the header and its data, as one set
+  files.add(raw.string(), std::string(reinterpret_cast<const char*>(volume.values.data()),
+                                      volume.values.size() * sizeof(float)));
+  files.add(header_path, json{{"size", {volume.size.x, volume.size.y, volume.size.z}},
+                              {"format", "float32"},
+                              {"data", raw.filename().string()}}
+                                 .dump(2) +
+                             "\n");
+  files.commit();
 }
 
 }  // namespace lucent

@@ -19,11 +19,6 @@ namespace lucent::reference {
 
 std::string_view to_string(Integrator integrator) { return integrator == Integrator::Volpath ? "volpath" : "bssrdf"; }
 
-std::string reference_sidecar(const std::string& exr, const std::string& suffix) {
-  std::filesystem::path p(exr);
-  return (p.parent_path() / (p.stem().string() + suffix)).string();
-}
-
 void camera_ray(const Camera& camera, int width, int height, double px, double py, glm::dvec3& origin,
                 glm::dvec3& direction) {
   glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target - camera.eye));

@@ -35,9 +35,6 @@ struct ReferenceImage {
 ReferenceImage render_reference(const Scene& scene, const ReferenceSettings& settings,
                                 const ReferenceImage* previous = nullptr);
 
-// The files of a reference beside its mean EXR: reference_sidecar("out/ref.exr", ".stderr.exr") is
-// "out/ref.stderr.exr" (the standard error), with ".json" the metadata. One definition of that layout.
-std::string reference_sidecar(const std::string& exr, const std::string& suffix);
 
 // The camera ray through pixel (x + dx, y + dy), y = 0 the top row, matching the rasterizer's projection.
 void camera_ray(const Camera& camera, int width, int height, double px, double py, glm::dvec3& origin,

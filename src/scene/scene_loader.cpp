@@ -97,6 +97,13 @@ constexpr ParamDecl kRenderParams[] = {
     {"fps", ParamType::Float, "30", "frames/s", 1e-3, 1e4, "", "animation frame rate (lucent render --animate)"},
 };
 
+// A path as the scene file gives it, relative to the scene's folder.
+std::string resolve_path(const std::string& file, const std::string& base_dir) {
+  std::filesystem::path path = file;
+  if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+  return path.lexically_normal().string();
+}
+
 glm::vec3 unit(glm::vec3 v, const JsonLocation& where) {
   float len = glm::length(v);
   if (!(len > 1e-12f)) fail(where, "must be a non-zero vector");
@@ -274,10 +281,8 @@ TriangleMesh read_geometry(const ParamValues& v, const std::vector<glm::vec2>& p
   }
   if (shape == "box") return make_box(v.vec3("size"));
   if (shape == "plane") return make_plane(glm::vec2(v.vec3("extent")));
-  std::filesystem::path path = mesh;
-  if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
   try {
-    return load_mesh(path.lexically_normal().string());
+    return load_mesh(resolve_path(mesh, base_dir));
   } catch (const Error& e) {
     fail(where.child("mesh"), e.what());
   }
@@ -310,6 +315,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   SceneObject object;
   object.name = v.text("name").empty() ? where.pointer : v.text("name");
   object.mesh = read_geometry(v, read_profile(j, where), where, base_dir);
+  if (!v.text("mesh").empty()) object.mesh_file = resolve_path(v.text("mesh"), base_dir);
   object.world_from_object = read_transform(v);
   if (v.text("shape") == "blobs") {
     // The blob field lives in world space about the origin (geometry/blob_field.h).
@@ -442,6 +448,19 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   text << file.rdbuf();
   std::string base_dir = std::filesystem::path(path).parent_path().string();
   return parse_scene(text.str(), path, base_dir.empty() ? "." : base_dir, overrides);
+}
+
+std::vector<std::string> scene_input_files(const Scene& scene) {
+  std::vector<std::string> files = {scene.source};
+  if (scene.environment) files.push_back(scene.environment->file);
+  for (const SceneObject& object : scene.objects) {
+    if (!object.mesh_file.empty()) files.push_back(object.mesh_file);
+    if (object.material && object.material->field.volume) {
+      files.push_back(object.material->field.volume->source);
+      files.push_back(object.material->field.volume->data_file);
+    }
+  }
+  return files;
 }
 
 std::vector<ParamSection> scene_param_sections() {

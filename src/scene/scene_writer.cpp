@@ -7,12 +7,12 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "lucent/error.h"
+#include "lucent/output_file.h"
 #include "methods/method.h"
 
 namespace lucent {
@@ -274,37 +274,32 @@ void write_gltf(const std::string& path, const TriangleMesh& mesh) {
                                  {{"bufferView", 1}, {"componentType", kFloat}, {"count", mesh.normals.size()}, {"type", "VEC3"}},
                                  {{"bufferView", 2}, {"componentType", kUnsignedInt}, {"count", mesh.indices.size()},
                                   {"type", "SCALAR"}}})}};
-  std::ofstream out(path);
-  if (!out) throw Error(fmt::format("{}: cannot write mesh file", path));
-  out << gltf.dump() << "\n";
-  if (!out) throw Error(fmt::format("{}: cannot write mesh file", path));
+  write_file(path, gltf.dump() + "\n");
 }
 
 void save_scene(const Scene& scene, const std::string& path) {
   namespace fs = std::filesystem;
   fs::path scene_path = path, dir = scene_path.parent_path();
   fs::path mesh_dir_name = scene_path.stem().string() + ".meshes";
-  std::error_code ec;
-  if (!dir.empty()) fs::create_directories(dir, ec);
+  // Every file is checked before the first is written: none may be a file the scene was read from.
+  std::vector<OutputPath> outputs = {{path, "scene", {".json"}}};
   std::vector<std::string> mesh_files(scene.objects.size());
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     if (scene.objects[i].blob_resolution > 0) continue;
-    fs::create_directories(dir / mesh_dir_name, ec);
-    if (ec) throw Error(fmt::format("{}: cannot create folder: {}", (dir / mesh_dir_name).string(), ec.message()));
     fs::path relative = mesh_dir_name / mesh_file_name(i, scene.objects[i].name);
-    write_gltf((dir / relative).string(), scene.objects[i].mesh);
     mesh_files[i] = relative.generic_string();
+    outputs.push_back({(dir / relative).string(), "scene mesh", {".gltf"}});
   }
+  check_outputs(outputs, scene_input_files(scene));
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (!mesh_files[i].empty()) write_gltf((dir / mesh_files[i]).string(), scene.objects[i].mesh);
   json j = scene_to_json(scene, mesh_files);
   if (scene.environment) {
     fs::path base = fs::absolute(dir.empty() ? fs::path(".") : dir).lexically_normal();
     fs::path map = fs::absolute(scene.environment->file).lexically_normal();
     j["environment"]["file"] = map.lexically_relative(base).generic_string();
   }
-  std::ofstream out(path);
-  if (!out) throw Error(fmt::format("{}: cannot write scene file", path));
-  out << j.dump(2) << "\n";
-  if (!out) throw Error(fmt::format("{}: cannot write scene file", path));
+  write_file(path, j.dump(2) + "\n");
 }
 
 }  // namespace lucent

@@ -46,7 +46,7 @@ TEST(CliReferences, ReferenceWritesMeanErrorAndMetadataAndResumes) {
   Result second = run("reference " + scene + " --integrator bssrdf --spp 3 -q --resume -o " + exr);
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "ref.stderr.exr"));
-  auto meta = nlohmann::json::parse(std::ifstream(dir / "ref.json"));
+  auto meta = nlohmann::json::parse(std::ifstream(dir / "ref.meta.json"));
   EXPECT_EQ(meta["samples_per_pixel"].get<int>(), 5);
   Result self = run("compare " + exr + " " + exr + " --json");
   ASSERT_EQ(self.exit_code, 0) << self.output;

@@ -119,9 +119,9 @@ TEST(ImageIo, MissingFilesThrowNamingThePath) {
 TEST(ImageIo, UnwritablePathsThrowNamingThePath) {
   const std::string png = kMissingDir + "/out.png";
   const std::string exr = kMissingDir + "/out.exr";
-  EXPECT_EQ(error_message([&] { write_png(png, byte_pattern(2, 2)); }), png + ": cannot write PNG");
-  const std::string exr_error = error_message([&] { write_exr(exr, float_pattern(2, 2)); });
-  EXPECT_TRUE(starts_with(exr_error, exr + ": cannot write EXR: ")) << exr_error;
+  EXPECT_EQ(error_message([&] { write_png(png, byte_pattern(2, 2)); }), png + ": cannot write: No such file or directory");
+  EXPECT_EQ(error_message([&] { write_exr(exr, float_pattern(2, 2)); }), exr + ": cannot write: No such file or directory");
+  EXPECT_FALSE(std::filesystem::exists(kMissingDir)) << "writing a file does not create folders";
 }
 
 TEST(ImageIo, InconsistentImagesAreNotWritten) {
@@ -129,9 +129,9 @@ TEST(ImageIo, InconsistentImagesAreNotWritten) {
   ImageRGBA8 image = byte_pattern(2, 2);
   image.pixels.pop_back();
   EXPECT_EQ(error_message([&] { write_png(file.path(), image); }),
-            file.path() + ": cannot write PNG: image is 2x2 but holds 15 values (expected 16)");
+            file.path() + ": cannot encode PNG: image is 2x2 but holds 15 values (expected 16)");
   EXPECT_EQ(error_message([&] { write_exr(file.path(), ImageRGBA32F{}); }),
-            file.path() + ": cannot write EXR: image is 0x0");
+            file.path() + ": cannot encode EXR: image is 0x0");
 }
 
 }  // namespace

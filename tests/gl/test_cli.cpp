@@ -92,7 +92,7 @@ TEST(Cli, BenchRunsOneRunAndRefinesItsReferenceToTheNoiseRatio) {
   // Only the marble run's reference was rendered: one metadata file in the cache.
   std::vector<fs::path> metadata;
   for (const auto& entry : fs::directory_iterator(fs::path(out) / "references"))
-    if (entry.path().extension() == ".json") metadata.push_back(entry.path());
+    if (entry.path().filename().string().ends_with(".meta.json")) metadata.push_back(entry.path());
   ASSERT_EQ(metadata.size(), 1u);
   auto meta = nlohmann::json::parse(std::ifstream(metadata[0]));
   const int spp = meta["samples_per_pixel"].get<int>();
@@ -101,8 +101,8 @@ TEST(Cli, BenchRunsOneRunAndRefinesItsReferenceToTheNoiseRatio) {
 
   // RMSE of sqrt(dr^2+dg^2+db^2) and the reference's noise, from the written files.
   fs::path ref_exr = metadata[0];
-  ref_exr.replace_extension(".exr");
-  fs::path ref_stderr = metadata[0];
+  ref_exr.replace_extension("").replace_extension(".exr");  // <key>.meta.json -> <key>.exr
+  fs::path ref_stderr = ref_exr;
   ref_stderr.replace_extension(".stderr.exr");
   const lucent::ImageRGBA32F method = lucent::read_exr((fs::path(out) / "images" / "marble_four.exr").string());
   const lucent::ImageRGBA32F reference = lucent::read_exr(ref_exr.string());
@@ -230,7 +230,9 @@ TEST(Cli, AnimateWritesNumberedFramesAndCallsFfmpeg) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir + "/bin");
   std::string fake = dir + "/bin/ffmpeg";
-  std::ofstream(fake) << "#!/bin/sh\necho \"$@\" > " << dir << "/ffmpeg_args.txt\n";
+  // It writes its last argument (the output), as ffmpeg does.
+  std::ofstream(fake) << "#!/bin/sh\necho \"$@\" > " << dir << "/ffmpeg_args.txt\nfor a; do last=$a; done\n"
+                      << "echo video > \"$last\"\n";
   std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
   std::string scene = std::string(LUCENT_SCENES_DIR) + "/blobs.json";
   Result r = run("render " + scene + " " + kSmall + " --set method.vpls=0 --set objects.0.segments=24 --animate --frames 2 -o " +
@@ -242,7 +244,37 @@ TEST(Cli, AnimateWritesNumberedFramesAndCallsFfmpeg) {
   std::ifstream args_file(dir + "/ffmpeg_args.txt");
   std::string args((std::istreambuf_iterator<char>(args_file)), std::istreambuf_iterator<char>());
   EXPECT_NE(args.find("-framerate 30 -i " + dir + "/blobs_%04d.png"), std::string::npos) << args;
-  EXPECT_NE(args.find(dir + "/blobs.mp4"), std::string::npos) << args;
+  // ffmpeg writes a temporary beside the video, renamed into place when it succeeded.
+  EXPECT_NE(args.find(dir + "/.blobs.lucent-tmp.mp4"), std::string::npos) << args;
+  std::ifstream video(dir + "/blobs.mp4");
+  std::string first_line;
+  std::getline(video, first_line);
+  EXPECT_EQ(first_line, "video");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/.blobs.lucent-tmp.mp4"));
+}
+
+TEST(Cli, RenderWriteErrorsAreErrors) {
+  expect_one_line_error(run(std::string("render ") + kSmall + " -q -o /dev/full"),
+                        "lucent: /dev/full: cannot write: No space left on device");
+}
+
+// Maps larger than the device's memory are refused before any allocation, naming the parameters (the driver's own
+// answer was "framebuffer incomplete (status 0x8cd6)", or on llvmpipe the out-of-memory killer).
+TEST(Cli, MapsLargerThanTheDeviceAreRefusedNamingTheParameters) {
+  lucent::test::ensure_gl_context();
+  const auto& caps = lucent::platform::current_capabilities();
+  const double needed_gib = 4096.0 * 4096.0 * 64.0 * (28.0 + 64.0 / 3.0) / (1024.0 * 1024.0 * 1024.0);
+  if (caps.device_memory_bytes == 0 || static_cast<double>(caps.device_memory_bytes) >= needed_gib * 1073741824.0)
+    GTEST_SKIP() << "the device has room for the maps (or does not report its memory)";
+  Result r = run("render -q --set method.map_size=4096 --set method.K=64 -o " + lucent::test::output_path("huge.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output.rfind("lucent: method.map_size 4096, method.K 64, method.light_map_size 512, method.vpl_map_size "
+                           "256: the scattered-radiosity maps and their G-buffer: 49.3 GiB of GPU memory needed; the "
+                           "device (",
+                           0),
+            0u)
+      << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
 
 }  // namespace

@@ -25,15 +25,12 @@ namespace {
 
 constexpr int kMinWindowHeight = 480;  // [pixels] room for the panel
 
-void ensure_parent_directory(const std::string& path) {
-  auto parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-}
+// The screenshot of the view: PNG tone-mapped, EXR linear radiance; never over one of the scene's files.
+OutputPath view_output(const std::string& path) { return {path, "screenshot", {".png", ".exr"}}; }
 
-// The rendered view: PNG tone-mapped, EXR linear radiance.
 void write_view(const Renderer& renderer, const std::string& path) {
-  ensure_parent_directory(path);
-  if (std::filesystem::path(path).extension() == ".exr") write_exr(path, renderer.read_radiance());
+  check_outputs({view_output(path)}, scene_input_files(renderer.scene()));
+  if (lowercase_extension(path) == ".exr") write_exr(path, renderer.read_radiance());
   else write_png(path, renderer.read_display());
 }
 
@@ -48,7 +45,6 @@ void write_window(const std::string& path, int width, int height) {
   for (int y = 0; y < height; ++y)
     std::copy_n(&rows[static_cast<std::size_t>(height - 1 - y) * width * 4], static_cast<std::size_t>(width) * 4, image.at(0, y));
   for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
-  ensure_parent_directory(path);
   write_png(path, image);
 }
 
@@ -136,6 +132,11 @@ class ViewerApp {
     imgui_ = std::make_unique<ImGuiLayer>(window_->window());
     state_.screenshot_path = o.screenshot.empty() ? state_.screenshot_path : o.screenshot;
     session_.load(/*strict=*/o.frames > 0);
+    // The batch outputs are checked before the first frame, as `lucent render` checks its own.
+    if (o.frames > 0 && session_.renderer())
+      check_outputs({view_output(o.screenshot), {o.screenshot_window, "--screenshot-window", {".png"}},
+                     {o.save_scene, "--save-scene", {".json"}}},
+                    scene_input_files(session_.renderer()->scene()));
   }
 
   void run() {

@@ -1,0 +1,242 @@
+// output_file.cpp: temporary file + fsync + rename for every file lucent writes, and the checks commands run on
+// their output paths before they start (see lucent/output_file.h).
+#include "lucent/output_file.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "lucent/error.h"
+
+namespace lucent {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string errno_text(int error) { return std::error_code(error, std::generic_category()).message(); }
+
+// The file a write to `path` replaces: the target of a symbolic link, else `path` itself.
+fs::path destination(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_symlink(path, ec)) {
+    fs::path resolved = fs::weakly_canonical(path, ec);
+    if (!ec) return resolved;
+  }
+  return path;
+}
+
+fs::path directory_of(const fs::path& file) {
+  return file.has_parent_path() ? file.parent_path() : fs::path(".");
+}
+
+// A name beside `target` that no other writer (another lucent process, another thread) picks.
+fs::path temporary_beside(const fs::path& target) {
+  static std::atomic<unsigned> counter{0};
+  return directory_of(target) /
+         fmt::format(".{}.lucent-tmp-{}-{}", target.filename().string(), ::getpid(), counter.fetch_add(1));
+}
+
+void write_all(int fd, std::string_view bytes, const std::string& path) {
+  const char* data = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw Error(fmt::format("{}: cannot write: {}", path, errno_text(n < 0 ? errno : ENOSPC)));
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+}
+
+void create_directory_for(const fs::path& file, const std::string& what) {
+  std::error_code ec;
+  const fs::path dir = directory_of(file);
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("{}: cannot create directory {}: {}", what, dir.string(), ec.message()));
+}
+
+// A file being written: complete on disk under `temporary` (empty for a special file written in place) and not yet
+// renamed over `target`.
+struct PendingFile {
+  fs::path target;
+  fs::path temporary;
+};
+
+bool is_special_file(const fs::path& target) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(target, ec);
+  return !ec && fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status);
+}
+
+// Writes the bytes to a device, pipe or FIFO that already exists (renaming over it would replace the node).
+void write_in_place(const fs::path& target, std::string_view bytes, const std::string& path) {
+  const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(fmt::format("{}: cannot write: {}", path, errno_text(errno)));
+  try {
+    write_all(fd, bytes, path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0) throw Error(fmt::format("{}: cannot write: {}", path, errno_text(errno)));
+}
+
+PendingFile write_pending(const std::string& path, std::string_view bytes) {
+  PendingFile pending{destination(path), {}};
+  std::error_code ec;
+  if (fs::is_directory(pending.target, ec)) throw Error(fmt::format("{}: cannot write: is a directory", path));
+  if (is_special_file(pending.target)) {
+    write_in_place(pending.target, bytes, path);
+    return pending;
+  }
+  pending.temporary = temporary_beside(pending.target);
+  const int fd = ::open(pending.temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw Error(fmt::format("{}: cannot write: {}", path, errno_text(errno)));
+  try {
+    struct stat old {};
+    if (::stat(pending.target.c_str(), &old) == 0) ::fchmod(fd, old.st_mode & 07777);  // keep the old file's mode
+    write_all(fd, bytes, path);
+    if (::fsync(fd) != 0 && errno != EINVAL) throw Error(fmt::format("{}: cannot write: {}", path, errno_text(errno)));
+  } catch (...) {
+    ::close(fd);
+    ::unlink(pending.temporary.c_str());
+    throw;
+  }
+  if (::close(fd) != 0) {
+    const int error = errno;
+    ::unlink(pending.temporary.c_str());
+    throw Error(fmt::format("{}: cannot write: {}", path, errno_text(error)));
+  }
+  return pending;
+}
+
+void discard(const PendingFile& pending) {
+  if (!pending.temporary.empty()) ::unlink(pending.temporary.c_str());
+}
+
+void install(const PendingFile& pending, const std::string& path) {
+  if (pending.temporary.empty()) return;
+  if (::rename(pending.temporary.c_str(), pending.target.c_str()) != 0) {
+    const int error = errno;
+    discard(pending);
+    throw Error(fmt::format("{}: cannot write: {}", path, errno_text(error)));
+  }
+  // The rename itself is durable once the directory is flushed; a failure here loses nothing already written.
+  const int dir = ::open(directory_of(pending.target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
+}
+
+}  // namespace
+
+std::string lowercase_extension(const std::string& path) {
+  std::string extension = fs::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+void write_file(const std::string& path, std::string_view bytes) {
+  const PendingFile pending = write_pending(path, bytes);
+  install(pending, path);
+}
+
+void OutputSet::add(std::string path, std::string bytes) { entries_.push_back({std::move(path), std::move(bytes)}); }
+
+void OutputSet::commit() {
+  std::vector<PendingFile> pending;
+  try {
+    for (const Entry& e : entries_) pending.push_back(write_pending(e.path, e.bytes));
+  } catch (...) {
+    for (const PendingFile& p : pending) discard(p);
+    throw;
+  }
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    try {
+      install(pending[i], entries_[i].path);
+    } catch (...) {
+      for (std::size_t j = i + 1; j < pending.size(); ++j) discard(pending[j]);
+      throw;
+    }
+  }
+  entries_.clear();
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec_a, ec_b;
+  const bool a_exists = fs::exists(a, ec_a), b_exists = fs::exists(b, ec_b);
+  if (a_exists && b_exists) {
+    std::error_code ec;
+    const bool equivalent = fs::equivalent(a, b, ec);
+    return !ec && equivalent;
+  }
+  if (a_exists != b_exists) return false;
+  std::error_code ec;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec);
+  if (ec) return false;
+  const fs::path cb = fs::weakly_canonical(fs::absolute(b), ec);
+  return !ec && ca == cb;
+}
+
+void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    const OutputPath& o = outputs[k];
+    if (o.path.empty()) continue;
+    const std::string what = fmt::format("{} {}", o.option, o.path);
+    for (const std::string& input : inputs)
+      if (same_file(o.path, input))
+        throw Error(fmt::format("{}: would overwrite the input {}; choose another output path", what, input));
+    for (std::size_t j = 0; j < k; ++j)
+      if (!outputs[j].path.empty() && same_file(o.path, outputs[j].path))
+        throw Error(fmt::format("{}: is also the output {} {}; give each output its own path", what, outputs[j].option,
+                                outputs[j].path));
+  }
+  // A device or FIFO (/dev/stdout) takes any format; a file's name must say the format written.
+  for (const OutputPath& o : outputs)
+    if (!o.path.empty() && !o.extensions.empty() && !is_special_file(destination(o.path))) require_extension(o);
+  for (const OutputPath& o : outputs) {
+    if (o.path.empty()) continue;
+    const std::string what = fmt::format("{} {}", o.option, o.path);
+    const fs::path target = destination(o.path);
+    std::error_code ec;
+    if (fs::is_directory(target, ec)) throw Error(fmt::format("{}: is a directory", what));
+    if (is_special_file(target)) {
+      if (::access(target.c_str(), W_OK) != 0) throw Error(fmt::format("{}: cannot write: {}", what, errno_text(errno)));
+      continue;
+    }
+    create_directory_for(target, what);
+    // The directory must accept a new file (the temporary that is renamed into place).
+    const fs::path probe = temporary_beside(target);
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0)
+      throw Error(fmt::format("{}: cannot write in {}: {}", what, directory_of(target).string(), errno_text(errno)));
+    ::close(fd);
+    ::unlink(probe.c_str());
+  }
+}
+
+void require_extension(const OutputPath& output) {
+  const std::string extension = lowercase_extension(output.path);
+  std::string allowed;
+  for (std::string_view e : output.extensions) {
+    if (extension == e) return;
+    allowed += (allowed.empty() ? "" : " or ") + std::string(e);
+  }
+  if (extension.empty()) throw Error(fmt::format("{} {}: no file extension; use {}", output.option, output.path, allowed));
+  throw Error(fmt::format("{} {}: '{}' is not a format this command writes; use {}", output.option, output.path,
+                          extension, allowed));
+}
+
+}  // namespace lucent
