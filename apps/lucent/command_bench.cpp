@@ -22,6 +22,7 @@
 #include "commands.h"
 #include "image/image_metrics.h"
 #include "lucent/lucent.h"
+#include "params/param_json.h"
 #include "progress_bar.h"
 #include "reference/reference_renderer.h"
 
@@ -109,7 +110,8 @@ struct Bench {
     if (fs::exists(exr.parent_path()))
       for (const auto& entry : fs::directory_iterator(exr.parent_path())) {
         if (entry.path().extension() != ".json") continue;
-        json m = json::parse(std::ifstream(entry.path()), nullptr, false);
+        std::ifstream metadata(entry.path());
+        json m = try_parse_json(metadata, entry.path().string());
         if (m.is_discarded() || m.value("scene", "") != scene_path || m.value("integrator", "") != integrator) continue;
         if (relevant_overrides(m.value("overrides", std::vector<std::string>{}), integrator) !=
             relevant_overrides(sets, integrator))
@@ -398,8 +400,7 @@ void run(const std::string& config_path, const std::string& output, const std::v
   std::ifstream file(config_path);
   if (!file) throw Error(fmt::format("{}: cannot open bench configuration", config_path));
   Bench bench;
-  bench.config = json::parse(file, nullptr, false, true);
-  if (bench.config.is_discarded()) throw Error(fmt::format("{}: malformed JSON", config_path));
+  bench.config = parse_json(file, config_path);
   validate_bench_config(bench.config, config_path);
   const json& runs = bench.config["runs"];
   const std::vector<std::size_t> selected = selected_runs(runs, only, config_path);

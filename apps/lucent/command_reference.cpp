@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "lucent/error.h"
 #include "lucent/scene.h"
+#include "params/param_json.h"
 #include "progress_bar.h"
 #include "reference/reference_renderer.h"
 
@@ -29,7 +30,7 @@ reference::ReferenceImage load_previous(const std::string& exr) {
   std::string meta_path = reference::reference_sidecar(exr, ".json");
   std::ifstream meta(meta_path);
   if (!meta) throw Error(fmt::format("{}: cannot resume: no such file (written next to the reference)", meta_path));
-  nlohmann::json j = nlohmann::json::parse(meta, nullptr, false);
+  nlohmann::json j = try_parse_json(meta, meta_path);
   if (j.is_discarded() || !j.contains("samples_per_pixel"))
     throw Error(fmt::format("{}: cannot resume: malformed metadata", meta_path));
   reference::ReferenceImage previous;

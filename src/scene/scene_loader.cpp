@@ -1,4 +1,5 @@
 // scene_loader.cpp: JSON scene files -> Scene, validated against the parameter declarations.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -215,7 +216,9 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
   if (!preset_name.empty()) {
     if (explicit_coefficients) fail(where, "give either preset or coefficients, not both");
     const MaterialPreset* preset = find_material_preset(preset_name);
-    if (!preset) fail(where.child("preset"), fmt::format("unknown material '{}' (see: lucent materials)", preset_name));
+    if (!preset)
+      fail(where.child("preset"),
+           fmt::format("unknown material '{}' (see: lucent materials)", text_excerpt(preset_name)));
     m = material_from_preset(*preset);
   } else {
     if (!v.has("sigma_a")) fail(where, "needs preset, or sigma_a with sigma_s (and g) or sigma_s_prime");
@@ -351,7 +354,7 @@ void read_method(const json& j, const JsonLocation& where, Scene& scene) {
   if (!methods::find_method(scene.method)) {
     std::string known;
     for (const auto& m : methods::method_registry()) known += (known.empty() ? "" : ", ") + std::string(m.name);
-    fail(where.child("name"), fmt::format("unknown method '{}'; known: {}", scene.method, known));
+    fail(where.child("name"), fmt::format("unknown method '{}'; known: {}", text_excerpt(scene.method), known));
   }
   scene.method_params = read_params(j, method_section(scene.method), where, {"name"});
 }
@@ -371,14 +374,13 @@ RenderSettings read_render(const json& j, const JsonLocation& where) {
   return r;
 }
 
-// "a.b.0.c=value": sets the JSON value at that path; value is JSON, or a bare string when not valid JSON.
-void apply_override(json& doc, const std::string& assignment) {
-  auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw Error(fmt::format("--set '{}': expected key.path=value, e.g. method.K=8", assignment));
-  std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
-  json value = json::parse(text, nullptr, false);
-  if (value.is_discarded()) value = text;
+// "--set 'a.b=1'": an assignment as messages name it.
+std::string set_name(const std::string& assignment) { return fmt::format("--set '{}'", text_excerpt(assignment)); }
+
+// The value at a --set key path ("a.b.0.c"), created where missing; `pointer` receives its JSON pointer.
+json& override_target(json& doc, const std::string& path, const std::string& assignment, std::string& pointer) {
+  if (static_cast<std::size_t>(std::count(path.begin(), path.end(), '.')) >= kMaxJsonDepth)
+    throw Error(fmt::format("{}: key path deeper than {} levels", set_name(assignment), kMaxJsonDepth));
   json* node = &doc;
   std::istringstream parts(path);
   std::string part;
@@ -388,33 +390,41 @@ void apply_override(json& doc, const std::string& assignment) {
       try {
         index = std::stoul(part);
       } catch (const std::exception&) {
-        throw Error(fmt::format("--set '{}': '{}' is not an array index", assignment, part));
+        throw Error(fmt::format("{}: '{}' is not an array index", set_name(assignment), text_excerpt(part)));
       }
       if (index >= node->size())
-        throw Error(fmt::format("--set '{}': index {} out of range ({} elements)", assignment, index, node->size()));
+        throw Error(fmt::format("{}: index {} out of range ({} elements)", set_name(assignment), index, node->size()));
       node = &(*node)[index];
+      pointer += "/" + std::to_string(index);
     } else {
       if (node->is_null()) *node = json::object();
       if (!node->is_object())
-        throw Error(fmt::format("--set '{}': cannot set '{}' inside {} (not an object)", assignment, part, node->dump()));
+        throw Error(fmt::format("{}: cannot set '{}' inside {} (not an object)", set_name(assignment),
+                                text_excerpt(part), excerpt(*node)));
       node = &(*node)[part];
+      pointer += "/" + part;
     }
   }
-  *node = value;
+  return *node;
+}
+
+// "a.b.0.c=value": sets the JSON value at that path; value is JSON, or a bare string when not valid JSON.
+void apply_override(json& doc, const std::string& assignment) {
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw Error(fmt::format("{}: expected key.path=value, e.g. method.K=8", set_name(assignment)));
+  std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  std::string pointer;
+  json& target = override_target(doc, path, assignment, pointer);
+  json value = try_parse_json(text, {set_name(assignment), pointer});  // its depth counts from the pointer's
+  target = value.is_discarded() ? json(text) : std::move(value);
 }
 
 }  // namespace
 
 Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir,
                   const std::vector<std::string>& overrides) {
-  json doc;
-  try {
-    doc = json::parse(json_text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    auto bracket = what.find("] ");  // drop nlohmann's "[json.exception.parse_error.101] " prefix
-    throw Error(fmt::format("{}: malformed JSON: {}", source, bracket == std::string::npos ? what : what.substr(bracket + 2)));
-  }
+  json doc = parse_json(json_text, {source, ""});
   for (const std::string& assignment : overrides) apply_override(doc, assignment);
   JsonLocation root{source, ""};
   ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "environment", "objects", "method", "render"});
