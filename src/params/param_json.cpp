@@ -266,6 +266,14 @@ void require_object(const nlohmann::json& value, const JsonLocation& where) {
   if (!value.is_object()) fail(where, fmt::format("expected a JSON object, got {}", excerpt(value)));
 }
 
+std::string read_string(const nlohmann::json& object, std::string_view key, const std::string& fallback,
+                        const JsonLocation& where) {
+  auto it = object.find(key);
+  if (it == object.end()) return fallback;
+  if (!it->is_string()) fail(where.child(key), fmt::format("expected a string, got {}", excerpt(*it)));
+  return it->get<std::string>();
+}
+
 ParamValues read_params(const nlohmann::json& object, const ParamSection& section, const JsonLocation& where,
                         std::initializer_list<std::string_view> also_allowed) {
   require_object(object, where);

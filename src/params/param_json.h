@@ -64,4 +64,9 @@ ParamValues read_params(const nlohmann::json& object, const ParamSection& sectio
 // Throws unless `value` is a JSON object.
 void require_object(const nlohmann::json& value, const JsonLocation& where);
 
+// The string at `key` of `object`, or `fallback` where absent; "<file>: <pointer>: expected a string, got 3" for
+// another type (where json::value would throw a type_error).
+std::string read_string(const nlohmann::json& object, std::string_view key, const std::string& fallback,
+                        const JsonLocation& where);
+
 }  // namespace lucent

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -246,10 +247,11 @@ std::vector<glm::vec2> read_profile(const json& object, const JsonLocation& wher
     const json& q = p[i];
     if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
       fail(at.child(i), "expected [r, y] (two numbers)");
-    glm::vec2 point(q[0].get<float>(), q[1].get<float>());
-    if (!std::isfinite(point.x) || !std::isfinite(point.y) || point.x < 0.0f)
-      fail(at.child(i), fmt::format("[{}, {}]: r must be >= 0 and both finite", point.x, point.y));
-    profile.push_back(point);
+    const double r = q[0].get<double>(), y = q[1].get<double>();
+    auto fits_float = [](double x) { return std::abs(x) <= std::numeric_limits<float>::max(); };  // false for NaN
+    if (!fits_float(r) || !fits_float(y) || r < 0.0)
+      fail(at.child(i), fmt::format("[{}, {}]: r must be >= 0 and both finite", excerpt(q[0]), excerpt(q[1])));
+    profile.emplace_back(static_cast<float>(r), static_cast<float>(y));
   }
   return profile;
 }
@@ -350,7 +352,7 @@ ParamSection method_section(const std::string& name) {
 
 void read_method(const json& j, const JsonLocation& where, Scene& scene) {
   require_object(j, where);
-  scene.method = j.value("name", std::string("radiosity-maps"));
+  scene.method = read_string(j, "name", "radiosity-maps", where);
   if (!methods::find_method(scene.method)) {
     std::string known;
     for (const auto& m : methods::method_registry()) known += (known.empty() ? "" : ", ") + std::string(m.name);

@@ -1,6 +1,7 @@
 // test_hostile_json.cpp: hostile JSON input gives one error line naming the input, never a crash or an "internal
 // error": nesting 100,000 levels deep (in a scene file, a --set value, a --set key path, a bench configuration),
-// duplicate keys (in every JSON input), numbers beyond double, and huge values echoed in messages.
+// duplicate keys (in every JSON input), numbers beyond double or float, values of the wrong type where a string is
+// read, and huge values echoed in messages.
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -68,7 +69,7 @@ std::string write_file(const std::string& name, const std::string& text) {
   return path;
 }
 
-// ---- the reader itself ------------------------------------------------------------------------------------------
+// ---- the reader itself ----------------------------------------------------------------------------------------------
 
 TEST(HostileJson, ExcerptsCutValuesAndText) {
   EXPECT_EQ(excerpt(json{{"a", 1}}), "{\"a\":1}");
@@ -125,7 +126,7 @@ TEST(HostileJson, FuzzSeedsAreOneLineErrors) {
   EXPECT_GE(checked, 3);
 }
 
-// ---- nesting depth --------------------------------------------------------------------------------------------
+// ---- nesting depth --------------------------------------------------------------------------------------------------
 
 TEST(HostileJson, DeepNestingInASceneFileIsAnError) {
   // The root object is level 1 and "comment" level 2, so level 129 is 127 arrays below /comment.
@@ -154,7 +155,7 @@ TEST(HostileJson, NestingUpToTheLimitIsAccepted) {
             "test.json: /comment: expected a string, got " + std::string(57, '[') + "...");
 }
 
-// ---- duplicate keys, numbers, excerpts -----------------------------------------------------------------------
+// ---- duplicate keys, numbers, types, excerpts -----------------------------------------------------------------------
 
 TEST(HostileJson, DuplicateKeysAreErrors) {
   EXPECT_EQ(text_error(R"({"objects": [{"shape": "sphere", "material": "Marble"}],
@@ -184,6 +185,18 @@ TEST(HostileJson, UnterminatedHugeStringIsExcerpted) {
             "missing closing quote; last read: '\"" + std::string(55, 'a') + "...");
 }
 
+TEST(HostileJson, NonStringMethodNameIsATypeError) {
+  json doc = minimal_scene();
+  doc["method"] = {{"name", 3}};
+  EXPECT_EQ(scene_error(doc), "test.json: /method/name: expected a string, got 3");
+}
+
+TEST(HostileJson, ProfileNumbersBeyondFloatAreErrors) {
+  json doc = minimal_scene();
+  doc["objects"][0] = {{"shape", "lathe"}, {"profile", {{1e300, 0}, {1, 0}, {1, 1}}}, {"material", "Marble"}};
+  EXPECT_EQ(scene_error(doc), "test.json: /objects/0/profile/0: [1e+300, 0]: r must be >= 0 and both finite");
+}
+
 TEST(HostileJson, HugeValuesAreExcerptedInMessages) {
   json doc = minimal_scene();
   doc["render"] = {{"width", std::vector<int>(20000, 7)}};
@@ -198,7 +211,7 @@ TEST(HostileJson, HugeValuesAreExcerptedInMessages) {
   EXPECT_EQ(scene_error(doc).substr(0, 84), "test.json: /" + std::string(56, 'k') + "...: unknown key");
 }
 
-// ---- other JSON inputs ---------------------------------------------------------------------------------------
+// ---- other JSON inputs ----------------------------------------------------------------------------------------------
 
 TEST(HostileJson, VolumeHeaderDuplicateKeyIsAnError) {
   const std::string header = write_file("volume.json", R"({"size": [1, 1, 1], "data": "a.raw", "data": "b.raw"})");
