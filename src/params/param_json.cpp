@@ -20,6 +20,12 @@ void fail(const JsonLocation& where, const std::string& problem) {
 
 std::string JsonLocation::str() const {
   const std::string at = pointer.empty() ? "/" : text_excerpt(pointer);
+  if (overrides) {
+    for (auto o = overrides->rbegin(); o != overrides->rend(); ++o) {  // the last override of a value is in effect
+      if (pointer == o->pointer || pointer.starts_with(o->pointer + "/"))
+        return fmt::format("--set '{}': {}", text_excerpt(o->assignment), at);
+    }
+  }
   return file + ": " + at;
 }
 

@@ -7,6 +7,7 @@
 #include <iosfwd>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -21,13 +22,22 @@ inline constexpr std::size_t kMaxJsonDepth = 128;
 // The most characters of a value (or of a JSON pointer, or of a --set argument) that an error message shows.
 inline constexpr std::size_t kExcerptChars = 60;
 
+// A --set assignment and the JSON pointer of the value it set: errors at or under that pointer name the
+// assignment instead of the scene file.
+struct JsonOverride {
+  std::string pointer;     // "/method/K"
+  std::string assignment;  // "method.K=0"
+};
+
 // Where a JSON value lives, for messages: "scene.json: /objects/0/material".
 struct JsonLocation {
   std::string file;
-  std::string pointer;  // JSON pointer, "" for the root
-  JsonLocation child(std::string_view key) const { return {file, pointer + "/" + std::string(key)}; }
+  std::string pointer;                                   // JSON pointer, "" for the root
+  const std::vector<JsonOverride>* overrides = nullptr;  // the --set assignments applied to the file, in order
+  JsonLocation child(std::string_view key) const { return {file, pointer + "/" + std::string(key), overrides}; }
   JsonLocation child(std::size_t index) const { return child(std::to_string(index)); }
-  // "scene.json: /objects/0", the pointer cut to kExcerptChars.
+  // "scene.json: /objects/0", or "--set 'objects.0.shape=box': /objects/0/shape" at or under the pointer of an
+  // override (the last such); the pointer cut to kExcerptChars.
   std::string str() const;
 };
 

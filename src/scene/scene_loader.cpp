@@ -410,8 +410,9 @@ json& override_target(json& doc, const std::string& path, const std::string& ass
   return *node;
 }
 
-// "a.b.0.c=value": sets the JSON value at that path; value is JSON, or a bare string when not valid JSON.
-void apply_override(json& doc, const std::string& assignment) {
+// "a.b.0.c=value": sets the JSON value at that path; value is JSON, or a bare string when not valid JSON. Returns
+// the JSON pointer of the value set.
+std::string apply_override(json& doc, const std::string& assignment) {
   auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw Error(fmt::format("{}: expected key.path=value, e.g. method.K=8", set_name(assignment)));
@@ -420,6 +421,7 @@ void apply_override(json& doc, const std::string& assignment) {
   json& target = override_target(doc, path, assignment, pointer);
   json value = try_parse_json(text, {set_name(assignment), pointer});  // its depth counts from the pointer's
   target = value.is_discarded() ? json(text) : std::move(value);
+  return pointer;
 }
 
 }  // namespace
@@ -427,8 +429,9 @@ void apply_override(json& doc, const std::string& assignment) {
 Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir,
                   const std::vector<std::string>& overrides) {
   json doc = parse_json(json_text, {source, ""});
-  for (const std::string& assignment : overrides) apply_override(doc, assignment);
-  JsonLocation root{source, ""};
+  std::vector<JsonOverride> applied;  // errors at or under a value set by --set name the assignment
+  for (const std::string& assignment : overrides) applied.push_back({apply_override(doc, assignment), assignment});
+  JsonLocation root{source, "", &applied};
   ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "environment", "objects", "method", "render"});
   Scene scene;
   scene.source = source;

@@ -1,7 +1,7 @@
 // test_hostile_json.cpp: hostile JSON input gives one error line naming the input, never a crash or an "internal
 // error": nesting 100,000 levels deep (in a scene file, a --set value, a --set key path, a bench configuration),
 // duplicate keys (in every JSON input), numbers beyond double or float, values of the wrong type where a string is
-// read, and huge values echoed in messages.
+// read, and huge values echoed in messages. An error in a value set by --set names the --set argument.
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -211,6 +211,32 @@ TEST(HostileJson, HugeValuesAreExcerptedInMessages) {
   EXPECT_EQ(scene_error(doc).substr(0, 84), "test.json: /" + std::string(56, 'k') + "...: unknown key");
 }
 
+TEST(HostileJson, InvalidUtf8SetValueIsReportedNotThrown) {
+  // A --set value that is not JSON is a bare string; its bytes need not be UTF-8.
+  EXPECT_EQ(scene_error(minimal_scene(), {"render.width=\xff"}),
+            "--set 'render.width=\xff': /render/width: expected a number, got \"\xef\xbf\xbd\"");
+}
+
+// ---- --set errors name the --set argument ---------------------------------------------------------------------------
+
+TEST(HostileJson, SetErrorsNameTheSetArgument) {
+  EXPECT_EQ(scene_error(minimal_scene(), {"render.width=10", "method.K=0"}),
+            "--set 'method.K=0': /method/K: 0 is out of range; allowed range [1, 64] maps");
+  EXPECT_EQ(scene_error(minimal_scene(), {"objects.0.material={\"preset\": \"Nope\"}"}),
+            "--set 'objects.0.material={\"preset\": \"Nope\"}': /objects/0/material/preset: unknown material 'Nope' "
+            "(see: lucent materials)");
+  EXPECT_EQ(scene_error(minimal_scene(), {"method.KK=1"}).substr(0, 44), "--set 'method.KK=1': /method/KK: unknown key");
+  // The later of two overrides of the same key is the one in effect.
+  EXPECT_EQ(scene_error(minimal_scene(), {"render.width=0", "render.width=-1"}),
+            "--set 'render.width=-1': /render/width: -1 is out of range; allowed range [1, 16384] pixels");
+  // Errors elsewhere still name the scene file.
+  json doc = minimal_scene();
+  doc["method"] = {{"K", 0}};
+  EXPECT_EQ(scene_error(doc, {"render.width=10"}), "test.json: /method/K: 0 is out of range; allowed range [1, 64] maps");
+  EXPECT_EQ(scene_error(minimal_scene(), {"render.exposure=1e999"}),
+            "--set 'render.exposure=1e999': malformed JSON: line 1, column 5: number overflow parsing '1e999'");
+}
+
 // ---- other JSON inputs ----------------------------------------------------------------------------------------------
 
 TEST(HostileJson, VolumeHeaderDuplicateKeyIsAnError) {
@@ -239,6 +265,21 @@ TEST(HostileJson, BenchConfigurationDuplicateKeyAndDepth) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output, "lucent: " + deep + ": " + deep_pointer_excerpt("/description", 127) +
                           ": nested deeper than 128 levels\n");
+}
+
+TEST(HostileJson, SceneFileAndSetThroughTheCli) {
+  const std::string scene = write_file("cli_scene.json", R"({"comment": )" + deep_array(kDeep) + "}");
+  auto r = test::run_cli("reference " + scene);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output, "lucent: " + scene + ": " + deep_pointer_excerpt("/comment", 127) +
+                          ": nested deeper than 128 levels\n");
+  const std::string good = write_file("cli_good.json", minimal_scene().dump());
+  r = test::run_cli("reference " + good + " --set method.K=0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output, "lucent: --set 'method.K=0': /method/K: 0 is out of range; allowed range [1, 64] maps\n");
+  r = test::run_cli("reference " + good + " --set 'method={\"name\": 3}'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output, "lucent: --set 'method={\"name\": 3}': /method/name: expected a string, got 3\n");
 }
 
 TEST(HostileJson, ReferenceMetadataDuplicateKeyIsAnError) {
