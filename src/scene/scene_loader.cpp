@@ -25,6 +25,14 @@ using nlohmann::json;
 
 constexpr double kPositive = 1e-9;  // lower bound for "strictly positive" ranges
 
+// The largest |x|, |y| or |z| of a vertex in world space [scene units]. The rasterizer and Embree work in float:
+// at 1e7 one float step is 1 unit, so geometry further out cannot be placed, shaded or intersected reliably.
+constexpr float kMaxWorldCoordinate = 1e7f;
+
+// The smallest sine of the angle between the camera's up and its view direction: below it the camera's roll is
+// undefined (the viewer's orbit camera stays 0.01 rad off its poles).
+constexpr float kMinUpViewSine = 1e-3f;
+
 constexpr ParamDecl kSceneParams[] = {
     {"scale_mm", ParamType::Float, "1.0", "mm/unit", kPositive, 1e9, "", "millimetres per scene unit"},
     {"comment", ParamType::String, "\"\"", "", 0, 0, "", "free text, ignored"},
@@ -113,6 +121,8 @@ Camera read_camera(const json& j, const JsonLocation& where) {
   camera.up = unit(v.vec3("up"), where.child("up"));
   camera.fov_y_deg = static_cast<float>(v.number("fov_y_deg"));
   if (glm::length(camera.eye - camera.target) < 1e-9f) fail(where.child("target"), "equals eye");
+  if (glm::length(glm::cross(glm::normalize(camera.target - camera.eye), camera.up)) < kMinUpViewSine)
+    fail(where.child("up"), "parallel to the view direction from eye to target");
   return camera;
 }
 
@@ -301,6 +311,18 @@ void orient_normals_outward(TriangleMesh& mesh, const std::string& what) {
   std::cerr << "lucent: warning: " << what << ": normals point inward; flipped\n";
 }
 
+// Every vertex in world space within kMaxWorldCoordinate (which also excludes inf and NaN).
+void check_world_extent(const TriangleMesh& mesh, const glm::mat4& world_from_object, const JsonLocation& where) {
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    glm::vec3 p = glm::vec3(world_from_object * glm::vec4(mesh.positions[i], 1.0f));
+    bool inside = std::abs(p.x) <= kMaxWorldCoordinate && std::abs(p.y) <= kMaxWorldCoordinate &&
+                  std::abs(p.z) <= kMaxWorldCoordinate;
+    if (!inside)
+      fail(where, fmt::format("vertex {} is at ({:g}, {:g}, {:g}) in world space, beyond {:g} scene units "
+                              "(float precision)", i, p.x, p.y, p.z, kMaxWorldCoordinate));
+  }
+}
+
 glm::mat4 read_transform(const ParamValues& v) {
   glm::vec3 r = glm::radians(v.vec3("rotate_deg"));
   glm::mat4 m = glm::translate(glm::mat4(1.0f), v.vec3("translate"));
@@ -322,6 +344,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
       if (j.contains(key)) fail(where.child(key), "not supported for blobs (the field is fixed in world space)");
     object.blob_resolution = v.integer("segments");
   } else {
+    check_world_extent(object.mesh, object.world_from_object, where);
     validate_mesh(object.mesh, where.str());
   }
   if (j.contains("deform")) {
@@ -424,6 +447,15 @@ std::string apply_override(json& doc, const std::string& assignment) {
   return pointer;
 }
 
+// A scene whose translucent objects no light reaches renders black: say so (it may be intended while editing).
+void warn_if_unlit(const Scene& scene) {
+  bool translucent = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                 [](const SceneObject& object) { return object.translucent(); });
+  if (translucent && scene.lights.empty() && scene.point_lights.empty())
+    std::cerr << "lucent: warning: " << scene.source
+              << ": translucent objects but no light (lights, environment); the image will be black\n";
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir,
@@ -447,6 +479,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
     scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir));
   read_method(doc.value("method", json::object()), root.child("method"), scene);
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
+  warn_if_unlit(scene);
   return scene;
 }
 

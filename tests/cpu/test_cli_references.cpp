@@ -68,7 +68,8 @@ TEST(CliReferences, BadInputsNameTheInput) {
 TEST(CliReferences, BenchChecksEveryVariantsSceneFirst) {
   auto dir = temp_dir();
   std::string scene = (dir / "bench_sphere.json").string(), config = (dir / "bench_bad_variant.json").string();
-  std::ofstream(scene) << R"({"objects": [{"shape": "sphere", "material": "Skin1"}]})";
+  std::ofstream(scene) << R"({"lights": [{"direction": [0, -1, 0]}],
+                              "objects": [{"shape": "sphere", "material": "Skin1"}]})";
   std::ofstream(config) << R"({"runs": [{"name": "a", "scene": ")" << scene
                         << R"(", "variants": [{"name": "fine"}, {"name": "bad", "set": ["method.K=0"]}]}]})";
   Result r = run("bench " + config + " -o " + (dir / "bench_bad_out").string());

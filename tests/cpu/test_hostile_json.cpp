@@ -1,7 +1,9 @@
 // test_hostile_json.cpp: hostile JSON input gives one error line naming the input, never a crash or an "internal
 // error": nesting 100,000 levels deep (in a scene file, a --set value, a --set key path, a bench configuration),
 // duplicate keys (in every JSON input), numbers beyond double or float, values of the wrong type where a string is
-// read, and huge values echoed in messages. An error in a value set by --set names the --set argument.
+// read, and huge values echoed in messages. An error in a value set by --set names the --set argument. Degenerate
+// scenes are refused (a camera whose up is its view direction, vertices beyond float precision) and a translucent
+// scene without a light warns.
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -235,6 +237,46 @@ TEST(HostileJson, SetErrorsNameTheSetArgument) {
   EXPECT_EQ(scene_error(doc, {"render.width=10"}), "test.json: /method/K: 0 is out of range; allowed range [1, 64] maps");
   EXPECT_EQ(scene_error(minimal_scene(), {"render.exposure=1e999"}),
             "--set 'render.exposure=1e999': malformed JSON: line 1, column 5: number overflow parsing '1e999'");
+}
+
+// ---- degenerate and absurd scenes -----------------------------------------------------------------------------------
+
+TEST(HostileJson, CameraUpAlongTheViewDirectionIsAnError) {
+  json doc = minimal_scene();
+  doc["camera"] = {{"eye", {0, 5, 0}}, {"target", {0, 0, 0}}, {"up", {0, 1, 0}}};
+  EXPECT_EQ(scene_error(doc), "test.json: /camera/up: parallel to the view direction from eye to target");
+  doc["camera"]["up"] = {0, -1, 0};
+  EXPECT_EQ(scene_error(doc), "test.json: /camera/up: parallel to the view direction from eye to target");
+  doc["camera"]["up"] = {0, 0, 1};
+  EXPECT_EQ(scene_error(doc), "");
+}
+
+TEST(HostileJson, MeshBeyondFloatPrecisionIsAnError) {
+  const std::string mesh = write_file("far.obj", "v 1e30 0 0\nv 0 1e30 0\nv 0 0 1e30\nf 1 2 3\n");
+  json doc = minimal_scene();
+  doc["objects"][0] = {{"mesh", mesh}, {"albedo", {0.5, 0.5, 0.5}}};
+  EXPECT_EQ(scene_error(doc),
+            "test.json: /objects/0: vertex 0 is at (1e+30, 0, 0) in world space, beyond 1e+07 scene units "
+            "(float precision)");
+  doc["objects"][0] = {{"shape", "box"}, {"translate", {2e7, 0, 0}}, {"material", "Marble"}};
+  EXPECT_EQ(scene_error(doc),
+            "test.json: /objects/0: vertex 0 is at (2e+07, -0.5, -0.5) in world space, beyond 1e+07 scene units "
+            "(float precision)");
+  doc["objects"][0] = {{"shape", "box"}, {"translate", {9e6, 0, 0}}, {"material", "Marble"}};
+  EXPECT_EQ(scene_error(doc), "");
+}
+
+TEST(HostileJson, TranslucentSceneWithoutLightWarns) {
+  json doc = minimal_scene();
+  doc.erase("lights");
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(scene_error(doc), "");
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+            "lucent: warning: test.json: translucent objects but no light (lights, environment); the image will be "
+            "black\n");
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(scene_error(minimal_scene()), "");
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 // ---- other JSON inputs ----------------------------------------------------------------------------------------------
