@@ -50,7 +50,7 @@ void require_key(const json& object, const char* key, const JsonLocation& where,
 }
 
 void require_array(const json& value, const JsonLocation& where, const char* of) {
-  if (!value.is_array()) fail(where, fmt::format("expected an array of {}, got {}", of, value.dump()));
+  if (!value.is_array()) fail(where, fmt::format("expected an array of {}, got {}", of, excerpt(value)));
 }
 
 // "set": ["render.width=160", "objects.0.material.model=\"standard\"", ...]; what the values mean is checked when
@@ -62,7 +62,7 @@ void check_overrides(const json& object, const JsonLocation& where) {
   for (std::size_t i = 0; i < object["set"].size(); ++i) {
     const json& s = object["set"][i];
     if (!s.is_string() || s.get<std::string>().find('=') == 0 || s.get<std::string>().find('=') == std::string::npos)
-      fail(at.child(i), fmt::format("expected \"key=value\", got {}", s.dump()));
+      fail(at.child(i), fmt::format("expected \"key=value\", got {}", excerpt(s)));
   }
 }
 
@@ -89,7 +89,7 @@ void validate_bench_config(const json& config, const std::string& path) {
     check_overrides(run, at);
     const std::string name = run_name(run);
     if (auto [other, inserted] = runs.emplace(name, i); !inserted)
-      fail(at, fmt::format("run name '{}' is also the name of /runs/{}", name, other->second));
+      fail(at, fmt::format("run name '{}' is also the name of /runs/{}", text_excerpt(name), other->second));
     if (!run.contains("variants")) continue;
     require_array(run["variants"], at.child("variants"), "variants");
     std::map<std::string, std::size_t> ids;
@@ -101,7 +101,7 @@ void validate_bench_config(const json& config, const std::string& path) {
       const std::string id = variant.value("id", variant.value("name", std::string("default")));
       if (auto [other, inserted] = ids.emplace(id, v); !inserted)
         fail(vat, fmt::format("variant id '{}' is also the id of variant {} (their images would overwrite each other)",
-                              id, other->second));
+                              text_excerpt(id), other->second));
     }
   }
 
@@ -120,7 +120,7 @@ void validate_bench_config(const json& config, const std::string& path) {
       for (std::size_t k = 0; k < spec["only_runs"].size(); ++k) {
         const json& name = spec["only_runs"][k];
         if (!name.is_string() || !runs.count(name.get<std::string>()))
-          fail(iat.child("only_runs").child(k), fmt::format("{} is not the name of a run", name.dump()));
+          fail(iat.child("only_runs").child(k), fmt::format("{} is not the name of a run", excerpt(name)));
       }
     }
   }
@@ -134,7 +134,8 @@ void validate_bench_config(const json& config, const std::string& path) {
       require_key(plot, "output", at, "the PNG to write, e.g. \"fig13.png\"");
       require_key(plot, "script", at, "a gnuplot script, e.g. \"bench/fig13.gp\"");
       const std::string script = plot["script"].get<std::string>();
-      if (!std::filesystem::exists(script)) fail(at.child("script"), fmt::format("{}: no such file", script));
+      if (!std::filesystem::exists(script))
+        fail(at.child("script"), fmt::format("{}: no such file", text_excerpt(script)));
     }
   }
 }

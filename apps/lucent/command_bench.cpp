@@ -23,6 +23,7 @@
 #include "commands.h"
 #include "image/image_metrics.h"
 #include "lucent/lucent.h"
+#include "params/param_json.h"
 #include "progress_bar.h"
 #include "reference/reference_files.h"
 
@@ -396,8 +397,7 @@ void run(const std::string& config_path, const std::string& output, const std::v
   std::ifstream file(config_path);
   if (!file) throw Error(fmt::format("{}: cannot open bench configuration", config_path));
   Bench bench;
-  bench.config = json::parse(file, nullptr, false, true);
-  if (bench.config.is_discarded()) throw Error(fmt::format("{}: malformed JSON", config_path));
+  bench.config = parse_json(file, config_path);
   validate_bench_config(bench.config, config_path);
   const json& runs = bench.config["runs"];
   const std::vector<std::size_t> selected = selected_runs(runs, only, config_path);

@@ -14,6 +14,7 @@
 #include "lucent/error.h"
 #include "lucent/output_file.h"
 #include "media/heterogeneous_field.h"
+#include "params/param_json.h"
 
 namespace lucent {
 namespace {
@@ -94,7 +95,7 @@ std::string_view to_string(MediumFieldType type) {
 std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header_path) {
   std::ifstream in(header_path);
   if (!in) fail(header_path, "cannot open the volume header");
-  json header = json::parse(in, nullptr, false);
+  json header = parse_json(in, header_path);
   if (header.is_discarded() || !header.is_object()) fail(header_path, "not a JSON object (volume header)");
   for (const auto& [key, value] : header.items())
     if (key != "size" && key != "format" && key != "range" && key != "data")

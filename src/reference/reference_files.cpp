@@ -9,6 +9,7 @@
 
 #include "lucent/error.h"
 #include "lucent/output_file.h"
+#include "params/param_json.h"
 
 namespace lucent::reference {
 namespace {
@@ -29,8 +30,8 @@ std::optional<json> read_json_object(const std::string& path) {
   if (!in) throw Error(fmt::format("{}: cannot open reference metadata", path));
   std::stringstream text;
   text << in.rdbuf();
-  json j = json::parse(text.str(), nullptr, false);
-  if (j.is_discarded() || !j.is_object()) throw Error(fmt::format("{}: malformed reference metadata (not a JSON object)", path));
+  json j = parse_json(text.str(), JsonLocation{path, ""});
+  if (!j.is_object()) throw Error(fmt::format("{}: malformed reference metadata (not a JSON object)", path));
   return j;
 }
 

@@ -1,8 +1,10 @@
 // scene_loader.cpp: JSON scene files -> Scene, validated against the parameter declarations.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -22,6 +24,14 @@ namespace {
 using nlohmann::json;
 
 constexpr double kPositive = 1e-9;  // lower bound for "strictly positive" ranges
+
+// The largest |x|, |y| or |z| of a vertex in world space [scene units]. The rasterizer and Embree work in float:
+// at 1e7 one float step is 1 unit, so geometry further out cannot be placed, shaded or intersected reliably.
+constexpr float kMaxWorldCoordinate = 1e7f;
+
+// The smallest sine of the angle between the camera's up and its view direction: below it the camera's roll is
+// undefined (the viewer's orbit camera stays 0.01 rad off its poles).
+constexpr float kMinUpViewSine = 1e-3f;
 
 constexpr ParamDecl kSceneParams[] = {
     {"scale_mm", ParamType::Float, "1.0", "mm/unit", kPositive, 1e9, "", "millimetres per scene unit"},
@@ -118,6 +128,8 @@ Camera read_camera(const json& j, const JsonLocation& where) {
   camera.up = unit(v.vec3("up"), where.child("up"));
   camera.fov_y_deg = static_cast<float>(v.number("fov_y_deg"));
   if (glm::length(camera.eye - camera.target) < 1e-9f) fail(where.child("target"), "equals eye");
+  if (glm::length(glm::cross(glm::normalize(camera.target - camera.eye), camera.up)) < kMinUpViewSine)
+    fail(where.child("up"), "parallel to the view direction from eye to target");
   return camera;
 }
 
@@ -222,7 +234,9 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
   if (!preset_name.empty()) {
     if (explicit_coefficients) fail(where, "give either preset or coefficients, not both");
     const MaterialPreset* preset = find_material_preset(preset_name);
-    if (!preset) fail(where.child("preset"), fmt::format("unknown material '{}' (see: lucent materials)", preset_name));
+    if (!preset)
+      fail(where.child("preset"),
+           fmt::format("unknown material '{}' (see: lucent materials)", text_excerpt(preset_name)));
     m = material_from_preset(*preset);
   } else {
     if (!v.has("sigma_a")) fail(where, "needs preset, or sigma_a with sigma_s (and g) or sigma_s_prime");
@@ -250,10 +264,11 @@ std::vector<glm::vec2> read_profile(const json& object, const JsonLocation& wher
     const json& q = p[i];
     if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
       fail(at.child(i), "expected [r, y] (two numbers)");
-    glm::vec2 point(q[0].get<float>(), q[1].get<float>());
-    if (!std::isfinite(point.x) || !std::isfinite(point.y) || point.x < 0.0f)
-      fail(at.child(i), fmt::format("[{}, {}]: r must be >= 0 and both finite", point.x, point.y));
-    profile.push_back(point);
+    const double r = q[0].get<double>(), y = q[1].get<double>();
+    auto fits_float = [](double x) { return std::abs(x) <= std::numeric_limits<float>::max(); };  // false for NaN
+    if (!fits_float(r) || !fits_float(y) || r < 0.0)
+      fail(at.child(i), fmt::format("[{}, {}]: r must be >= 0 and both finite", excerpt(q[0]), excerpt(q[1])));
+    profile.emplace_back(static_cast<float>(r), static_cast<float>(y));
   }
   return profile;
 }
@@ -301,6 +316,18 @@ void orient_normals_outward(TriangleMesh& mesh, const std::string& what) {
   std::cerr << "lucent: warning: " << what << ": normals point inward; flipped\n";
 }
 
+// Every vertex in world space within kMaxWorldCoordinate (which also excludes inf and NaN).
+void check_world_extent(const TriangleMesh& mesh, const glm::mat4& world_from_object, const JsonLocation& where) {
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    glm::vec3 p = glm::vec3(world_from_object * glm::vec4(mesh.positions[i], 1.0f));
+    bool inside = std::abs(p.x) <= kMaxWorldCoordinate && std::abs(p.y) <= kMaxWorldCoordinate &&
+                  std::abs(p.z) <= kMaxWorldCoordinate;
+    if (!inside)
+      fail(where, fmt::format("vertex {} is at ({:g}, {:g}, {:g}) in world space, beyond {:g} scene units "
+                              "(float precision)", i, p.x, p.y, p.z, kMaxWorldCoordinate));
+  }
+}
+
 glm::mat4 read_transform(const ParamValues& v) {
   glm::vec3 r = glm::radians(v.vec3("rotate_deg"));
   glm::mat4 m = glm::translate(glm::mat4(1.0f), v.vec3("translate"));
@@ -323,6 +350,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
       if (j.contains(key)) fail(where.child(key), "not supported for blobs (the field is fixed in world space)");
     object.blob_resolution = v.integer("segments");
   } else {
+    check_world_extent(object.mesh, object.world_from_object, where);
     validate_mesh(object.mesh, where.str());
   }
   if (j.contains("deform")) {
@@ -353,11 +381,11 @@ ParamSection method_section(const std::string& name) {
 
 void read_method(const json& j, const JsonLocation& where, Scene& scene) {
   require_object(j, where);
-  scene.method = j.value("name", std::string("radiosity-maps"));
+  scene.method = read_string(j, "name", "radiosity-maps", where);
   if (!methods::find_method(scene.method)) {
     std::string known;
     for (const auto& m : methods::method_registry()) known += (known.empty() ? "" : ", ") + std::string(m.name);
-    fail(where.child("name"), fmt::format("unknown method '{}'; known: {}", scene.method, known));
+    fail(where.child("name"), fmt::format("unknown method '{}'; known: {}", text_excerpt(scene.method), known));
   }
   scene.method_params = read_params(j, method_section(scene.method), where, {"name"});
 }
@@ -377,14 +405,13 @@ RenderSettings read_render(const json& j, const JsonLocation& where) {
   return r;
 }
 
-// "a.b.0.c=value": sets the JSON value at that path; value is JSON, or a bare string when not valid JSON.
-void apply_override(json& doc, const std::string& assignment) {
-  auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw Error(fmt::format("--set '{}': expected key.path=value, e.g. method.K=8", assignment));
-  std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
-  json value = json::parse(text, nullptr, false);
-  if (value.is_discarded()) value = text;
+// "--set 'a.b=1'": an assignment as messages name it.
+std::string set_name(const std::string& assignment) { return fmt::format("--set '{}'", text_excerpt(assignment)); }
+
+// The value at a --set key path ("a.b.0.c"), created where missing; `pointer` receives its JSON pointer.
+json& override_target(json& doc, const std::string& path, const std::string& assignment, std::string& pointer) {
+  if (static_cast<std::size_t>(std::count(path.begin(), path.end(), '.')) >= kMaxJsonDepth)
+    throw Error(fmt::format("{}: key path deeper than {} levels", set_name(assignment), kMaxJsonDepth));
   json* node = &doc;
   std::istringstream parts(path);
   std::string part;
@@ -394,35 +421,55 @@ void apply_override(json& doc, const std::string& assignment) {
       try {
         index = std::stoul(part);
       } catch (const std::exception&) {
-        throw Error(fmt::format("--set '{}': '{}' is not an array index", assignment, part));
+        throw Error(fmt::format("{}: '{}' is not an array index", set_name(assignment), text_excerpt(part)));
       }
       if (index >= node->size())
-        throw Error(fmt::format("--set '{}': index {} out of range ({} elements)", assignment, index, node->size()));
+        throw Error(fmt::format("{}: index {} out of range ({} elements)", set_name(assignment), index, node->size()));
       node = &(*node)[index];
+      pointer += "/" + std::to_string(index);
     } else {
       if (node->is_null()) *node = json::object();
       if (!node->is_object())
-        throw Error(fmt::format("--set '{}': cannot set '{}' inside {} (not an object)", assignment, part, node->dump()));
+        throw Error(fmt::format("{}: cannot set '{}' inside {} (not an object)", set_name(assignment),
+                                text_excerpt(part), excerpt(*node)));
       node = &(*node)[part];
+      pointer += "/" + part;
     }
   }
-  *node = value;
+  return *node;
+}
+
+// "a.b.0.c=value": sets the JSON value at that path; value is JSON, or a bare string when not valid JSON. Returns
+// the JSON pointer of the value set.
+std::string apply_override(json& doc, const std::string& assignment) {
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw Error(fmt::format("{}: expected key.path=value, e.g. method.K=8", set_name(assignment)));
+  std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  std::string pointer;
+  json& target = override_target(doc, path, assignment, pointer);
+  json value = try_parse_json(text, {set_name(assignment), pointer});  // its depth counts from the pointer's
+  target = value.is_discarded() ? json(text) : std::move(value);
+  return pointer;
+}
+
+// A scene whose translucent objects no light reaches renders black: say so (it may be intended while editing).
+void warn_if_unlit(const Scene& scene) {
+  bool translucent = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                 [](const SceneObject& object) { return object.translucent(); });
+  if (translucent && scene.lights.empty() && scene.point_lights.empty())
+    std::cerr << "lucent: warning: " << scene.source
+              << ": translucent objects but no light (lights, environment); the image will be black\n";
 }
 
 }  // namespace
 
 Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir,
                   const std::vector<std::string>& overrides) {
-  json doc;
-  try {
-    doc = json::parse(json_text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    auto bracket = what.find("] ");  // drop nlohmann's "[json.exception.parse_error.101] " prefix
-    throw Error(fmt::format("{}: malformed JSON: {}", source, bracket == std::string::npos ? what : what.substr(bracket + 2)));
-  }
-  for (const std::string& assignment : overrides) apply_override(doc, assignment);
-  JsonLocation root{source, ""};
+  json doc = parse_json(json_text, {source, ""});
+  std::vector<JsonOverride> applied;  // errors at or under a value set by --set name the assignment
+  for (const std::string& assignment : overrides) applied.push_back({apply_override(doc, assignment), assignment});
+  JsonLocation root{source, "", &applied};
   ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "environment", "objects", "method", "render"});
   Scene scene;
   scene.source = source;
@@ -438,6 +485,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
     scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir));
   read_method(doc.value("method", json::object()), root.child("method"), scene);
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
+  warn_if_unlit(scene);
   return scene;
 }
 

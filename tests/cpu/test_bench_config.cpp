@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_config.h"
+#include "params/param_json.h"
 #include "../test_support.h"
 
 namespace {
@@ -16,9 +17,10 @@ namespace {
 using lucent::cli::validate_bench_config;
 using nlohmann::json;
 
-// The message for `text` as the file "b.json", or "" when it is valid.
+// The message for `text` as the file "b.json", or "" when it is valid; read as `lucent bench` reads it.
 std::string problem(const std::string& text) {
-  return lucent::test::error_message([&] { validate_bench_config(json::parse(text), "b.json"); });
+  return lucent::test::error_message(
+      [&] { validate_bench_config(lucent::parse_json(text, {"b.json", ""}), "b.json"); });
 }
 
 const char* kRun = R"({"name": "marble", "scene": "scenes/bunny_marble.json"})";
@@ -104,6 +106,18 @@ TEST(BenchConfig, MissingScenesAndDuplicateNames) {
             "b.json: /plots/0/output: missing; the PNG to write, e.g. \"fig13.png\"");
   EXPECT_EQ(problem(R"({"runs": [)" + std::string(kRun) + R"(], "references": {"bssrdf": {"only_runs": ["marble"]}}})"),
             "");
+}
+
+TEST(BenchConfig, ReadLikeEveryJsonInput) {
+  EXPECT_EQ(problem("{\"runs\": [\n  {\"scene\": \"s.json\",\n   \"scene\": \"t.json\"}]}"),
+            "b.json: /runs/0/scene: duplicate key (each key may appear once in an object)");
+  EXPECT_EQ(problem("{\"runs\": []\n \"plots\": []}"),
+            "b.json: malformed JSON: line 2, column 8: syntax error while parsing object - unexpected string literal; "
+            "expected '}'");
+  EXPECT_EQ(problem(R"({"description": )" + std::string(200, '[') + std::string(200, ']') + "}"),
+            "b.json: /description/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/...: nested deeper than 128 levels");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frames": ")" + std::string(1000, 'x') + "\"}]}")),
+            "b.json: /runs/0/variants/0/frames: expected a number, got \"" + std::string(56, 'x') + "...");
 }
 
 }  // namespace

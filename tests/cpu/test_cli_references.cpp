@@ -64,17 +64,19 @@ TEST(CliReferences, BadInputsNameTheInput) {
 }
 
 // A bad override in the last variant is reported before anything renders (no GL context is needed to see it),
-// naming the configuration, the variant and the scene's own message.
+// naming the configuration, the variant and the override.
 TEST(CliReferences, BenchChecksEveryVariantsSceneFirst) {
   auto dir = temp_dir();
   std::string scene = (dir / "bench_sphere.json").string(), config = (dir / "bench_bad_variant.json").string();
-  std::ofstream(scene) << R"({"objects": [{"shape": "sphere", "material": "Skin1"}]})";
+  std::ofstream(scene) << R"({"lights": [{"direction": [0, -1, 0]}],
+                              "objects": [{"shape": "sphere", "material": "Skin1"}]})";
   std::ofstream(config) << R"({"runs": [{"name": "a", "scene": ")" << scene
                         << R"(", "variants": [{"name": "fine"}, {"name": "bad", "set": ["method.K=0"]}]}]})";
   Result r = run("bench " + config + " -o " + (dir / "bench_bad_out").string());
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_EQ(r.output, "lucent: " + config + ": /runs/0/variants/1: " + scene +
-                          ": /method/K: 0 is out of range; allowed range [1, 64] maps\n");
+  EXPECT_EQ(r.output, "lucent: " + config +
+                          ": /runs/0/variants/1: --set 'method.K=0': /method/K: 0 is out of range; allowed range [1, 64] "
+                          "maps\n");
   EXPECT_FALSE(std::filesystem::exists(dir / "bench_bad_out" / "results.json"));
 }
 

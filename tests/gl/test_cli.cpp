@@ -160,7 +160,7 @@ TEST(Cli, NegativeSigma) {
 
 TEST(Cli, ZeroMapSize) {
   expect_one_line_error(run("render --set method.map_size=0"),
-                        "lucent: <built-in default scene>: /method/map_size: 0 is out of range; allowed range "
+                        "lucent: --set 'method.map_size=0': /method/map_size: 0 is out of range; allowed range "
                         "[8, 4096] texels");
 }
 
