@@ -326,7 +326,7 @@ TEST(HostileJson, SceneFileAndSetThroughTheCli) {
 
 TEST(HostileJson, ReferenceMetadataDuplicateKeyIsAnError) {
   const std::string scene = write_file("ref_scene.json", minimal_scene().dump());
-  const std::string meta = write_file("ref_resume.json", R"({"samples_per_pixel": 2, "samples_per_pixel": 3})");
+  const std::string meta = write_file("ref_resume.meta.json", R"({"samples_per_pixel": 2, "samples_per_pixel": 3})");
   const std::string exr = (temp_dir() / "ref_resume.exr").string();
   auto r = test::run_cli("reference " + scene + " --resume -q -o " + exr);
   EXPECT_EQ(r.exit_code, 1);
