@@ -1,6 +1,6 @@
 // mesh_loader.cpp: reads triangle meshes from files through assimp, checks meshes before they are used and
-// measures their surface area. The importer runs in a child process (scene/import_guard.h); what it returns is
-// validated before anything uses it.
+// measures their surface area. The importer runs in a child process (scene/import_guard.h), after a size check
+// of PLY headers (scene/ply_size_check.h); what it returns is validated before anything uses it.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +16,7 @@
 #include "lucent/error.h"
 #include "lucent/mesh.h"
 #include "scene/import_guard.h"
+#include "scene/ply_size_check.h"
 
 namespace lucent {
 namespace {
@@ -107,6 +108,7 @@ TriangleMesh import_triangles(const std::string& path) {
 TriangleMesh load_mesh(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
+  check_ply_size(path);
 
   // Address space for the importer: generous for real files (its own structures take a few times the file),
   // small enough that a header asking for terabytes fails in the child.
