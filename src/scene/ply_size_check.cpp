@@ -291,12 +291,14 @@ void check_binary_lists(const std::string& path, const PlyHeader& header, std::u
 void check_ply_size(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) return;  // the importer reports unreadable files
-  std::string start(kMaxHeaderBytes, '\0');
-  file.read(start.data(), static_cast<std::streamsize>(start.size()));
-  start.resize(static_cast<std::size_t>(file.gcount()));
+  std::string start(4, '\0');
+  file.read(start.data(), 4);
   const bool is_ply =
-      start.size() >= 4 && lowercase(start.substr(0, 3)) == "ply" && (start[3] == '\n' || start[3] == '\r');
+      file.gcount() == 4 && lowercase(start.substr(0, 3)) == "ply" && (start[3] == '\n' || start[3] == '\r');
   if (!is_ply) return;
+  start.resize(kMaxHeaderBytes);
+  file.read(start.data() + 4, static_cast<std::streamsize>(start.size() - 4));
+  start.resize(4 + static_cast<std::size_t>(file.gcount()));
   file.clear();
   file.seekg(0, std::ios::end);
   const auto file_size = static_cast<std::uint64_t>(file.tellg());
