@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config git
+  # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime (libclang-rt-14-dev is only recommended by clang)
+  clang libclang-rt-14-dev
   # OpenGL 4.5 through EGL (surfaceless) and GLFW; Mesa llvmpipe for machines without a GPU
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev
   # maths, scenes, images, command line, tests

@@ -1,10 +1,16 @@
-// image.cpp: image files. PNG (8-bit RGBA) and Radiance HDR (RGBE) through stb_image / stb_image_write, EXR
-// (RGBA, 32-bit float channels, so values round-trip exactly) through OpenEXR 3. Images are encoded in memory and
-// written by write_file (temporary file + rename, lucent/output_file.h). Failures throw lucent::Error naming the path.
+// image.cpp: image files. PNG (8-bit RGBA) and Radiance HDR (RGBE) through stb_image / stb_image_write, except
+// that .hdr files are read by image/radiance_hdr.cpp; EXR (RGBA, 32-bit float channels, so values round-trip
+// exactly) through OpenEXR 3. Readers refuse images over kMaxImagePixels (image/image_limits.h) before
+// allocating. Images are encoded in memory and written by write_file (temporary file + rename,
+// lucent/output_file.h). Failures throw lucent::Error naming the path.
 #include "lucent/image.h"
 
+#include <cerrno>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <exception>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 
@@ -16,6 +22,8 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
+#include "image/image_limits.h"
+#include "image/radiance_hdr.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
 
@@ -118,13 +126,34 @@ ImageRGBA32F read_exr_pixels(const std::string& path) {
     throw std::runtime_error("no R, G or B channel");
   }
   const Imath::Box2i window = file.header().dataWindow();
+  const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
+  const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
+  if (const std::string problem = image_size_problem(width, height); !problem.empty())
+    throw std::runtime_error(problem);
   ImageRGBA32F image;
-  image.width = window.max.x - window.min.x + 1;
-  image.height = window.max.y - window.min.y + 1;
+  image.width = static_cast<int>(width);
+  image.height = static_cast<int>(height);
   image.pixels.resize(value_count(image.width, image.height));
   file.setFrameBuffer(rgba_frame_buffer(image.pixels.data(), window, image.width));
   file.readPixels(window.min.y, window.max.y);
   return image;
+}
+
+// "" when the file starts with the PNG signature and its IHDR chunk declares an image within kMaxImagePixels;
+// else the problem. Checked before stb_image, which would also decode other formats it was built with.
+std::string png_header_problem(const std::string& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return std::strerror(errno);
+  unsigned char start[24] = {};
+  file.read(reinterpret_cast<char*>(start), sizeof start);
+  if (file.gcount() < 8 || std::memcmp(start, kSignature, 8) != 0) return "not a PNG file";
+  if (file.gcount() < 24 || std::memcmp(start + 12, "IHDR", 4) != 0) return "";  // stb_image names the problem
+  const auto big_endian = [&](int at) {
+    return std::int64_t{start[at]} << 24 | std::int64_t{start[at + 1]} << 16 | std::int64_t{start[at + 2]} << 8 |
+           std::int64_t{start[at + 3]};
+  };
+  return image_size_problem(big_endian(16), big_endian(20));
 }
 
 }  // namespace
@@ -187,6 +216,8 @@ void write_exr(const std::string& path, const ImageRGBA32F& image) { encode_and_
 void write_hdr(const std::string& path, const ImageRGBA32F& image) { encode_and_write(path, image, encode_hdr); }
 
 ImageRGBA8 read_png(const std::string& path) {
+  if (const std::string problem = png_header_problem(path); !problem.empty())
+    throw Error(fmt::format("{}: cannot read PNG: {}", path, problem));
   int width = 0, height = 0, channels_in_file = 0;
   const std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
       stbi_load(path.c_str(), &width, &height, &channels_in_file, kChannels), &stbi_image_free);
@@ -207,16 +238,11 @@ ImageRGBA32F read_exr(const std::string& path) {
 }
 
 ImageRGBA32F read_hdr(const std::string& path) {
-  int width = 0, height = 0, channels_in_file = 0;
-  const std::unique_ptr<float, decltype(&stbi_image_free)> data(
-      stbi_loadf(path.c_str(), &width, &height, &channels_in_file, kChannels), &stbi_image_free);
-  if (!data) throw Error(fmt::format("{}: cannot read HDR: {}", path, stbi_failure_reason()));
-  if (!stbi_is_hdr(path.c_str())) throw Error(fmt::format("{}: cannot read HDR: not a Radiance HDR file", path));
-  ImageRGBA32F image;
-  image.width = width;
-  image.height = height;
-  image.pixels.assign(data.get(), data.get() + value_count(width, height));
-  return image;
+  try {
+    return read_radiance_hdr_file(path);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("{}: cannot read HDR: {}", path, e.what()));
+  }
 }
 
 }  // namespace lucent

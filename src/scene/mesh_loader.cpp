@@ -1,8 +1,11 @@
 // mesh_loader.cpp: reads triangle meshes from files through assimp, checks meshes before they are used and
-// measures their surface area.
+// measures their surface area. The importer runs in a child process (scene/import_guard.h), after a size check
+// of PLY headers (scene/ply_size_check.h); what it returns is validated before anything uses it.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <system_error>
 
@@ -12,6 +15,8 @@
 
 #include "lucent/error.h"
 #include "lucent/mesh.h"
+#include "scene/import_guard.h"
+#include "scene/ply_size_check.h"
 
 namespace lucent {
 namespace {
@@ -36,8 +41,11 @@ std::string one_line(std::string text) {
   return text;
 }
 
-// Appends the triangles of one assimp mesh; faces that are not triangles (points, lines) are skipped.
-void append_mesh(const aiMesh& src, TriangleMesh& dst) {
+// Appends the triangles of one assimp mesh; faces that are not triangles (points, lines) are skipped. Indices
+// are checked against the mesh's own vertices (after offsetting they could land on another mesh's).
+void append_mesh(const aiMesh& src, TriangleMesh& dst, const std::string& path) {
+  if (src.mNumVertices > std::numeric_limits<std::uint32_t>::max() - dst.positions.size())
+    throw Error(path + ": cannot read mesh: more than 2^32 vertices");
   const auto base = static_cast<std::uint32_t>(dst.positions.size());
   for (unsigned i = 0; i < src.mNumVertices; ++i) {
     dst.positions.push_back(to_glm(src.mVertices[i]));
@@ -46,7 +54,12 @@ void append_mesh(const aiMesh& src, TriangleMesh& dst) {
   for (unsigned f = 0; f < src.mNumFaces; ++f) {
     const aiFace& face = src.mFaces[f];
     if (face.mNumIndices != 3) continue;
-    for (unsigned k = 0; k < 3; ++k) dst.indices.push_back(base + face.mIndices[k]);
+    for (unsigned k = 0; k < 3; ++k) {
+      if (face.mIndices[k] >= src.mNumVertices)
+        throw Error(path + ": index " + std::to_string(face.mIndices[k]) + " out of range (" +
+                    std::to_string(src.mNumVertices) + " vertices)");
+      dst.indices.push_back(base + face.mIndices[k]);
+    }
   }
 }
 
@@ -74,12 +87,8 @@ void repair_normals(TriangleMesh& mesh) {
   }
 }
 
-}  // namespace
-
-TriangleMesh load_mesh(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
-
+// The importer's triangles, as the child process builds them (normals not yet repaired).
+TriangleMesh import_triangles(const std::string& path) {
   Assimp::Importer importer;
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices | aiProcess_SortByPType;
@@ -90,8 +99,26 @@ TriangleMesh load_mesh(const std::string& path) {
   // SortByPType leaves each mesh one primitive type. Point and line meshes are dropped here rather than by
   // AI_CONFIG_PP_SBP_REMOVE, which fails a file of lines alone as "No meshes remaining".
   for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-    if (scene->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) append_mesh(*scene->mMeshes[m], mesh);
+    if (scene->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) append_mesh(*scene->mMeshes[m], mesh, path);
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
+  check_ply_size(path);
+
+  // Address space for the importer: generous for real files (its own structures take a few times the file),
+  // small enough that a header asking for terabytes fails in the child.
+  ImportLimits limits = mesh_import_limits();
+  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
+  limits.memory_bytes = std::max<std::uint64_t>(std::uint64_t{4} << 30, ec ? 0 : 200 * std::uint64_t{file_size});
+  TriangleMesh mesh = import_in_child(path, [&] { return import_triangles(path); }, limits);
+
   if (mesh.indices.empty()) throw Error(path + ": the file holds no triangles");
+  validate_mesh(mesh, path);
   repair_normals(mesh);
   return mesh;
 }
