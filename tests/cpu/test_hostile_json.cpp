@@ -115,17 +115,16 @@ TEST(HostileJson, LineAndColumnCountFromTheText) {
 
 // The seeds of the scene fuzzer are hostile inputs: each is one error line, never a crash.
 TEST(HostileJson, FuzzSeedsAreOneLineErrors) {
+  // The hostile seeds of the scene fuzzer's corpus (the others are valid scenes that reach the loaders).
   const auto corpus = std::filesystem::path(LUCENT_TEST_DATA).parent_path() / "fuzz" / "corpus" / "scene";
-  int checked = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
-    std::ifstream in(entry.path(), std::ios::binary);
+  for (const char* name : {"deep_nesting.json", "duplicate_keys.json", "number_overflow.json", "non_string_name.json"}) {
+    std::ifstream in(corpus / name, std::ios::binary);
+    ASSERT_TRUE(in) << name;
     std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    std::string message = test::error_message([&] { parse_scene(text, entry.path().string(), ".", {}); });
-    EXPECT_FALSE(message.empty()) << entry.path();
+    std::string message = test::error_message([&] { parse_scene(text, name, ".", {}); });
+    EXPECT_FALSE(message.empty()) << name;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    ++checked;
   }
-  EXPECT_GE(checked, 3);
 }
 
 // ---- nesting depth --------------------------------------------------------------------------------------------------
