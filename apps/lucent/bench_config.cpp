@@ -2,6 +2,8 @@
 // and unknown keys get the scene parser's messages.
 #include "bench_config.h"
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 
@@ -73,6 +75,18 @@ std::string run_name(const json& run) {
   return std::filesystem::path(run.at("scene").get<std::string>()).stem().string();
 }
 
+// Run names and variant ids name the bench's image files: letters, digits, '_', '-', '.', not starting with '.', so
+// that no name writes outside the output folder or over a hidden file.
+static void require_file_name_part(const std::string& name, const JsonLocation& where, const char* what) {
+  const bool safe = !name.empty() && name.size() <= 100 && name[0] != '.' &&
+                    std::all_of(name.begin(), name.end(), [](unsigned char c) {
+                      return std::isalnum(c) || c == '_' || c == '-' || c == '.';
+                    });
+  if (!safe)
+    fail(where, fmt::format("{} '{}' names image files: use letters, digits, '_', '-' and '.' (not first), at most 100",
+                            what, text_excerpt(name)));
+}
+
 void validate_bench_config(const json& config, const std::string& path) {
   const JsonLocation root{path, ""};
   read_params(config, {"bench", kBenchParams}, root, {"set", "references", "runs", "plots"});
@@ -88,6 +102,7 @@ void validate_bench_config(const json& config, const std::string& path) {
     require_key(run, "scene", at, "the scene file of this run");
     check_overrides(run, at);
     const std::string name = run_name(run);
+    require_file_name_part(name, run.contains("name") ? at.child("name") : at.child("scene"), "run name");
     if (auto [other, inserted] = runs.emplace(name, i); !inserted)
       fail(at, fmt::format("run name '{}' is also the name of /runs/{}", text_excerpt(name), other->second));
     if (!run.contains("variants")) continue;
@@ -99,6 +114,7 @@ void validate_bench_config(const json& config, const std::string& path) {
       read_params(variant, {"variant", kVariantParams}, vat, {"set"});
       check_overrides(variant, vat);
       const std::string id = variant.value("id", variant.value("name", std::string("default")));
+      require_file_name_part(id, vat, "variant id");
       if (auto [other, inserted] = ids.emplace(id, v); !inserted)
         fail(vat, fmt::format("variant id '{}' is also the id of variant {} (their images would overwrite each other)",
                               text_excerpt(id), other->second));

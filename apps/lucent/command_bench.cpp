@@ -108,23 +108,24 @@ struct Bench {
                                             const std::string& integrator, int spp) {
     fs::path exr = out / "references" / (reference_key(scene_path, sets, integrator) + ".exr");
     std::optional<reference::ReferenceImage> cached;
-    if (fs::exists(exr.parent_path()))
-      for (const auto& entry : fs::directory_iterator(exr.parent_path())) {
-        const std::string name = entry.path().filename().string();
-        if (entry.path().extension() != ".exr" || name.ends_with(".stderr.exr")) continue;
+    std::error_code listing;
+    for (const auto& entry : fs::directory_iterator(exr.parent_path(), listing)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.path().extension() != ".exr" || name.ends_with(".stderr.exr")) continue;
+      // A damaged cache entry (bad metadata, wrong types, a truncated EXR) is ignored with a warning, never fatal.
+      try {
         const reference::ReferenceFiles files = reference::reference_files(entry.path().string());
-        std::optional<json> m;
-        try {
-          m = reference::read_reference_metadata(files);
-        } catch (const Error& e) {
-          fmt::print(stderr, "lucent: warning: {}; that cached reference is ignored\n", e.what());
-        }
-        if (!m || m->value("scene", "") != scene_path || m->value("integrator", "") != integrator) continue;
+        const std::optional<json> m = reference::read_reference_metadata(files);
+        auto text = [&](const char* key) { return m->contains(key) && (*m)[key].is_string() ? (*m)[key].get<std::string>() : ""; };
+        if (!m || text("scene") != scene_path || text("integrator") != integrator) continue;
         if (relevant_overrides(strings(*m, "overrides"), integrator) != relevant_overrides(sets, integrator)) continue;
         if (cached && cached->samples_per_pixel >= (*m)["samples_per_pixel"].get<int>()) continue;  // keep the best
         cached = reference::load_reference(files).image;
         exr = entry.path();
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "lucent: warning: {}; that cached reference is ignored\n", e.what());
       }
+    }
     if (cached && cached->samples_per_pixel >= spp) return *cached;
     Scene scene = load_scene(scene_path, sets);
     reference::ReferenceSettings settings;
@@ -419,6 +420,8 @@ void run(const std::string& config_path, const std::string& output, const std::v
   }
   bench.out = output.empty() ? fs::path("out/bench") / fs::path(config_path).stem() : fs::path(output);
   check_outputs({{(bench.out / "results.json").string(), "--output", {}},
+                 {(bench.out / "results.md").string(), "--output", {}},
+                 {(bench.out / "results.tsv").string(), "--output", {}},
                  {(bench.out / "images" / "probe.png").string(), "--output (images)", {}},
                  {(bench.out / "references" / "probe.exr").string(), "--output (reference cache)", {}}},
                 inputs);
@@ -432,7 +435,7 @@ void run(const std::string& config_path, const std::string& output, const std::v
     if (!only.empty()) doc["only_runs"] = only;  // --run: the other runs of the configuration were not run
     // One set, each written beside and renamed over: a bench stopped mid-write leaves the previous complete files.
     OutputSet tables;
-    tables.add((bench.out / "results.json").string(), doc.dump(2) + "\n");
+    tables.add((bench.out / "results.json").string(), doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
     tables.add((bench.out / "results.md").string(), markdown(results));
     tables.add((bench.out / "results.tsv").string(), tsv_text(results));
     tables.commit();

@@ -100,16 +100,16 @@ void add_bssrdf_command(CLI::App& app) {
   cmd->add_option("--model", options->model, doc("model") + ": directional | standard | photon-beam")
       ->capture_default_str();
   cmd->add_option("--material", options->material, doc("preset"));
-  cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',')->check(finite_number());
-  cmd->add_option("--sigma-s", options->sigma_s, doc("sigma_s") + ", R,G,B")->delimiter(',')->check(finite_number());
-  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',')->check(finite_number());
-  cmd->add_option("--g", options->g, doc("g"))->delimiter(',')->check(finite_number());
+  cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm^-1"));
+  cmd->add_option("--sigma-s", options->sigma_s, doc("sigma_s") + ", R,G,B")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm^-1"));
+  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm^-1"));
+  cmd->add_option("--g", options->g, doc("g"))->delimiter(',')->check(number_in(-1, 1, false, ""));
   cmd->add_option("--eta", options->eta, doc("eta"))->check(number_in(1, 3));
-  cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->check(finite_number())->capture_default_str();
-  cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->check(finite_number())->capture_default_str();
-  cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->check(finite_number())->capture_default_str();
-  cmd->add_option("--xo", options->xo, "exit point X,Y,Z [mm]")->delimiter(',')->check(finite_number())->capture_default_str();
-  cmd->add_option("--no", options->no, "exit normal")->delimiter(',')->check(finite_number())->capture_default_str();
+  cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm"))->capture_default_str();
+  cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
+  cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
+  cmd->add_option("--xo", options->xo, "exit point X,Y,Z [mm]")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm"))->capture_default_str();
+  cmd->add_option("--no", options->no, "exit normal")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
   cmd->add_flag("--json", options->json, "print JSON");
   cmd->callback([options] { run(*options); });
 }

@@ -1,5 +1,7 @@
 // command_reference.cpp: `lucent reference SCENE`: CPU ground truth (volumetric path tracing, or Monte Carlo
 // integration of the BSSRDF model), with a progress bar, the time left, a standard-error image, and resuming.
+#include <limits>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -24,10 +26,31 @@ struct ReferenceOptions {
   bool quiet = false;
 };
 
+// Samples are added only to a reference of the same image: the same integrator, seed, pixel sampling and size (the
+// metadata of older versions has no jitter: taken as false). The total stays within an int.
+void check_resumable(const nlohmann::json& meta, const ReferenceOptions& o, const Scene& scene, const std::string& path) {
+  auto differs = [&](const char* key, const nlohmann::json& now) { return meta.contains(key) && meta[key] != now; };
+  const std::pair<const char*, nlohmann::json> keys[] = {{"integrator", o.integrator},
+                                                         {"seed", o.settings.seed},
+                                                         {"jitter", o.settings.jitter},
+                                                         {"width", scene.render.width},
+                                                         {"height", scene.render.height}};
+  for (const auto& [key, now] : keys)
+    if (differs(key, now))
+      throw Error(fmt::format("{}: cannot resume: the reference has {} {}, this run {}", path, key, meta[key].dump(),
+                              now.dump()));
+  const long long total = static_cast<long long>(meta["samples_per_pixel"].get<int>()) + o.settings.samples_per_pixel;
+  if (total > std::numeric_limits<int>::max())
+    throw Error(fmt::format("{}: cannot resume: {} + {} samples per pixel exceed {}", path,
+                            meta["samples_per_pixel"].get<int>(), o.settings.samples_per_pixel,
+                            std::numeric_limits<int>::max()));
+}
+
 void run(ReferenceOptions o) {
   if (o.integrator != "volpath" && o.integrator != "bssrdf")
     throw Error(fmt::format("--integrator: '{}' is not one of volpath, bssrdf", o.integrator));
   o.settings.integrator = o.integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
+  if (o.output.empty()) throw Error("--output: empty path; give the reference's EXR, e.g. out/ref.exr");
   Scene scene = load_scene(o.scene_path, o.sets);
   // The three files are checked before the first sample: a reference can take hours.
   const reference::ReferenceFiles files = reference::reference_files(o.output);
@@ -36,7 +59,10 @@ void run(ReferenceOptions o) {
                  {files.metadata, "--output (metadata)", {".json"}}},
                 scene_input_files(scene));
   std::optional<reference::StoredReference> previous;
-  if (o.resume) previous = reference::load_reference(files);
+  if (o.resume) {
+    previous = reference::load_reference(files);
+    check_resumable(previous->metadata, o, scene, files.metadata);
+  }
   ProgressBar progress(fmt::format("{} {} spp", o.integrator, o.settings.samples_per_pixel), o.quiet ? 1 : 1000);
   o.settings.progress = [&](double done) { progress.update(static_cast<int>(done * 1000.0)); };
   reference::ReferenceImage image =
@@ -48,6 +74,7 @@ void run(ReferenceOptions o) {
                             {{"scene", o.scene_path},
                              {"integrator", o.integrator},
                              {"seed", o.settings.seed},
+                             {"jitter", o.settings.jitter},
                              {"width", scene.render.width},
                              {"height", scene.render.height},
                              {"camera_paths_per_second", paths / image.seconds},

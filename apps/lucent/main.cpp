@@ -1,5 +1,9 @@
 // main.cpp: `lucent`: render scenes, evaluate BSSRDF models at a point, list material presets.
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <system_error>
 #include <iostream>
 
 #include "commands.h"
@@ -31,9 +35,17 @@ int main(int argc, char** argv) {
   } catch (const lucent::Error& e) {
     std::cerr << "lucent: " << e.what() << "\n";
     return 1;
+  } catch (const std::system_error& e) {  // fmt::print to a closed or full standard output
+    std::cerr << "lucent: <stdout>: cannot write: " << e.code().message() << "\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "lucent: internal error: " << e.what() << "\n";
     return 2;
+  }
+  // What was printed (JSON, tables) is output too: a full disk or closed pipe behind stdout is an error.
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::cerr << "lucent: <stdout>: cannot write: " << std::strerror(errno) << "\n";
+    return 1;
   }
   return 0;
 }

@@ -28,11 +28,16 @@ inline CLI::Validator number_in(double lo, double hi, bool whole = false, std::s
         const char* begin = text.c_str();
         char* end = nullptr;
         errno = 0;
-        const double x = std::strtod(begin, &end);
-        if (end == begin || *end != '\0') return fmt::format("'{}' is not a number", text);
+        double x = std::strtod(begin, &end);
+        // Decimal only (strtod also reads hexadecimal "0x10").
+        if (end == begin || *end != '\0' || text.find_first_of("xX") != std::string::npos)
+          return fmt::format("'{}' is not a number", text);
+        if (errno == ERANGE && std::abs(x) < 1.0) x = 0.0;  // underflow: as good as zero
         if (!std::isfinite(x) || errno == ERANGE) return fmt::format("{} is not a finite number; {}", text, range);
         if (x < lo || x > hi) return fmt::format("{} is out of range; {}", text, range);
-        if (whole && x != std::floor(x)) return fmt::format("{} is not a whole number", text);
+        // Integers as digits: the option's integer conversion reads no fraction or exponent ("1e3", "2.0").
+        if (whole && (x != std::floor(x) || text.find_first_of(".eE") != std::string::npos))
+          return fmt::format("{} is not a whole number (write digits only)", text);
         return {};
       },
       whole ? "INT in " + range : "NUMBER in " + range);

@@ -25,25 +25,35 @@ namespace fs = std::filesystem;
 
 std::string errno_text(int error) { return std::error_code(error, std::generic_category()).message(); }
 
-// The file a write to `path` replaces: the target of a symbolic link, else `path` itself.
-fs::path destination(const std::string& path) {
-  std::error_code ec;
-  if (fs::is_symlink(path, ec)) {
-    fs::path resolved = fs::weakly_canonical(path, ec);
-    if (!ec) return resolved;
-  }
-  return path;
-}
-
 fs::path directory_of(const fs::path& file) {
   return file.has_parent_path() ? file.parent_path() : fs::path(".");
+}
+
+// Paths under /dev and /proc (/dev/stdout, /proc/self/fd/1) name open streams: written in place, never resolved,
+// so `lucent tonemap a.exr -o /dev/stdout > out.png` writes into the shell's file.
+bool is_stream_path(const std::string& path) { return path.starts_with("/dev/") || path.starts_with("/proc/"); }
+
+// The file a write to `path` replaces: the end of a chain of symbolic links (also when that end does not exist
+// yet), else `path` itself.
+fs::path destination(const std::string& path) {
+  if (is_stream_path(path)) return path;
+  fs::path p = path;
+  std::error_code ec;
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    if (hops == 40) throw Error(fmt::format("{}: cannot write: {}", path, errno_text(ELOOP)));
+    const fs::path target = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = target.is_absolute() ? target : directory_of(p) / target;
+  }
+  return p;
 }
 
 // A name beside `target` that no other writer (another lucent process, another thread) picks.
 fs::path temporary_beside(const fs::path& target) {
   static std::atomic<unsigned> counter{0};
-  return directory_of(target) /
-         fmt::format(".{}.lucent-tmp-{}-{}", target.filename().string(), ::getpid(), counter.fetch_add(1));
+  // At most 200 bytes of the name, so the temporary stays within NAME_MAX (255) whenever the name itself does.
+  const std::string name = target.filename().string().substr(0, 200);
+  return directory_of(target) / fmt::format(".{}.lucent-tmp-{}-{}", name, ::getpid(), counter.fetch_add(1));
 }
 
 void write_all(int fd, std::string_view bytes, const std::string& path) {
@@ -73,6 +83,7 @@ struct PendingFile {
 };
 
 bool is_special_file(const fs::path& target) {
+  if (is_stream_path(target.string())) return true;
   std::error_code ec;
   const fs::file_status status = fs::status(target, ec);
   return !ec && fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status);
@@ -216,6 +227,9 @@ void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std
       if (::access(target.c_str(), W_OK) != 0) throw Error(fmt::format("{}: cannot write: {}", what, errno_text(errno)));
       continue;
     }
+    // A file the user may not write is not replaced behind their back (rename would ignore its permissions).
+    if (fs::exists(target, ec) && ::access(target.c_str(), W_OK) != 0)
+      throw Error(fmt::format("{}: cannot write: {}", what, errno_text(errno)));
     create_directory_for(target, what);
     // The directory must accept a new file (the temporary that is renamed into place).
     const fs::path probe = temporary_beside(target);

@@ -2,6 +2,7 @@
 #include "reference/reference_files.h"
 
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -37,7 +38,8 @@ std::optional<json> read_json_object(const std::string& path) {
 
 bool holds_sample_count(const json& j) {
   return j.contains("samples_per_pixel") && j["samples_per_pixel"].is_number_integer() &&
-         j["samples_per_pixel"].get<long long>() > 0 && j["samples_per_pixel"].get<long long>() <= 1LL << 40;
+         j["samples_per_pixel"].get<long long>() > 0 &&
+         j["samples_per_pixel"].get<long long>() <= std::numeric_limits<int>::max();
 }
 
 }  // namespace
@@ -59,7 +61,8 @@ void save_reference(const ReferenceFiles& files, const ReferenceImage& image, js
   };
   set.add(files.mean, encode(files.mean, image.mean));
   set.add(files.standard_error, encode(files.standard_error, image.standard_error));
-  set.add(files.metadata, metadata.dump(2) + "\n");
+  // Paths in the metadata may not be UTF-8 (file names are bytes): replaced, never an error after hours of work.
+  set.add(files.metadata, metadata.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
   set.commit();
 }
 
@@ -93,7 +96,7 @@ StoredReference load_reference(const ReferenceFiles& files) {
                             stored.image.standard_error.height, files.mean, stored.image.mean.width,
                             stored.image.mean.height));
   stored.image.samples_per_pixel = (*meta)["samples_per_pixel"].get<int>();
-  const json seconds = meta->value("seconds", json(0.0));
+  const json seconds = meta->contains("seconds") ? (*meta)["seconds"] : json(0.0);
   stored.image.seconds = seconds.is_number() ? seconds.get<double>() : 0.0;
   stored.metadata = std::move(*meta);
   return stored;

@@ -24,7 +24,7 @@ ReferenceFiles reference_files(const std::string& mean_exr);
 // `image`) as one set. Throws lucent::Error naming the file that cannot be written.
 void save_reference(const ReferenceFiles& files, const ReferenceImage& image, nlohmann::json metadata);
 
-// The metadata of a reference: an object with an integer samples_per_pixel > 0. References written before the
+// The metadata of a reference: an object with an integer samples_per_pixel in [1, INT_MAX]. References written before the
 // ".meta.json" name kept it in <stem>.json, which is read when it holds reference metadata. nullopt when there is
 // none; throws lucent::Error when the file exists but is malformed.
 std::optional<nlohmann::json> read_reference_metadata(const ReferenceFiles& files);

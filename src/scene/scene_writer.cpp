@@ -299,7 +299,7 @@ void save_scene(const Scene& scene, const std::string& path) {
     fs::path map = fs::absolute(scene.environment->file).lexically_normal();
     j["environment"]["file"] = map.lexically_relative(base).generic_string();
   }
-  write_file(path, j.dump(2) + "\n");
+  write_file(path, j.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace lucent

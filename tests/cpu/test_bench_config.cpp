@@ -44,6 +44,16 @@ TEST(BenchConfig, ShippedConfigurationsAreValid) {
   EXPECT_GE(checked, 6);
 }
 
+// Run names and variant ids become file names of the bench's images: none may leave the output folder.
+TEST(BenchConfig, RunNamesAndVariantIdsAreSafeFileNames) {
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "name": "../../escape"})")),
+            "b.json: /runs/0/name: run name '../../escape' names image files: use letters, digits, '_', '-' and '.' "
+            "(not first), at most 100");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"id": "a/b"}]})")),
+            "b.json: /runs/0/variants/0: variant id 'a/b' names image files: use letters, digits, '_', '-' and '.' "
+            "(not first), at most 100");
+}
+
 TEST(BenchConfig, UnknownKeysAreNamedWithTheKnownOnes) {
   EXPECT_EQ(problem(R"({"run": []})"),
             "b.json: /run: unknown key; known keys: description, set, references, runs, plots");

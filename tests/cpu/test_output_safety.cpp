@@ -249,12 +249,16 @@ TEST(OutputSafetyCli, CommandLineNumbersAreCheckedLikeSceneValues) {
        "lucent: --exposure: nan is not a finite number; allowed range [-30, 30] stops" + help},
       {"compare " + exr + " " + exr + " --exposure inf",
        "lucent: --exposure: inf is not a finite number; allowed range [-30, 30] stops" + help},
-      {"bssrdf --xo nan,0,0", "lucent: --xo: nan is not a finite number; any finite number" + help},
+      {"bssrdf --xo nan,0,0", "lucent: --xo: nan is not a finite number; allowed range [-1000000, 1000000] mm" + help},
+      {"bssrdf --material Marble --xo 1e19,0,0",
+       "lucent: --xo: 1e19 is out of range; allowed range [-1000000, 1000000] mm" + help},
+      {"reference s.json --spp 1e0", "lucent: --spp: 1e0 is not a whole number (write digits only)" + help},
+      {"slab --albedo 0.9 --photons 0x10", "lucent: --photons: '0x10' is not a number" + help},
       {"slab --albedo 0.9 --photons -5", "lucent: --photons: -5 is out of range; allowed range [1, 1000000000000]" + help},
       {"slab --albedo 0.9 --threads -3", "lucent: --threads: -3 is out of range; allowed range [0, 4096]" + help},
       {"slab --albedo 0.9 --photons 9223372036854775808",
        "lucent: --photons: 9223372036854775808 is out of range; allowed range [1, 1000000000000]" + help},
-      {"slab --albedo 0.9 --photons 2.5", "lucent: --photons: 2.5 is not a whole number" + help},
+      {"slab --albedo 0.9 --photons 2.5", "lucent: --photons: 2.5 is not a whole number (write digits only)" + help},
       {"slab --albedo 0.9 --thickness nan", "lucent: --thickness: nan is not a finite number (write inf for a half-space)\n"},
       {"bssrdf --material Potato --sigma-a 1",
        "lucent: --material Potato: give either a preset or coefficients (--sigma-a, --sigma-s, --sigma-s-prime, --g), "
@@ -267,6 +271,53 @@ TEST(OutputSafetyCli, CommandLineNumbersAreCheckedLikeSceneValues) {
     EXPECT_EQ(r.exit_code, 1) << arguments;
     EXPECT_EQ(r.output, message) << arguments;
   }
+}
+
+// Printed output is output too: a full disk behind stdout is an error, not exit 0 with the JSON lost.
+TEST(OutputSafetyCli, StandardOutputWriteErrorsAreErrors) {
+  for (const std::string arguments : {"materials", "slab --albedo 0.5 --photons 1000 --json"}) {
+    auto r = run_cli(arguments, R"(sh -c 'exec "$0" "$@" > /dev/full')");  // stdout to /dev/full, stderr read here
+    EXPECT_EQ(r.exit_code, 1) << arguments;
+    EXPECT_EQ(r.output, "lucent: <stdout>: cannot write: No space left on device\n") << arguments;
+  }
+}
+
+// -o /dev/stdout writes into whatever the shell opened (not a rename over the file it points to), in any format.
+TEST(OutputSafetyCli, DevStdoutIsWrittenInPlace) {
+  const fs::path dir = fresh_dir("stdout");
+  const std::string exr = (dir / "a.exr").string(), png = (dir / "out.png").string();
+  lucent::write_exr(exr, gray_image(4, 3, 0.5f));
+  auto r = run_cli("tonemap " + exr + " -o /dev/stdout > " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(lucent::read_png(png).width, 4);
+}
+
+TEST(OutputSafetyCli, LinksLongNamesAndResumingTheWrongReference) {
+  const fs::path dir = fresh_dir("links");
+  const std::string exr = (dir / "a.exr").string();
+  lucent::write_exr(exr, gray_image(4, 3, 0.5f));
+  fs::create_symlink("missing.png", dir / "dangling.png");  // a dangling link: its target is created
+  ASSERT_EQ(run_cli("tonemap " + exr + " -o " + (dir / "dangling.png").string()).exit_code, 0);
+  EXPECT_TRUE(fs::is_symlink(dir / "dangling.png"));
+  EXPECT_EQ(lucent::read_png((dir / "missing.png").string()).width, 4);
+  const std::string long_name = (dir / (std::string(250, 'x') + ".png")).string();  // 254 bytes: within NAME_MAX
+  auto long_run = run_cli("tonemap " + exr + " -o " + long_name);
+  EXPECT_EQ(long_run.exit_code, 0) << long_run.output;
+  EXPECT_EQ(temporaries_in(dir), 0);
+
+  const std::string scene = write_scene(dir / "s.json"), ref = (dir / "r.exr").string();
+  ASSERT_EQ(run_cli("reference " + scene + " --integrator bssrdf --spp 1 -q -o " + ref).exit_code, 0);
+  auto other_seed = run_cli("reference " + scene + " --integrator bssrdf --spp 1 --seed 7 -q --resume -o " + ref);
+  EXPECT_EQ(other_seed.exit_code, 1);
+  EXPECT_EQ(other_seed.output, "lucent: " + (dir / "r.meta.json").string() +
+                                   ": cannot resume: the reference has seed 1, this run 7\n");
+  auto other_integrator = run_cli("reference " + scene + " --integrator volpath --spp 1 -q --resume -o " + ref);
+  EXPECT_EQ(other_integrator.output, "lucent: " + (dir / "r.meta.json").string() +
+                                         ": cannot resume: the reference has integrator \"bssrdf\", this run \"volpath\"\n");
+  put(dir / "r.meta.json", R"({"integrator": "bssrdf", "seed": 1, "samples_per_pixel": 2147483647})");
+  auto overflow = run_cli("reference " + scene + " --integrator bssrdf --spp 1 -q --resume -o " + ref);
+  EXPECT_EQ(overflow.output, "lucent: " + (dir / "r.meta.json").string() +
+                                 ": cannot resume: 2147483647 + 1 samples per pixel exceed 2147483647\n");
 }
 
 TEST(OutputSafetyCli, CompareNamesBothFilesWhenSizesDiffer) {
