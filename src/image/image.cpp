@@ -139,8 +139,26 @@ ImageRGBA32F read_exr_pixels(const std::string& path) {
   return image;
 }
 
-// "" when the file starts with the PNG signature and its IHDR chunk declares an image within kMaxImagePixels;
-// else the problem. Checked before stb_image, which would also decode other formats it was built with.
+std::int64_t big_endian_32(const unsigned char* bytes) {
+  return std::int64_t{bytes[0]} << 24 | std::int64_t{bytes[1]} << 16 | std::int64_t{bytes[2]} << 8 |
+         std::int64_t{bytes[3]};
+}
+
+// True when the first IDAT chunk is empty. stb_image then copies zero bytes to a null pointer (undefined
+// behaviour, reported by UBSan). Walks the chunk headers up to the first IDAT, IEND or the end of the file.
+bool first_idat_is_empty(std::ifstream& file) {
+  unsigned char chunk[8];
+  for (std::int64_t offset = 8; file.seekg(offset) && file.read(reinterpret_cast<char*>(chunk), 8);) {
+    const std::int64_t length = big_endian_32(chunk);
+    if (std::memcmp(chunk + 4, "IDAT", 4) == 0) return length == 0;
+    if (std::memcmp(chunk + 4, "IEND", 4) == 0) return false;
+    offset += 12 + length;  // length, type, data, CRC
+  }
+  return false;
+}
+
+// "" when the file starts with the PNG signature, its IHDR chunk declares an image within kMaxImagePixels and its
+// first IDAT chunk holds data; else the problem. Checked before stb_image, which would also decode other formats.
 std::string png_header_problem(const std::string& path) {
   static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   std::ifstream file(path, std::ios::binary);
@@ -149,11 +167,10 @@ std::string png_header_problem(const std::string& path) {
   file.read(reinterpret_cast<char*>(start), sizeof start);
   if (file.gcount() < 8 || std::memcmp(start, kSignature, 8) != 0) return "not a PNG file";
   if (file.gcount() < 24 || std::memcmp(start + 12, "IHDR", 4) != 0) return "";  // stb_image names the problem
-  const auto big_endian = [&](int at) {
-    return std::int64_t{start[at]} << 24 | std::int64_t{start[at + 1]} << 16 | std::int64_t{start[at + 2]} << 8 |
-           std::int64_t{start[at + 3]};
-  };
-  return image_size_problem(big_endian(16), big_endian(20));
+  if (std::string problem = image_size_problem(big_endian_32(start + 16), big_endian_32(start + 20)); !problem.empty())
+    return problem;
+  file.clear();
+  return first_idat_is_empty(file) ? "the first IDAT chunk is empty" : "";
 }
 
 }  // namespace

@@ -185,6 +185,13 @@ TEST(HostilePng, TruncatedFileIsAnError) {
   EXPECT_EQ(error_message([&] { read_png(file.path()); }), file.path() + ": cannot read PNG: outofdata");
 }
 
+// Found by fuzz_image: an empty first IDAT chunk made stb_image copy zero bytes to a null pointer (undefined
+// behaviour, an abort under UBSan).
+TEST(HostilePng, EmptyFirstDataChunkIsRefused) {
+  const std::string path = std::string(LUCENT_TEST_DATA) + "/hostile/png_empty_first_idat.png";
+  EXPECT_EQ(error_message([&] { read_png(path); }), path + ": cannot read PNG: the first IDAT chunk is empty");
+}
+
 // ---- EXR -------------------------------------------------------------------------------------------------
 
 // An EXR whose header declares width x height; the pixels are never written.
