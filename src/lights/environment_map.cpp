@@ -14,16 +14,10 @@
 #include "lights/equirect.h"
 #include "lucent/environment.h"
 #include "lucent/error.h"
+#include "lucent/output_file.h"
 
 namespace lucent {
 namespace {
-
-std::string lowercase_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
 
 // Throws unless every channel is finite and non-negative; names the first offending pixel.
 void check_radiance(const EnvironmentMap& map) {

@@ -22,7 +22,7 @@ using shader::FrameGPU;
 using shader::LightGPU;
 using shader::ViewGPU;
 
-// Defaults follow Dal Corso et al. 2015, Section 5 (512x512 maps and light map, K = 16) and the issue's
+// Defaults follow Dal Corso et al. 2015, Section 5 (512x512 maps and light map, K = 16) and lucent's
 // benchmark configuration (N = 32 per band).
 constexpr ParamDecl kParams[] = {
     {"K", ParamType::Int, "16", "maps", 1, LUCENT_MAX_MAPS, "", "number of scattered-radiosity maps (views)"},
