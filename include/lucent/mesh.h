@@ -14,6 +14,7 @@ struct TriangleMesh {
   std::vector<glm::vec3> positions;  // object space [scene units]
   std::vector<glm::vec3> normals;    // unit length, one per position
   std::vector<std::uint32_t> indices;  // three per triangle
+  std::vector<glm::vec2> uvs;          // texture coordinates, one per position, or empty when the mesh has none
 };
 
 // Loads every mesh of a file (OBJ, PLY, glTF 2.0, STL, 3DS and the other formats assimp reads) into one mesh,
