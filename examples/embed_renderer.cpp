@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
       camera.eye = camera.target + glm::vec3(std::cos(angle) * offset.x + std::sin(angle) * offset.z, offset.y,
                                              -std::sin(angle) * offset.x + std::cos(angle) * offset.z);
       renderer.render(camera, {framebuffer, width, height});
-      std::printf("frame %d: %.3f ms GPU, %d frame(s) accumulated\n", frame, renderer.timings().total_ms,
+      std::printf("frame %d: %.3f ms GPU, %d frame(s) accumulated\n", frame, renderer.last_frame_timings().total_ms,
                   renderer.accumulated_frames());
     }
 

@@ -1,6 +1,6 @@
 // command_bench.cpp: `lucent bench CONFIG`: a matrix of scenes x method variants, measured against the CPU
-// references. Per variant: per-step GPU times (median and range over the frames after a warm-up frame),
-// BSSRDF samples per second, GPU memory, coverage of the visible surface by the maps, and the error against the
+// references. Per variant: per-pass GPU times (median and range over the frames after a warm-up frame), the
+// method's statistics, GPU memory, coverage of the visible surface, and the error against the
 // converged references (and, on request, the error of the BSSRDF reference at equal time). Writes results.json,
 // results.md, results.tsv, side-by-side images and, where the config names a gnuplot script, plots.
 // References are cached under the output folder, keyed by the scene and the overrides that change the image.
@@ -25,24 +25,14 @@
 #include "lucent/lucent.h"
 #include "params/param_json.h"
 #include "progress_bar.h"
-#include "reference/reference_files.h"
+#include "reference/reference_cache.h"
+#include "stats/frame_summary.h"
 
 namespace lucent::cli {
 namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-struct Stats {
-  double median = 0.0, min = 0.0, max = 0.0;
-};
-
-Stats stats(std::vector<double> v) {
-  if (v.empty()) return {};
-  std::sort(v.begin(), v.end());
-  std::size_t m = v.size() / 2;
-  return {v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]), v.front(), v.back()};
-}
 
 std::vector<std::string> strings(const json& j, const char* key) {
   std::vector<std::string> out;
@@ -59,26 +49,6 @@ std::vector<std::string> variant_overrides(const json& config, const json& run, 
   return sets;
 }
 
-// Overrides that change the image of a reference: not the method or its parameters ("method.K=8",
-// "method={...}") or frame counts, and for volpath not the diffusion model either (the physics does not use it).
-std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator) {
-  std::vector<std::string> relevant;
-  for (const std::string& s : sets) {
-    bool method = s.rfind("method.", 0) == 0 || s.rfind("method=", 0) == 0 || s.rfind("render.frames", 0) == 0;
-    bool model = integrator == "volpath" && s.find(".model=") != std::string::npos;
-    if (!method && !model) relevant.push_back(s);
-  }
-  std::sort(relevant.begin(), relevant.end());
-  return relevant;
-}
-
-std::string reference_key(const std::string& scene, const std::vector<std::string>& sets, const std::string& integrator) {
-  std::vector<std::string> relevant = relevant_overrides(sets, integrator);
-  std::string text = scene + "|" + integrator;
-  for (const std::string& s : relevant) text += "|" + s;
-  return fmt::format("{}_{:016x}", integrator, std::hash<std::string>{}(text));
-}
-
 // One rendered variant, waiting for its comparison with the references.
 struct Rendered {
   json result;
@@ -89,58 +59,20 @@ struct Rendered {
   double wall_seconds = 0.0;
 };
 
-// The noise of a reference in the units of the RGB RMSE (sqrt(dr^2+dg^2+db^2)), and the noise-corrected RMSE:
-// the expected squared error against a noisy reference is the method's squared error plus the reference's variance.
-double noise_rgb(const ImageError& e) { return e.reference_noise_rms * std::sqrt(3.0); }
-double corrected_rmse(const ImageError& e) {
-  return std::sqrt(std::max(0.0, e.rmse_rgb * e.rmse_rgb - noise_rgb(e) * noise_rgb(e)));
-}
-
 struct Bench {
   json config;
   fs::path out;
   std::unique_ptr<GLContext> context;
 
-  // Renders, loads, or extends a cached reference so that it has at least `spp` samples per pixel. The cached
-  // reference of the same scene, integrator and image-relevant overrides (found by its metadata) with the most
-  // samples is used or resumed.
+  // A cached reference with at least `spp` samples per pixel (reference/reference_cache.h), under out/references.
   reference::ReferenceImage reference_image(const std::string& scene_path, const std::vector<std::string>& sets,
                                             const std::string& integrator, int spp) {
-    fs::path exr = out / "references" / (reference_key(scene_path, sets, integrator) + ".exr");
-    std::optional<reference::ReferenceImage> cached;
-    std::error_code listing;
-    for (const auto& entry : fs::directory_iterator(exr.parent_path(), listing)) {
-      const std::string name = entry.path().filename().string();
-      if (entry.path().extension() != ".exr" || name.ends_with(".stderr.exr")) continue;
-      // A damaged cache entry (bad metadata, wrong types, a truncated EXR) is ignored with a warning, never fatal.
-      try {
-        const reference::ReferenceFiles files = reference::reference_files(entry.path().string());
-        const std::optional<json> m = reference::read_reference_metadata(files);
-        auto text = [&](const char* key) { return m->contains(key) && (*m)[key].is_string() ? (*m)[key].get<std::string>() : ""; };
-        if (!m || text("scene") != scene_path || text("integrator") != integrator) continue;
-        if (relevant_overrides(strings(*m, "overrides"), integrator) != relevant_overrides(sets, integrator)) continue;
-        if (cached && cached->samples_per_pixel >= (*m)["samples_per_pixel"].get<int>()) continue;  // keep the best
-        cached = reference::load_reference(files).image;
-        exr = entry.path();
-      } catch (const std::exception& e) {
-        fmt::print(stderr, "lucent: warning: {}; that cached reference is ignored\n", e.what());
-      }
-    }
-    if (cached && cached->samples_per_pixel >= spp) return *cached;
-    Scene scene = load_scene(scene_path, sets);
-    reference::ReferenceSettings settings;
-    settings.integrator = integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
-    settings.samples_per_pixel = spp - (cached ? cached->samples_per_pixel : 0);
-    fmt::print(stderr, "  reference {} {} spp ({}x{}){}...\n", integrator, spp, scene.render.width,
-               scene.render.height, cached ? fmt::format(", resuming from {} spp", cached->samples_per_pixel) : "");
     // A refinement step can take an hour: the same progress bar and time left as `lucent reference`.
     ProgressBar progress(fmt::format("  reference {} {} spp", integrator, spp), 1000);
-    settings.progress = [&](double done) { progress.update(static_cast<int>(done * 1000.0)); };
-    reference::ReferenceImage image = reference::render_reference(scene, settings, cached ? &*cached : nullptr);
+    reference::ReferenceImage image =
+        reference::cached_reference((out / "references").string(), scene_path, sets, integrator, spp,
+                                    [&](double done) { progress.update(static_cast<int>(done * 1000.0)); });
     progress.finish();
-    if (cached) image.seconds += cached->seconds;
-    reference::save_reference(reference::reference_files(exr.string()), image,
-                              {{"scene", scene_path}, {"overrides", sets}, {"integrator", integrator}});
     return image;
   }
 
@@ -159,23 +91,6 @@ struct Bench {
     return image;
   }
 
-  double coverage(const Scene& scene_in) {
-    Scene scene = scene_in;
-    scene.method_params.set("view", std::string("coverage"));
-    scene.method_params.set("progressive", false);
-    Renderer renderer(scene);
-    OffscreenFramebuffer target(scene.render.width, scene.render.height);
-    renderer.render(scene.camera, {target.id(), scene.render.width, scene.render.height});
-    ImageRGBA32F image = renderer.read_radiance();
-    std::size_t covered = 0, uncovered = 0;
-    for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
-      bool magenta = image.pixels[i] == 1.0f && image.pixels[i + 1] == 0.0f && image.pixels[i + 2] == 1.0f;
-      bool gray = image.pixels[i] == 0.2f && image.pixels[i + 1] == 0.2f && image.pixels[i + 2] == 0.2f;
-      uncovered += magenta, covered += gray;
-    }
-    return covered + uncovered ? static_cast<double>(covered) / static_cast<double>(covered + uncovered) : 1.0;
-  }
-
   Rendered render_variant(const json& run, const json& variant, const std::string& run_name) {
     Rendered r;
     r.sets = variant_overrides(config, run, variant);
@@ -188,24 +103,22 @@ struct Bench {
 
     Renderer renderer(scene);
     OffscreenFramebuffer target(scene.render.width, scene.render.height);
-    std::vector<double> step1, step2, step3, total, rate;
     auto start = std::chrono::steady_clock::now();
-    FrameTimings last;
+    std::vector<FrameTimings> frames_done;
     // "restart_every_frame": every frame recomputes what the method caches (e.g. voxel-paths' solved volume, which
     // camera-only frames reuse), so the timings are those of a frame whose scene changed.
     const bool restart_every_frame = variant.value("restart_every_frame", run.value("restart_every_frame", false));
     for (int f = 0; f < frames; ++f) {
       if (restart_every_frame) renderer.restart();
       renderer.render(scene.camera, {target.id(), scene.render.width, scene.render.height});
-      last = renderer.timings();
-      if (frames > 1 && f == 0) continue;  // warm-up: driver compiles and first-use costs
-      step1.push_back(last.light_gbuffer_ms), step2.push_back(last.radiosity_maps_ms);
-      step3.push_back(last.combine_ms), total.push_back(last.total_ms);
-      for (const StepTiming& s : last.passes)
-        if ((s.name == "integrate" || s.name == "per_pixel") && s.ms > 0) rate.push_back(static_cast<double>(last.bssrdf_samples) / (s.ms * 1e-3));
+      for (FrameTimings& t : renderer.finished_frames(false)) frames_done.push_back(std::move(t));
     }
-    glFinish();
+    for (FrameTimings& t : renderer.finished_frames(true)) frames_done.push_back(std::move(t));
     r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // The first frame is a warm-up (driver compiles, first-use costs) when there are others.
+    std::span<const FrameTimings> measured(frames_done);
+    if (measured.size() > 1) measured = measured.subspan(1);
+    const FrameTimings& last = frames_done.back();
     r.image = renderer.read_radiance();
     r.stem = fmt::format("{}_{}", run_name, variant.value("id", name));
     std::replace_if(r.stem.begin(), r.stem.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '_'; }, '_');
@@ -213,18 +126,17 @@ struct Bench {
     write_png((out / "images" / (r.stem + ".png")).string(), renderer.read_display());
 
     json& result = r.result;
+    const stats::FrameSummary summary = stats::summarize(measured);
+    auto spread_json = [](const stats::Spread& s) { return json{{"median", s.median}, {"min", s.min}, {"max", s.max}}; };
     result = {{"run", run_name}, {"variant", name}, {"frames", frames}, {"image", "images/" + r.stem + ".png"},
               {"wall_seconds", r.wall_seconds}, {"gpu_memory_mb", static_cast<double>(last.gpu_memory_bytes) / 1048576.0},
-              {"bssrdf_samples_per_frame", last.bssrdf_samples}, {"method", scene.method},
-              {"occupancy", static_cast<double>(last.translucent_pixels) /
-                                (static_cast<double>(scene.render.width) * scene.render.height)},
-              {"map_coverage", last.map_coverage}};
-    for (auto [key, values] : {std::pair{"light_gbuffer_ms", step1}, std::pair{"radiosity_maps_ms", step2},
-                               std::pair{"combine_ms", step3}, std::pair{"total_ms", total},
-                               std::pair{"bssrdf_samples_per_second", rate}}) {
-      Stats s = stats(values);
-      result[key] = {{"median", s.median}, {"min", s.min}, {"max", s.max}};
-    }
+              {"method", scene.method},
+              {"occupancy", last.stat("translucent_pixels") / (static_cast<double>(scene.render.width) * scene.render.height)},
+              {"coverage", last.stat("coverage", 1.0)}, {"total_ms", spread_json(summary.total_ms)}};
+    result["passes"] = json::object();
+    for (const stats::NamedSpread& p : summary.passes) result["passes"][p.name] = spread_json(p.spread);
+    result["stats"] = json::object();
+    for (const stats::NamedSpread& s : summary.stats) result["stats"][s.name] = spread_json(s.spread);
     for (const auto& [key, value] : variant.items())
       if (key != "set" && key != "name" && key != "id") result["params"][key] = value;
     for (const std::string& s : r.sets) {  // method.X as X, other keys by their path (scale_mm, render.width, ...)
@@ -232,7 +144,6 @@ struct Bench {
       if (key.rfind("method.", 0) == 0) key = key.substr(7);
       result["params"][key] = json::parse(s.substr(s.find('=') + 1), nullptr, false);
     }
-    if (variant.value("coverage", false)) result["coverage"] = coverage(scene);
     if (variant.value("equal_time", false)) result["equal_time_request"] = true;
     return r;
   }
@@ -244,7 +155,7 @@ struct Bench {
   void compare(std::vector<Rendered>& rendered, const std::string& run_name, const std::string& integrator,
                const json& spec) {
     std::map<std::string, std::vector<Rendered*>> groups;
-    for (Rendered& r : rendered) groups[reference_key(r.scene_path, r.sets, integrator)].push_back(&r);
+    for (Rendered& r : rendered) groups[reference::reference_key(r.scene_path, r.sets, integrator)].push_back(&r);
     const double ratio = spec.value("noise_ratio", 0.0);
     // Below this RMSE (linear radiance; a lit surface is about 0.5) an error is invisible after 8-bit quantization:
     // a reference is not refined further to resolve it (a black object matching a black reference, for example).
@@ -322,11 +233,20 @@ struct Bench {
   }
 };
 
+// Median ms of every pass and median of every statistic, "name value; ..." (what the method declares).
+std::string spread_list(const json& r, const char* key) {
+  std::string out;
+  if (!r.contains(key)) return "-";
+  for (const auto& [name, spread] : r[key].items())
+    out += fmt::format("{}{} {:.4g}", out.empty() ? "" : "; ", name, spread["median"].get<double>());
+  return out.empty() ? "-" : out;
+}
+
 std::string markdown(const json& results) {
-  std::string md = "| run | variant | frames | step 1 ms | step 2 ms | step 3 ms | total ms (median [min, max]) | "
-                   "S_d samples/s | GPU MB | coverage | RMSE vs bssrdf | RMSE vs volpath | mean error vs volpath | "
+  std::string md = "| run | variant | method | frames | total ms (median [min, max]) | passes (median ms) | "
+                   "statistics (median) | GPU MB | coverage | RMSE vs bssrdf | RMSE vs volpath | mean error vs volpath | "
                    "equal-time bssrdf RMSE |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   // RMSE, the reference's own noise (and samples per pixel), and the noise-corrected RMSE.
   auto error = [](const json& r, const char* integrator) {
     if (!r.contains("error") || !r["error"].contains(integrator)) return std::string("-");
@@ -342,14 +262,12 @@ std::string markdown(const json& results) {
     return fmt::format("{:+.4f} +- {:.4f}", e["mean_error"].get<double>(), e["mean_error_se"].get<double>());
   };
   for (const json& r : results) {
-    md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} [{:.2f}, {:.2f}] | {:.3g} | {:.1f} | {} | {} | {} | {} | {} |\n",
-                      r["run"].get<std::string>(), r["variant"].get<std::string>(), r["frames"].get<int>(),
-                      r["light_gbuffer_ms"]["median"].get<double>(), r["radiosity_maps_ms"]["median"].get<double>(),
-                      r["combine_ms"]["median"].get<double>(), r["total_ms"]["median"].get<double>(),
-                      r["total_ms"]["min"].get<double>(), r["total_ms"]["max"].get<double>(),
-                      r["bssrdf_samples_per_second"]["median"].get<double>(), r["gpu_memory_mb"].get<double>(),
-                      r.contains("coverage") ? fmt::format("{:.3f}", r["coverage"].get<double>()) : "-",
-                      error(r, "bssrdf"), error(r, "volpath"), bias(r, "volpath"),
+    md += fmt::format("| {} | {} | {} | {} | {:.2f} [{:.2f}, {:.2f}] | {} | {} | {:.1f} | {:.3f} | {} | {} | {} | {} |\n",
+                      r["run"].get<std::string>(), r["variant"].get<std::string>(), r.value("method", std::string("?")),
+                      r["frames"].get<int>(), r["total_ms"]["median"].get<double>(), r["total_ms"]["min"].get<double>(),
+                      r["total_ms"]["max"].get<double>(), spread_list(r, "passes"), spread_list(r, "stats"),
+                      r["gpu_memory_mb"].get<double>(), r.value("coverage", 1.0), error(r, "bssrdf"),
+                      error(r, "volpath"), bias(r, "volpath"),
                       r.contains("equal_time_bssrdf")
                           ? fmt::format("{:.4f} ({} spp)", r["equal_time_bssrdf"]["rmse_rgb"].get<double>(),
                                         r["equal_time_bssrdf"]["spp"].get<int>())
@@ -358,23 +276,46 @@ std::string markdown(const json& results) {
   return md;
 }
 
-// One line per result: run, variant, every numeric parameter, median total ms, coverage, RMSEs.
+// One line per result, with a header row naming the columns (gnuplot reads them by name): run, variant, method,
+// median total ms, coverage, occupancy, the RMSEs, then every parameter any variant sets, the median ms of every
+// pass ("ms:<pass>") and the median of every statistic ("stat:<name>"), "nan" where a result has none.
 std::string tsv_text(const json& results) {
-  std::ostringstream tsv;
-  tsv << "run\tvariant\tK\tN\tscale_mm\ttotal_ms\tradiosity_maps_ms\tcoverage\trmse_bssrdf\trmse_volpath\trmse_equal_time_bssrdf"
-         "\tmethod\toccupancy\n";
+  std::vector<std::string> params, passes, statistics;
+  auto add = [](std::vector<std::string>& list, const std::string& name) {
+    if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
+  };
   for (const json& r : results) {
-    auto param = [&](const char* k) { return r.contains("params") && r["params"].contains(k) ? r["params"][k].dump() : "nan"; };
+    if (r.contains("params"))
+      for (const auto& [k, v] : r["params"].items())
+        if (v.is_number() || v.is_boolean()) add(params, k);
+    if (r.contains("passes"))
+      for (const auto& [k, v] : r["passes"].items()) add(passes, k);
+    if (r.contains("stats"))
+      for (const auto& [k, v] : r["stats"].items()) add(statistics, k);
+  }
+  std::ostringstream tsv;
+  tsv << "run\tvariant\tmethod\ttotal_ms\tcoverage\toccupancy\trmse_bssrdf\trmse_volpath\trmse_equal_time_bssrdf";
+  for (const std::string& p : params) tsv << "\t" << p;
+  for (const std::string& p : passes) tsv << "\tms:" << p;
+  for (const std::string& s : statistics) tsv << "\tstat:" << s;
+  tsv << "\n";
+  auto number = [](const json& j) { return j.is_boolean() ? std::string(j.get<bool>() ? "1" : "0") : j.dump(); };
+  for (const json& r : results) {
     auto err = [&](const char* k) {
       return r.contains("error") && r["error"].contains(k) ? std::to_string(r["error"][k]["rmse_rgb"].get<double>()) : "nan";
     };
-    tsv << r["run"].get<std::string>() << "\t" << r["variant"].get<std::string>() << "\t" << param("K") << "\t"
-        << param("N") << "\t" << param("scale_mm") << "\t" << r["total_ms"]["median"].get<double>() << "\t"
-        << r["radiosity_maps_ms"]["median"].get<double>() << "\t"
-        << (r.contains("coverage") ? std::to_string(r["coverage"].get<double>()) : "nan") << "\t" << err("bssrdf")
-        << "\t" << err("volpath") << "\t"
-        << (r.contains("equal_time_bssrdf") ? std::to_string(r["equal_time_bssrdf"]["rmse_rgb"].get<double>()) : "nan")
-        << "\t" << r.value("method", std::string("?")) << "\t" << r.value("occupancy", 0.0) << "\n";
+    tsv << r["run"].get<std::string>() << "\t" << r["variant"].get<std::string>() << "\t"
+        << r.value("method", std::string("?")) << "\t" << r["total_ms"]["median"].get<double>() << "\t"
+        << r.value("coverage", 1.0) << "\t" << r.value("occupancy", 0.0) << "\t" << err("bssrdf") << "\t"
+        << err("volpath") << "\t"
+        << (r.contains("equal_time_bssrdf") ? std::to_string(r["equal_time_bssrdf"]["rmse_rgb"].get<double>()) : "nan");
+    for (const std::string& p : params)
+      tsv << "\t" << (r.contains("params") && r["params"].contains(p) ? number(r["params"][p]) : "nan");
+    for (const std::string& p : passes)
+      tsv << "\t" << (r.contains("passes") && r["passes"].contains(p) ? std::to_string(r["passes"][p]["median"].get<double>()) : "nan");
+    for (const std::string& st : statistics)
+      tsv << "\t" << (r.contains("stats") && r["stats"].contains(st) ? std::to_string(r["stats"][st]["median"].get<double>()) : "nan");
+    tsv << "\n";
   }
   return tsv.str();
 }

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
+#include <span>
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
@@ -11,6 +11,7 @@
 #include "option_checks.h"
 #include "lucent/lucent.h"
 #include "progress_bar.h"
+#include "stats/frame_summary.h"
 
 namespace lucent::cli {
 namespace {
@@ -19,6 +20,7 @@ struct RenderOptions {
   std::string scene_path;
   std::string png;
   std::string exr;
+  std::string timings_json;
   std::optional<int> frames;
   std::optional<unsigned> seed;
   std::vector<std::string> sets;
@@ -27,42 +29,20 @@ struct RenderOptions {
   int samples_per_frame = 1;
 };
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  std::size_t mid = values.size() / 2;
-  return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+void print_timings(const std::vector<FrameTimings>& frames, const std::string& device) {
+  if (frames.empty()) return;
+  stats::FrameSummary summary = stats::summarize(frames);
+  fmt::print("{}", stats::format_summary(summary, device));
+  double coverage = frames.back().stat("coverage", 1.0);
+  if (coverage < 0.999)
+    fmt::print("  {:.2f}% of the translucent pixels have no data from the method (see its debug views)\n",
+               100.0 * (1.0 - coverage));
 }
 
-void print_timings(const std::vector<FrameTimings>& frames, const std::string& device, const std::string& method) {
-  std::map<std::string, std::vector<double>> per_pass;
-  std::vector<std::string> order;
-  std::vector<double> step1, step2, step3, total, rate;
-  for (const FrameTimings& t : frames) {
-    for (const StepTiming& s : t.passes) {
-      if (!per_pass.count(s.name)) order.push_back(s.name);
-      per_pass[s.name].push_back(s.ms);
-    }
-    step1.push_back(t.light_gbuffer_ms), step2.push_back(t.radiosity_maps_ms), step3.push_back(t.combine_ms);
-    total.push_back(t.total_ms);
-    for (const StepTiming& s : t.passes)
-      if ((s.name == "integrate" || s.name == "per_pixel") && s.ms > 0) rate.push_back(static_cast<double>(t.bssrdf_samples) / (s.ms * 1e-3));
-  }
-  fmt::print("GPU time per frame, median of {} frame(s), on {}:\n", frames.size(), device);
-  fmt::print("  1. light G-buffer      {:10.3f} ms\n", median(step1));
-  fmt::print("  2. radiosity maps      {:10.3f} ms\n", median(step2));
-  fmt::print("  3. combine             {:10.3f} ms\n", median(step3));
-  fmt::print("  total                  {:10.3f} ms\n", median(total));
-  fmt::print("  passes:");
-  for (const std::string& name : order) fmt::print(" {} {:.3f}", name, median(per_pass[name]));
-  fmt::print(" (ms)\n  BSSRDF samples: {} per frame, {:.3g} per second in the integrate (or per_pixel) pass\n", frames.back().bssrdf_samples,
-             median(rate));
-  const FrameTimings& last = frames.back();
-  if (method == "radiosity-maps")
-    fmt::print("  translucent pixels: {}, seen by the maps: {:.2f}%{}\n", last.translucent_pixels, 100.0 * last.map_coverage,
-               last.map_coverage < 0.999 ? " (view=coverage shows the rest in magenta; raise method.K)" : "");
-  else
-    fmt::print("  translucent pixels: {}\n", last.translucent_pixels);
+void write_timings_json(const std::string& path, const std::vector<FrameTimings>& frames) {
+  if (path.empty()) return;
+  std::string text = stats::timings_json(frames);
+  write_file(path, text);
 }
 
 std::string default_png_path(const std::string& scene_path) {
@@ -91,12 +71,14 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
     renderer.set_time(f / static_cast<double>(scene.render.fps));
     for (int s = 0; s < o.samples_per_frame; ++s) {
       renderer.render(scene.camera, {target.id(), width, height});
-      timings.push_back(renderer.timings());
+      for (FrameTimings& t : renderer.finished_frames(false)) timings.push_back(std::move(t));
     }
     write_png(fmt::format("{}_{:04d}.png", base.string(), f), renderer.read_display());
     progress.update(f + 1);
   }
   progress.finish();
+  for (FrameTimings& t : renderer.finished_frames(true)) timings.push_back(std::move(t));
+  write_timings_json(o.timings_json, timings);
   std::string pattern = base.string() + "_%04d.png", mp4 = base.string() + ".mp4";
   bool have_ffmpeg = std::system("command -v ffmpeg > /dev/null 2>&1") == 0;
   if (have_ffmpeg) {
@@ -115,7 +97,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
   if (!o.quiet) {
     fmt::print("{}: {} frames at {} fps, {} sample(s) each -> {}{}\n", scene.source, frames, scene.render.fps,
                o.samples_per_frame, pattern, have_ffmpeg ? " and " + mp4 : " (no ffmpeg: no MP4)");
-    print_timings(timings, renderer.device(), scene.method);
+    print_timings(timings, renderer.device());
   }
 }
 
@@ -126,7 +108,8 @@ void run(const RenderOptions& o) {
   Scene scene = o.scene_path.empty() ? default_scene(overrides) : load_scene(o.scene_path, overrides);
   std::string png = o.png.empty() ? default_png_path(o.scene_path) : o.png;
   // Outputs are checked before the first frame: never an input, a known format, a directory that takes files.
-  std::vector<OutputPath> outputs = {{png, "--output", {".png"}}, {o.exr, "--exr", {".exr"}}};
+  std::vector<OutputPath> outputs = {
+      {png, "--output", {".png"}}, {o.exr, "--exr", {".exr"}}, {o.timings_json, "--timings-json", {".json"}}};
   if (o.animate) {
     std::filesystem::path base = std::filesystem::path(png).replace_extension("");
     if (!o.exr.empty()) throw Error("--exr: not written with --animate (each frame is a PNG)");
@@ -143,19 +126,21 @@ void run(const RenderOptions& o) {
   std::vector<FrameTimings> timings;
   for (int f = 0; f < frames; ++f) {
     renderer.render(scene.camera, {target.id(), width, height});
-    timings.push_back(renderer.timings());
+    for (FrameTimings& t : renderer.finished_frames(false)) timings.push_back(std::move(t));
     progress.update(f + 1);
   }
   progress.finish();
+  for (FrameTimings& t : renderer.finished_frames(true)) timings.push_back(std::move(t));
 
   ImageRGBA32F radiance = renderer.read_radiance();
   warn_if_black(radiance);
   write_png(png, renderer.read_display());
   if (!o.exr.empty()) write_exr(o.exr, radiance);
+  write_timings_json(o.timings_json, timings);
   if (!o.quiet) {
     fmt::print("{}: {}x{}, {} frame(s) accumulated -> {}{}\n", scene.source, width, height,
                renderer.accumulated_frames(), png, o.exr.empty() ? "" : " and " + o.exr);
-    print_timings(timings, renderer.device(), scene.method);
+    print_timings(timings, renderer.device());
   }
 }
 
@@ -174,6 +159,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("scene", options->scene_path, "scene file (JSON); the built-in default scene when omitted");
   cmd->add_option("-o,--output", options->png, "tone-mapped PNG (default: out/<scene>.png)");
   cmd->add_option("--exr", options->exr, "also write linear radiance as EXR");
+  cmd->add_option("--timings-json", options->timings_json,
+                  "write every frame's GPU pass times and the method's statistics as JSON");
   cmd->add_option("--frames", options->frames, "frames to accumulate (render.frames)")->check(whole_number_in(1, 1e6));
   cmd->add_option("--seed", options->seed, "random seed (render.seed)")->check(whole_number_in(0, 4294967295.0));
   cmd->add_option("--set", options->sets, "override a scene value, e.g. --set method.K=8 --set render.width=320");

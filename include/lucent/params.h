@@ -14,6 +14,11 @@ namespace lucent {
 
 enum class ParamType { Int, Float, Bool, Enum, String, Vec2, Vec3, Vec3List };
 
+// What a change of the parameter costs a running renderer: Live values are read every frame (a new value
+// shows in the next frame, accumulation restarts where the result depends on it); Rebuild values size buffers
+// or select shader code, so a change recreates the method (and may recompile its shaders).
+enum class ParamUpdate { Rebuild, Live };
+
 struct ParamDecl {
   std::string_view name;           // JSON key
   ParamType type;
@@ -23,7 +28,16 @@ struct ParamDecl {
   double max = 1e30;
   std::string_view choices;        // Enum: "a|b|c"
   std::string_view doc;
+  ParamUpdate update = ParamUpdate::Rebuild;
+
+  constexpr ParamDecl(std::string_view name_, ParamType type_, std::string_view default_json_ = "",
+                      std::string_view unit_ = "", double min_ = -1e30, double max_ = 1e30,
+                      std::string_view choices_ = "", std::string_view doc_ = "",
+                      ParamUpdate update_ = ParamUpdate::Rebuild)
+      : name(name_), type(type_), default_json(default_json_), unit(unit_), min(min_), max(max_),
+        choices(choices_), doc(doc_), update(update_) {}
 };
+inline constexpr ParamUpdate kLive = ParamUpdate::Live;
 
 // A named group of declarations (one JSON object of the scene file).
 struct ParamSection {
@@ -52,6 +66,7 @@ class ParamValues {
 };
 
 std::string_view to_string(ParamType type);
+std::string_view to_string(ParamUpdate update);  // "live" or "rebuild"
 std::string to_string(const ParamValue& value);
 // "name  type  default  [min, max] unit  doc" lines for --help and docs.
 std::string describe(const ParamSection& section, int indent = 2);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lucent/image.h"
@@ -22,22 +23,31 @@ struct RenderTarget {
   int height = 0;
 };
 
-struct StepTiming {
-  std::string name;  // a pass name; also the GL debug group name
+struct PassTiming {
+  std::string name;  // a pass name as the method declares it (`lucent methods`); also the GL debug group name
   double ms = 0.0;   // GPU time from timer queries
 };
 
+// A named value a method (or the renderer) reports for a frame: samples drawn, pixels covered, ...
+struct FrameStatistic {
+  std::string name;
+  double value = 0.0;
+  std::string unit;  // "" for counts and fractions
+};
+
+// What one frame cost and what it did, as the GPU reported it (read back a few frames after the frame, so that
+// rendering never waits for the GPU; see Renderer::timings() and Renderer::finished_frames()).
 struct FrameTimings {
-  std::vector<StepTiming> passes;  // light_gbuffer, map_gbuffers, integrate, mipmaps, camera_gbuffer, ...
-  double light_gbuffer_ms = 0.0;   // step 1 of the method
-  double radiosity_maps_ms = 0.0;  // step 2 (map G-buffers, integration, mipmaps)
-  double combine_ms = 0.0;         // step 3 (VPL placement and gathering, camera G-buffer, combine, tone map)
-  double total_ms = 0.0;
-  double geometry_ms = 0.0;        // animated geometry (blob isosurface extraction), before step 1
-  std::uint64_t bssrdf_samples = 0;  // light-space samples drawn this frame (each evaluates S_d once if lit)
-  std::uint64_t translucent_pixels = 0;  // camera pixels on translucent objects (their share: "occupancy")
-  double map_coverage = 1.0;       // fraction of those seen by at least one map (per-pixel: 1)
-  std::size_t gpu_memory_bytes = 0;  // textures and buffers of the method and the output images
+  std::uint64_t frame = 0;          // 1 for the renderer's first frame; 0 before any frame has come back
+  std::vector<PassTiming> passes;   // in submission order: the renderer's (camera_gbuffer, tonemap), animated
+                                    // geometry's and the method's own
+  double total_ms = 0.0;            // sum of the passes
+  std::vector<FrameStatistic> stats;  // the renderer's (translucent_pixels, coverage, gpu_memory_mb) and the method's
+  std::size_t gpu_memory_bytes = 0;   // textures and buffers of the method and the output images
+
+  // The statistic's value, or `fallback` when the frame did not report it.
+  double stat(std::string_view name, double fallback = 0.0) const;
+  double pass_ms(std::string_view name) const;  // 0 when the frame did not run the pass
 };
 
 // A virtual point light carrying a translucent object's emergent light to the scene (radiosity-maps, VPLs on).
@@ -76,7 +86,14 @@ class Renderer {
   void restart();
 
   int accumulated_frames() const;
-  const FrameTimings& timings() const;  // of the last frame
+  // The newest frame the GPU has finished and reported: never waits, so it is usually a few frames behind the
+  // last render() (see FrameTimings::frame).
+  const FrameTimings& timings() const;
+  // Every frame reported since the last call, oldest first. wait = true first waits for the frames in flight,
+  // so that the last entry is the last frame rendered (offline tools, tests).
+  std::vector<FrameTimings> finished_frames(bool wait);
+  // Waits for the last rendered frame and returns its timings.
+  const FrameTimings& last_frame_timings();
   std::string device() const;           // GL renderer and version
   static std::string device_of_current_context();
 

@@ -105,7 +105,7 @@ struct Scene {
   std::vector<PointLight> point_lights;         // point and spot lights
   std::optional<EnvironmentLight> environment;
   std::vector<SceneObject> objects;
-  std::string method = "radiosity-maps";
+  std::string method;                           // a registered method (`lucent methods`); empty: the default
   ParamValues method_params;                    // declared by the method (see `lucent render --help`)
   RenderSettings render;
 };

@@ -10,8 +10,8 @@ vec3 environment_radiance(vec3 direction, float lod) {
 
 // Radiance of a camera pixel that sees no surface: the map when it is the background, else the flat colour.
 vec3 miss_radiance(ivec2 pixel) {
-  if ((frame.extra_counts.w & LUCENT_ENVIRONMENT_BACKGROUND) == 0) return frame.background.rgb;
-  vec2 ndc = (vec2(pixel) + vec2(0.5f)) / vec2(frame.sizes.zw) * 2.0f - vec2(1.0f);
+  if ((frame.environment.x & LUCENT_ENVIRONMENT_BACKGROUND) == 0) return frame.background.rgb;
+  vec2 ndc = (vec2(pixel) + vec2(0.5f)) / vec2(frame.output_size.xy) * 2.0f - vec2(1.0f);
   vec4 far_point = inverse(frame.clip_from_world) * vec4(ndc, 1.0f, 1.0f);
   return environment_radiance(normalize(far_point.xyz / far_point.w - frame.camera_position.xyz), 0.0f);
 }

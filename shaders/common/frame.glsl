@@ -1,5 +1,5 @@
-// frame.glsl: the frame's uniform block and the scene's material and object buffers (layouts in
-// shared/shader_io.h).
+// frame.glsl: the frame's uniform block (common to every method) and the scene's material and object buffers
+// (layouts in shared/shader_io.h, binding points in shared/bindings.h).
 #include "shared/shader_io.h"
 
 layout(std140, binding = LUCENT_BINDING_FRAME) uniform FrameBlock { FrameGPU frame; };
@@ -21,9 +21,9 @@ int cube_face(vec3 d) {
   return d.z >= 0.0f ? 4 : 5;
 }
 
-// Fraction of the (2h+1)^2 orthographic depth taps around t for which the point at depth t.z is visible.
-float multisample_visibility(sampler2DArray depth, vec3 t, int layer, int size, float bias) {
-  int h = frame.counts.w / 2;
+// Fraction of the taps x taps orthographic depth taps around t for which the point at depth t.z is visible.
+float multisample_visibility(sampler2DArray depth, vec3 t, int layer, int size, float bias, int taps) {
+  int h = taps / 2;
   ivec2 center = ivec2(t.xy * float(size));
   float visible = 0.0f;
   for (int dy = -h; dy <= h; ++dy)

@@ -13,12 +13,12 @@
 #include "shared/random.h"
 
 // B for one band from light l, without the factor pi * power[band] (and, for point lights, per unit intensity).
-float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o, vec3 n_o, uint state) {
+float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o, vec3 n_o, uint state, int samples) {
   LightGPU light = frame.lights[l];
   BandMedium m = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
   float eta = material.sigma_a.w;
   int model = int(material.sigma_s.w);
-  int size = frame.sizes.y;
+  int size = frame.light_counts.z;
   bool directional = int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL;
   // Sampling plane: directional, the light's view plane; point, the plane through x_o perpendicular to the light.
   ViewGPU view = frame.light_views[light.views.x];
@@ -27,7 +27,7 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
   vec3 t1 = normalize(abs(axis.x) > 0.9f ? cross(axis, vec3(0.0f, 1.0f, 0.0f)) : cross(axis, vec3(1.0f, 0.0f, 0.0f)));
   vec3 t2 = cross(axis, t1);
   float sum = 0.0f;
-  for (int j = 0; j < frame.counts.z; ++j) {
+  for (int j = 0; j < samples; ++j) {
     // Sample (r, alpha) from p_exp (eq. 12) around x_o.
     float xi_1 = next_float(state + uint(2 * j));
     float xi_2 = next_float(state + uint(2 * j + 1));
@@ -66,18 +66,19 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
     float S_d = bssrdf_Sd(model, m, eta, p_i.xyz, w_i, n_i, x_o, n_o);
     sum += S_d * fresnel_transmittance(eta, cos_i) * weight;
   }
-  return sum / float(frame.counts.z);
+  return sum / float(samples);
 }
 
-// Scattered radiosity B(x_o) in all bands from all lights; `stream` separates independent estimates (map texels).
-vec3 scattered_radiosity(int object, vec3 x_o, vec3 n_o, uint point_index, uint stream_base) {
+// Scattered radiosity B(x_o) in all bands from all lights, with `samples` samples per band and light;
+// `stream_base` separates independent estimates (map texels).
+vec3 scattered_radiosity(int object, vec3 x_o, vec3 n_o, uint point_index, uint stream_base, int samples) {
   MaterialGPU material = materials[objects[object].info.x];
   vec3 B = vec3(0.0f);
-  for (int l = 0; l < frame.counts.x; ++l) {
+  for (int l = 0; l < frame.light_counts.x; ++l) {
     for (int band = 0; band < 3; ++band) {
       uint stream = uint((int(stream_base) * LUCENT_MAX_LIGHTS + l) * 3 + band);
       uint state = seed_from(frame.seeds.x, point_index, stream, frame.seeds.y);
-      B[band] += kPi * frame.lights[l].power[band] * band_radiosity(band, l, object, material, x_o, n_o, state);
+      B[band] += kPi * frame.lights[l].power[band] * band_radiosity(band, l, object, material, x_o, n_o, state, samples);
     }
   }
   return B;

@@ -35,10 +35,11 @@ float light_visibility(int l, vec3 x, vec3 n) {
   LightGPU light = frame.lights[l];
   if (int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL) {
     ViewGPU view = frame.light_views[light.views.z];
-    float texel_width = view.direction.w / float(frame.sizes.y);
+    float texel_width = view.direction.w / float(frame.light_counts.z);
     vec3 t = view_coords(view, x + 2.0f * texel_width * n);
     if (any(lessThan(t, vec3(0.0f))) || any(greaterThanEqual(t, vec3(1.0f)))) return 1.0f;
-    return multisample_visibility(light_depth, t, light.views.z, frame.sizes.y, 2.0f * texel_width / view.radiance.w);
+    return multisample_visibility(light_depth, t, light.views.z, frame.light_counts.z, 2.0f * texel_width / view.radiance.w,
+                                  frame.light_counts.w);
   }
   // Point and spot: compare distances to the light with the first hits stored in the shadow cube map.
   vec3 to_x = x - light.position.xyz;
@@ -49,8 +50,8 @@ float light_visibility(int l, vec3 x, vec3 n) {
   int layer;
   vec2 uv;
   if (!point_light_lookup(light, light.views.z, light.views.w, d, layer, uv)) return 1.0f;
-  int size = frame.sizes.y;
-  int h = frame.counts.w / 2;
+  int size = frame.light_counts.z;
+  int h = frame.light_counts.w / 2;
   ivec2 center = ivec2(uv * float(size));
   float own = length(d);
   float bias = 3.0f * texel_angle * own;

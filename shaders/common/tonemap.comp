@@ -8,7 +8,7 @@ layout(rgba8, binding = LUCENT_IMAGE_LDR) uniform writeonly image2D ldr;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= frame.sizes.z || pixel.y >= frame.sizes.w) return;
+  if (pixel.x >= frame.output_size.x || pixel.y >= frame.output_size.y) return;
   vec3 radiance = texelFetch(hdr, pixel, 0).rgb;
-  imageStore(ldr, pixel, vec4(tonemap(radiance, frame.options.x, int(frame.options.w)), 1.0f));
+  imageStore(ldr, pixel, vec4(tonemap(radiance, frame.display.x, int(frame.display.y)), 1.0f));
 }

@@ -2,6 +2,7 @@
 // the K map views from all lights (common/light_sampling.glsl). Each texel accumulates (sum of B over frames,
 // number of frames).
 #include "common/frame.glsl"
+#include "radiosity_maps/method_block.glsl"
 #include "common/lights.glsl"
 #include "common/light_sampling.glsl"
 
@@ -14,16 +15,17 @@ layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { Counters
 
 void main() {
   ivec3 texel = ivec3(gl_GlobalInvocationID);
-  int size = frame.sizes.x;
-  if (texel.x >= size || texel.y >= size || texel.z >= frame.counts.y) return;
+  int size = method.counts.z;
+  if (texel.x >= size || texel.y >= size || texel.z >= method.counts.x) return;
   vec4 previous = frame.seeds.z != 0u ? vec4(0.0f) : imageLoad(radiosity, texel);
   vec4 p_o = texelFetch(map_position, texel, 0);
   if (p_o.w < 0.5f) {
     imageStore(radiosity, texel, vec4(0.0f));
     return;
   }
-  atomicAdd(counters.covered_texels, 1u);
+  atomicAdd(counters.method_counts[0], 1u);  // covered map texels
   vec3 n_o = normalize(texelFetch(map_normal, texel, 0).xyz);
-  vec3 B = scattered_radiosity(int(p_o.w) - 1, p_o.xyz, n_o, uint(texel.y * size + texel.x), uint(texel.z));
+  vec3 B = scattered_radiosity(int(p_o.w) - 1, p_o.xyz, n_o, uint(texel.y * size + texel.x), uint(texel.z),
+                                method.counts.y);
   imageStore(radiosity, texel, previous + vec4(B, 1.0f));
 }

@@ -9,8 +9,8 @@ layout(binding = LUCENT_TEX_RADIOSITY) uniform sampler2DArray radiosity;
 // individually so that a texel of an occluding surface never blends into x_o (bilinear filtering did, and drew
 // bright seams where one object occludes another in a map view).
 vec4 visible_taps(int k, vec3 t, float bias) {
-  int size = frame.sizes.x;
-  int h = frame.counts.w / 2;
+  int size = method.counts.z;
+  int h = method.vpls.z / 2;
   ivec2 center = ivec2(t.xy * float(size));
   vec3 sum = vec3(0.0f);
   float visible = 0.0f;
@@ -30,27 +30,27 @@ vec4 visible_taps(int k, vec3 t, float bias) {
 // filter_lod = 0: per-tap visibility and radiosity (visible_taps); filter_lod > 0: multi-sampled visibility
 // and a mip-filtered look-up (the paper's noise filter), normalised by the filtered frame count.
 vec4 combine_maps(vec3 x_o, vec3 n_o) {
-  int size = frame.sizes.x;
+  int size = method.counts.z;
   vec3 color = vec3(0.0f);
   float n = 0.0f;
-  for (int k = 0; k < frame.counts.y; ++k) {
-    vec3 d_k = frame.maps[k].direction.xyz;
-    float texel_width = frame.maps[k].direction.w / float(size);
+  for (int k = 0; k < method.counts.x; ++k) {
+    vec3 d_k = method.maps[k].direction.xyz;
+    float texel_width = method.maps[k].direction.w / float(size);
     float cos_theta = clamp(dot(n_o, d_k), 0.0f, 1.0f);
-    vec3 x_bar = x_o - frame.biases.y * texel_width * (n_o - cos_theta * d_k);
-    vec3 t = view_coords(frame.maps[k], x_bar);
+    vec3 x_bar = x_o - method.biases.y * texel_width * (n_o - cos_theta * d_k);
+    vec3 t = view_coords(method.maps[k], x_bar);
     if (any(lessThan(t.xy, vec2(0.0f))) || any(greaterThanEqual(t.xy, vec2(1.0f)))) continue;
     // Depth spans the view width, so eps_bias texels are eps_bias / size in depth units.
-    float bias = frame.biases.x / float(size);
-    if (frame.biases.z <= 0.0f) {
+    float bias = method.biases.x / float(size);
+    if (method.biases.z <= 0.0f) {
       vec4 taps = visible_taps(k, t, bias);
       color += taps.rgb;
       n += taps.w;
       continue;
     }
-    float v = multisample_visibility(map_depth, t, k, size, bias);
+    float v = multisample_visibility(map_depth, t, k, size, bias, method.vpls.z);
     if (v <= 0.0f) continue;
-    vec4 accumulated = textureLod(radiosity, vec3(t.xy, float(k)), frame.biases.z);
+    vec4 accumulated = textureLod(radiosity, vec3(t.xy, float(k)), method.biases.z);
     if (accumulated.a <= 0.0f) continue;
     color += v * accumulated.rgb / accumulated.a;  // mean over frames, normalised by filtered coverage
     n += v;

@@ -1,6 +1,7 @@
 // probe.comp: the scattered radiosity B from the maps (Algorithm 1) at arbitrary surface points, for
 // diagnostics and tests (symmetry, VPL energy).
 #include "common/frame.glsl"
+#include "radiosity_maps/method_block.glsl"
 #include "radiosity_maps/map_lookup.glsl"
 
 layout(local_size_x = 64) in;

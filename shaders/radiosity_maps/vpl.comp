@@ -4,6 +4,7 @@
 // deforms. Its area is A_v = (4 pi / N) |x_v - c|^2 / cos(u_v, n_v), the surface the direction's solid angle
 // covers (sum over v: the outermost surface's area), and its radiosity B(x_v) comes from the maps (Algorithm 1).
 #include "common/frame.glsl"
+#include "radiosity_maps/method_block.glsl"
 #include "radiosity_maps/map_lookup.glsl"
 #include "bssrdf/constants.h"
 
@@ -15,7 +16,7 @@ layout(std430, binding = LUCENT_BINDING_VPLS) writeonly buffer VplBlock { VplGPU
 
 void main() {
   int v = int(gl_GlobalInvocationID.x);
-  int count = frame.extra_counts.y;
+  int count = method.vpls.x;
   if (v >= count) return;
   // Spherical Fibonacci direction v of N.
   float z = 1.0f - (2.0f * float(v) + 1.0f) / float(count);
@@ -23,8 +24,8 @@ void main() {
   float s = sqrt(max(0.0f, 1.0f - z * z));
   vec3 u = vec3(s * cos(phi), s * sin(phi), z);
   int face = cube_face(u);
-  vec3 t = view_coords(frame.vpl_views[face], frame.vpl_center.xyz + u);
-  int size = frame.extra_counts.z;
+  vec3 t = view_coords(method.vpl_views[face], method.vpl_center.xyz + u);
+  int size = method.vpls.y;
   ivec3 texel = ivec3(clamp(ivec2(t.xy * float(size)), ivec2(0), ivec2(size - 1)), face);
   vec4 p = texelFetch(vpl_position, texel, 0);
   VplGPU vpl;
@@ -33,7 +34,7 @@ void main() {
   vpl.radiosity = vec4(0.0f);
   if (p.w > 0.5f) {
     vec3 n = normalize(texelFetch(vpl_normal, texel, 0).xyz);
-    vec3 to_x = p.xyz - frame.vpl_center.xyz;
+    vec3 to_x = p.xyz - method.vpl_center.xyz;
     float cos_u = max(dot(u, n), 0.05f);  // grazing hits: bound the area a single VPL stands for
     float area = 4.0f * kPi / float(count) * dot(to_x, to_x) / cos_u;
     MaterialGPU material = materials[objects[int(p.w) - 1].info.x];

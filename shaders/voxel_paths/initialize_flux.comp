@@ -36,7 +36,7 @@ int inside_voxel_near(vec3 x, vec3 n) {
 }
 
 void main() {
-  int size = frame.sizes.y;
+  int size = frame.light_counts.z;
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (texel.x >= size || texel.y >= size) return;
   LightGPU light = frame.lights[u_light];

@@ -8,7 +8,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(std430, binding = VOXEL_BINDING_LABELS) readonly buffer LabelBlock { uint labels[]; };
 layout(std430, binding = VOXEL_BINDING_DISTANCES) readonly buffer DistanceBlock { vec4 distances[]; };
-layout(rgba16f, binding = 0) uniform writeonly image3D radiance;
+layout(rgba16f, binding = VOXEL_IMAGE_RADIANCE) uniform writeonly image3D radiance;
 
 vec3 transmitted(int index) {
   vec3 n = distances[index].rgb;

@@ -9,7 +9,7 @@
 #include "geometry/isosurface_io.h"
 #include "geometry/marching_tetrahedra.h"
 #include "gpu/gl_debug.h"
-#include "gpu/gpu_timer.h"
+#include "gpu/frame_profiler.h"
 #include "lucent/error.h"
 
 namespace lucent::geometry {
@@ -46,22 +46,6 @@ GLsizeiptr buffer_size(GLuint buffer) {
 GLuint groups(std::uint64_t count, std::uint64_t per_group) {
   return static_cast<GLuint>((count + per_group - 1) / per_group);
 }
-
-// Times a pass when a timer is given.
-class PassTimer {
- public:
-  PassTimer(gpu::GpuTimer* timer, const char* pass) : timer_(timer) {
-    if (timer_) timer_->begin(pass);
-  }
-  ~PassTimer() {
-    if (timer_) timer_->end();
-  }
-  PassTimer(const PassTimer&) = delete;
-  PassTimer& operator=(const PassTimer&) = delete;
-
- private:
-  gpu::GpuTimer* timer_;
-};
 
 }  // namespace
 
@@ -154,7 +138,7 @@ std::size_t BlobIsosurface::gpu_memory_bytes() const {
   return bytes;
 }
 
-void BlobIsosurface::extract(float time_seconds, gpu::GpuTimer* timer) {
+void BlobIsosurface::extract(float time_seconds, gpu::FrameProfiler* profiler) {
   check_previous_counts();
   gpu::DebugGroup group("blob isosurface");
   IsosurfaceParamsGPU params{};
@@ -181,18 +165,18 @@ void BlobIsosurface::extract(float time_seconds, gpu::GpuTimer* timer) {
   glClearNamedBufferSubData(buffers_[kDispatch], GL_R32UI, offsetof(IsosurfaceDispatchGPU, active_points), 4,
                             GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
   {
-    PassTimer t(timer, "isosurface sample");
+    gpu::FrameProfiler::Pass t(profiler, "isosurface sample");
     dispatch_points(sample_);
   }
   {
-    PassTimer t(timer, "isosurface classify");
+    gpu::FrameProfiler::Pass t(profiler, "isosurface classify");
     dispatch_points(classify_);
   }
 
   // Step 2: counts -> first vertex and triangle of each point; totals -> overflow flag and draw command.
-  scan(timer);
+  scan(profiler);
   {
-    PassTimer t(timer, "isosurface finalize");
+    gpu::FrameProfiler::Pass t(profiler, "isosurface finalize");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_ISO_COUNTS, buffers_[kCounts]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_ISO_DRAW, buffers_[kDraw]);
     glUseProgram(finalize_.id());
@@ -202,7 +186,7 @@ void BlobIsosurface::extract(float time_seconds, gpu::GpuTimer* timer) {
 
   // Step 3: vertices and triangles of the active points.
   {
-    PassTimer t(timer, "isosurface emit");
+    gpu::FrameProfiler::Pass t(profiler, "isosurface emit");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_ISO_VERTICES, buffers_[kVertices]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_ISO_INDICES, buffers_[kIndices]);
     glUseProgram(emit_.id());
@@ -220,8 +204,8 @@ void BlobIsosurface::extract(float time_seconds, gpu::GpuTimer* timer) {
   }
 }
 
-void BlobIsosurface::scan(gpu::GpuTimer* timer) {
-  PassTimer t(timer, "isosurface scan");
+void BlobIsosurface::scan(gpu::FrameProfiler* profiler) {
+  gpu::FrameProfiler::Pass t(profiler, "isosurface scan");
   auto bind_level = [&](GLuint binding, std::size_t level) {
     const ScanLevel& l = scan_levels_[level];
     GLuint buffer = level == 0 ? buffers_[kOffsets] : buffers_[kScanSums];

@@ -20,7 +20,7 @@
 #include "shared/shader_io.h"
 
 namespace lucent::gpu {
-class GpuTimer;
+class FrameProfiler;
 }
 
 namespace lucent::geometry {
@@ -45,8 +45,8 @@ class BlobIsosurface {
   // Extracts the surface at `time_seconds`; returns without waiting for the GPU. Ends with the barriers for
   // drawing (vertex, index, indirect) and reading back the buffers. Throws lucent::Error when an earlier
   // extraction whose counts have reached the CPU (checked without waiting, at most a few frames late)
-  // needed more than the capacity. With `timer`, each pass is timed under "isosurface <pass>".
-  void extract(float time_seconds, gpu::GpuTimer* timer = nullptr);
+  // needed more than the capacity. With `profiler`, each pass is timed under "isosurface <pass>".
+  void extract(float time_seconds, gpu::FrameProfiler* profiler = nullptr);
 
   // Draws the last extraction: binds its vertex array and GL_DRAW_INDIRECT_BUFFER, glDrawElementsIndirect.
   void draw() const;
@@ -83,7 +83,7 @@ class BlobIsosurface {
     GLintptr offset;      // into the buffer holding this level's data (kOffsets for level 0, else kScanSums)
     std::uint32_t count;  // elements
   };
-  void scan(gpu::GpuTimer* timer);
+  void scan(gpu::FrameProfiler* profiler);
   void check_previous_counts();
   IsosurfaceCounts counts_from(const shader::IsosurfaceCountsGPU& gpu) const;
 

@@ -1,11 +1,12 @@
 // isosurface_io.h: the CPU-GPU data contracts of the GPU isosurface extractor (geometry/blob_isosurface.cpp,
 // shaders/geometry/): binding points and block layouts, checked by static_assert in C++.
-// The binding points are above the renderer's (shared/shader_io.h uses 0-7), so an extraction between the
-// renderer's binds and draws disturbs nothing.
+// The binding points lie in the isosurface ranges of shared/bindings.h, apart from the frame's and the methods',
+// so an extraction between the renderer's binds and draws disturbs nothing.
 #ifndef LUCENT_GEOMETRY_ISOSURFACE_IO_H
 #define LUCENT_GEOMETRY_ISOSURFACE_IO_H
 #include "shared/bridge.h"
 #include "geometry/blob_field.h"
+#include "shared/bindings.h"
 
 #define LUCENT_BINDING_ISO_PARAMS 8     // uniform IsosurfaceParamsGPU (std140)
 #define LUCENT_BINDING_ISO_SAMPLES 9    // buffer float[] per grid point: the stored field sample (std430)
@@ -22,6 +23,10 @@
 #define LUCENT_BINDING_SCAN_DATA 18     // scan passes: buffer uvec2[] scanned in place (std430)
 #define LUCENT_BINDING_SCAN_SUMS 19     // scan passes: buffer uvec2[] one total per block (std430)
 #define LUCENT_ISO_MAX_BINDING 19       // the extractor checks GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS against it
+#if LUCENT_BINDING_ISO_SAMPLES < LUCENT_ISOSURFACE_STORAGE_FIRST || LUCENT_BINDING_SCAN_SUMS > LUCENT_ISOSURFACE_STORAGE_LAST || \
+    LUCENT_BINDING_ISO_PARAMS < LUCENT_ISOSURFACE_UNIFORM_FIRST || LUCENT_BINDING_ISO_PARAMS > LUCENT_ISOSURFACE_UNIFORM_LAST
+#error isosurface binding points outside their ranges in shared/bindings.h
+#endif
 
 #define LUCENT_ISO_EMIT_GROUP 64  // invocations per workgroup of the emit pass (one per active point)
 #define LUCENT_SCAN_BLOCK 1024  // elements per scan workgroup: 256 invocations x 4

@@ -82,4 +82,10 @@ ImageRGBA8 heat_map(const ImageRGBA32F& a, const ImageRGBA32F& b, double scale) 
   return out;
 }
 
+double noise_rgb(const ImageError& e) { return e.reference_noise_rms * std::sqrt(3.0); }
+
+double corrected_rmse(const ImageError& e) {
+  return std::sqrt(std::max(0.0, e.rmse_rgb * e.rmse_rgb - noise_rgb(e) * noise_rgb(e)));
+}
+
 }  // namespace lucent

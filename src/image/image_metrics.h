@@ -18,6 +18,11 @@ struct ImageError {
   double reference_noise_rms = 0.0;  // RMS of the reference's per-pixel standard error (0 if none)
 };
 
+// The noise of a reference in the units of the RGB RMSE (sqrt(dr^2+dg^2+db^2)), and the noise-corrected RMSE:
+// the expected squared error against a noisy reference is the method's squared error plus the reference's variance.
+double noise_rgb(const ImageError& e);
+double corrected_rmse(const ImageError& e);
+
 // `standard_error` may be null. Both images must have the same size (throws lucent::Error otherwise).
 ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error = nullptr);
 // The same on tone-mapped values in [0, 1] (exposure in stops, ACES, sRGB).

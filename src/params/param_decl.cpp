@@ -34,6 +34,8 @@ std::string_view to_string(ParamType type) {
   return "?";
 }
 
+std::string_view to_string(ParamUpdate update) { return update == ParamUpdate::Live ? "live" : "rebuild"; }
+
 std::string to_string(const ParamValue& value) {
   if (auto* d = std::get_if<double>(&value)) return fmt::format("{:g}", *d);
   if (auto* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
@@ -62,7 +64,8 @@ std::string describe(const ParamSection& section, int indent) {
     std::string def = p.default_json.empty() ? "(required)" : std::string(p.default_json);
     std::string range = range_text(p);
     if (!p.unit.empty()) range += (range.empty() ? "" : " ") + std::string(p.unit);
-    out += fmt::format("{}{:<16} {:<6} {:<14} {:<24} {}\n", pad, p.name, to_string(p.type), def, range, p.doc);
+    out += fmt::format("{}{:<16} {:<6} {:<14} {:<24} {:<7} {}\n", pad, p.name, to_string(p.type), def, range,
+                       to_string(p.update), p.doc);
   }
   return out;
 }

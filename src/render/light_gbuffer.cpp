@@ -15,25 +15,24 @@ LightGBuffer::LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int si
     : size_(size),
       views_(build_light_views(scene, scene_gpu.translucent_bounds(), scene_gpu.scene_bounds(), size)),
       gbuffer_(size, size, std::max<int>(1, static_cast<int>(views_.views.size())), "light G-buffer"),
+      layer_views_(views_.views, "light G-buffer views"),
       program_(gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "gbuffer/layered_views.geom",
                                             "gbuffer/gbuffer.frag")) {}
 
 void LightGBuffer::fill_frame(shader::FrameGPU& frame) const {
-  frame.counts.x = light_count();
-  frame.sizes.y = size_;
-  frame.extra_counts.x = static_cast<int>(views_.views.size());
+  frame.light_counts.x = light_count();
+  frame.light_counts.y = static_cast<int>(views_.views.size());
+  frame.light_counts.z = size_;
   std::copy(views_.lights.begin(), views_.lights.end(), frame.lights);
   std::copy(views_.views.begin(), views_.views.end(), frame.light_views);
 }
 
-void LightGBuffer::render(const SceneGpu& scene_gpu, gpu::GpuTimer& timer) const {
-  gpu::DebugGroup group("light_gbuffer");
-  timer.begin("light_gbuffer");
+void LightGBuffer::render(const SceneGpu& scene_gpu, gpu::FrameProfiler& profiler) const {
+  auto pass = profiler.pass("light_gbuffer");
+  layer_views_.bind();
   gbuffer_.begin_pass();
   glUseProgram(program_.id());
-  glUniform1i(glGetUniformLocation(program_.id(), "u_view_set"), 0);
   if (!views_.views.empty()) scene_gpu.draw_all();
-  timer.end();
 }
 
 void LightGBuffer::bind_textures() const {

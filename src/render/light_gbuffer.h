@@ -4,7 +4,8 @@
 #include <string>
 
 #include "gpu/gbuffer.h"
-#include "gpu/gpu_timer.h"
+#include "gpu/frame_profiler.h"
+#include "gpu/layer_views.h"
 #include "gpu/shader_program.h"
 #include "render/light_views.h"
 
@@ -18,10 +19,11 @@ class LightGBuffer {
  public:
   LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int size);
 
-  // Fills frame.counts.x, frame.sizes.y, frame.extra_counts.x, frame.lights and frame.light_views.
+  // Fills the frame block's lights, light views and light counts (light_counts.xyz); the shadow taps
+  // (light_counts.w) are the method's.
   void fill_frame(shader::FrameGPU& frame) const;
-  // Renders every light layer in one layered pass ("light_gbuffer" timer step).
-  void render(const SceneGpu& scene_gpu, gpu::GpuTimer& timer) const;
+  // Renders every light layer in one layered pass (pass "light_gbuffer").
+  void render(const SceneGpu& scene_gpu, gpu::FrameProfiler& profiler) const;
   // Binds position, normal and depth to LUCENT_TEX_LIGHT_*.
   void bind_textures() const;
 
@@ -34,6 +36,7 @@ class LightGBuffer {
   int size_;
   LightViews views_;
   gpu::GBuffer gbuffer_;
+  gpu::LayerViews layer_views_;
   gpu::ShaderProgram program_;
 };
 

@@ -3,9 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <utility>
+
 #include "gpu/gbuffer.h"
 #include "gpu/gl_debug.h"
-#include "gpu/gpu_timer.h"
+#include "gpu/frame_profiler.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
 #include "methods/method.h"
@@ -61,26 +63,92 @@ glm::mat4 clip_from_world(const Camera& camera, float aspect, float scene_radius
   return camera.clip_from_view(aspect, z_near, z_far) * camera.view_from_world();
 }
 
+// What a change to the scene touches: the method's live parameters, the materials, or more (a rebuild).
+enum class SceneChange { None, Live, Materials, Rebuild };
+
+bool same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
+  return a.positions == b.positions && a.normals == b.normals && a.indices == b.indices && a.uvs == b.uvs;
+}
+
+bool same_material(const Material& a, const Material& b) {
+  const MediumField &f = a.field, &g = b.field;
+  return a.sigma_a == b.sigma_a && a.sigma_s == b.sigma_s && a.g == b.g && a.eta == b.eta && a.model == b.model &&
+         f.type == g.type && f.scale_mm == g.scale_mm && f.contrast == g.contrast && f.file == g.file &&
+         f.volume == g.volume && f.has_bounds == g.has_bounds && f.bounds_lower == g.bounds_lower &&
+         f.bounds_upper == g.bounds_upper;
+}
+
+SceneChange classify_change(const Scene& built, const Scene& now) {
+  if (built.method != now.method || built.objects.size() != now.objects.size() ||
+      built.lights.size() != now.lights.size() || built.point_lights.size() != now.point_lights.size() ||
+      built.environment.has_value() != now.environment.has_value())
+    return SceneChange::Rebuild;
+  for (std::size_t i = 0; i < built.lights.size(); ++i) {
+    const DirectionalLight &a = built.lights[i], &b = now.lights[i];
+    if (a.direction != b.direction || a.radiance != b.radiance || a.specular != b.specular) return SceneChange::Rebuild;
+  }
+  for (std::size_t i = 0; i < built.point_lights.size(); ++i) {
+    const PointLight &a = built.point_lights[i], &b = now.point_lights[i];
+    if (a.position != b.position || a.intensity != b.intensity || a.spot != b.spot || a.direction != b.direction ||
+        a.inner_deg != b.inner_deg || a.outer_deg != b.outer_deg)
+      return SceneChange::Rebuild;
+  }
+  if (built.environment &&
+      (built.environment->file != now.environment->file || built.environment->light_count != now.environment->light_count ||
+       built.environment->intensity != now.environment->intensity ||
+       built.environment->background != now.environment->background || built.environment->map != now.environment->map))
+    return SceneChange::Rebuild;
+  bool materials = built.scale_mm != now.scale_mm;
+  for (std::size_t i = 0; i < built.objects.size(); ++i) {
+    const SceneObject &a = built.objects[i], &b = now.objects[i];
+    if (a.translucent() != b.translucent() || a.blob_resolution != b.blob_resolution ||
+        a.world_from_object != b.world_from_object || a.deformation.type != b.deformation.type ||
+        a.deformation.amplitude != b.deformation.amplitude || a.deformation.period_s != b.deformation.period_s ||
+        !same_mesh(a.mesh, b.mesh))
+      return SceneChange::Rebuild;
+    if (a.albedo != b.albedo) materials = true;
+    if (a.material && !same_material(*a.material, *b.material)) materials = true;
+  }
+  // Method parameters: a change of any Rebuild parameter rebuilds; Live ones are taken per frame.
+  bool live = false;
+  const methods::MethodInfo* info = methods::find_method(now.method);
+  for (const auto& [name, value] : now.method_params.all()) {
+    if (built.method_params.has(name) && to_string(built.method_params.all().at(name)) == to_string(value)) continue;
+    const ParamDecl* decl = nullptr;
+    if (info)
+      for (const ParamDecl& d : info->params)
+        if (d.name == name) decl = &d;
+    if (!decl || decl->update != ParamUpdate::Live) return SceneChange::Rebuild;
+    live = true;
+  }
+  if (materials) return SceneChange::Materials;  // a method taking materials live also re-reads its parameters
+  return live ? SceneChange::Live : SceneChange::None;
+}
+
 }  // namespace
 
 struct Renderer::Impl {
   Scene scene;
+  Scene built;  // the scene as the GPU resources were built from it (for scene_changed())
   std::unique_ptr<render::SceneGpu> scene_gpu;
   std::unique_ptr<methods::Method> method;
   std::unique_ptr<render::EnvironmentTexture> environment;
   gpu::ShaderProgram camera_program, tonemap_program;
-  gpu::GpuTimer timer;
+  gpu::FrameProfiler profiler;
   GLuint frame_buffer = 0;
   OutputImages output;
   bool restart = true;
   double time_seconds = 0.0;
   bool geometry_dirty = true;  // animated geometry must be brought to time_seconds before the next frame
-  unsigned frame_counter = 0;
-  FrameTimings timings;
+  std::uint64_t frame_counter = 0;
+  FrameTimings latest;                   // newest frame reported
+  std::vector<FrameTimings> unclaimed;   // reported frames not yet taken by finished_frames()
+  static constexpr std::size_t kMaxUnclaimed = 4096;
 
   explicit Impl(Scene s) : scene(std::move(s)) {
     if (platform::current_capabilities().version.empty())
       throw Error("no OpenGL context: create one (lucent::create_headless_context) before lucent::Renderer");
+    if (scene.method.empty()) scene.method = std::string(methods::default_method().name);
     camera_program = gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "", "gbuffer/gbuffer.frag",
                                                   "#define CAMERA_VIEW 1\n");
     tonemap_program = gpu::ShaderProgram::compute("common/tonemap.comp");
@@ -92,16 +160,47 @@ struct Renderer::Impl {
   ~Impl() { glDeleteBuffers(1, &frame_buffer); }
 
   void rebuild() {
-    const methods::MethodInfo* info = methods::find_method(scene.method);
-    if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
+    if (scene.method.empty()) scene.method = std::string(methods::default_method().name);
+    if (!methods::find_method(scene.method))
+      throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
     method.reset();
     scene_gpu = std::make_unique<render::SceneGpu>(scene);
     geometry_dirty = true;
     environment.reset();
     if (scene.environment && scene.environment->map)
       environment = std::make_unique<render::EnvironmentTexture>(*scene.environment->map);
-    method = info->create(scene, *scene_gpu);
+    method = methods::create_method({scene, *scene_gpu});
+    built = scene;
     restart = true;
+  }
+
+  // Applies an edited scene with the least work: live parameters and materials without recreating the method
+  // (and recompiling its shaders) when it accepts them, anything else by rebuilding.
+  void scene_changed() {
+    switch (classify_change(built, scene)) {
+      case SceneChange::None:
+        restart = true;
+        break;
+      case SceneChange::Live:
+        if (!method->update_live_params(scene)) return rebuild();
+        built.method_params = scene.method_params;
+        restart = true;
+        break;
+      case SceneChange::Materials:
+        if (!method->update_materials(scene)) {
+          scene_gpu->update_materials(scene);
+          method.reset();
+          method = methods::create_method({scene, *scene_gpu});
+        } else {
+          scene_gpu->update_materials(scene);
+        }
+        built = scene;
+        restart = true;
+        break;
+      case SceneChange::Rebuild:
+        rebuild();
+        break;
+    }
   }
 
   shader::FrameGPU frame_block(const Camera& camera) {
@@ -111,77 +210,80 @@ struct Renderer::Impl {
     frame.clip_from_world = clip_from_world(camera, aspect, bounds.radius, bounds.center);
     frame.camera_position = glm::vec4(camera.eye, 1.0f);
     frame.background = glm::vec4(scene.render.background, 0.0f);
-    frame.sizes.z = output.width;
-    frame.sizes.w = output.height;
+    frame.output_size = glm::ivec4(output.width, output.height, 0, 0);
     frame.seeds.x = scene.render.seed;
-    frame.seeds.y = ++frame_counter;
-    frame.options.x = std::exp2(scene.render.exposure);
-    frame.options.w = static_cast<float>(static_cast<int>(scene.render.tonemap));
+    frame.seeds.y = static_cast<unsigned>(frame_counter);
+    frame.display = glm::vec4(std::exp2(scene.render.exposure), static_cast<float>(static_cast<int>(scene.render.tonemap)),
+                              0.0f, 0.0f);
     if (environment)
-      frame.extra_counts.w = LUCENT_ENVIRONMENT_MAP | (scene.environment->background ? LUCENT_ENVIRONMENT_BACKGROUND : 0);
+      frame.environment.x = LUCENT_ENVIRONMENT_MAP | (scene.environment->background ? LUCENT_ENVIRONMENT_BACKGROUND : 0);
     method->prepare_frame(frame, restart);
     return frame;
   }
 
   void camera_gbuffer_pass() {
-    gpu::DebugGroup group("camera_gbuffer");
-    timer.begin("camera_gbuffer");
+    auto pass = profiler.pass("camera_gbuffer");
     output.camera_gbuffer->begin_pass();
     glUseProgram(camera_program.id());
     scene_gpu->draw_all();
-    timer.end();
-    output.camera_gbuffer->bind_textures(LUCENT_TEX_CAMERA_POSITION, LUCENT_TEX_CAMERA_NORMAL, 15);
+    output.camera_gbuffer->bind_textures(LUCENT_TEX_CAMERA_POSITION, LUCENT_TEX_CAMERA_NORMAL, LUCENT_TEX_CAMERA_DEPTH);
   }
 
   void tonemap_pass() {
-    gpu::DebugGroup group("tonemap");
-    timer.begin("tonemap");
+    auto pass = profiler.pass("tonemap");
     glBindTextureUnit(LUCENT_TEX_HDR, output.hdr);
     glBindImageTexture(LUCENT_IMAGE_LDR, output.ldr, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glUseProgram(tonemap_program.id());
     glDispatchCompute(static_cast<GLuint>((output.width + 7) / 8), static_cast<GLuint>((output.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    timer.end();
   }
 
-  void summarize() {
-    timings = FrameTimings{};
-    for (auto& [name, ms] : timer.resolve()) {
-      timings.passes.push_back({name, ms});
-      if (name.rfind("isosurface", 0) == 0) timings.geometry_ms += ms;
-      else if (name == "light_gbuffer") timings.light_gbuffer_ms += ms;
-      else if (name == "map_gbuffers" || name == "integrate" || name == "mipmaps") timings.radiosity_maps_ms += ms;
-      else timings.combine_ms += ms;
-      timings.total_ms += ms;
+  FrameTimings summarize(const gpu::ProfiledFrame& profiled) const {
+    FrameTimings t;
+    t.frame = profiled.frame;
+    for (const auto& [name, ms] : profiled.passes) {
+      t.passes.push_back({name, ms});
+      t.total_ms += ms;
     }
-    timings.bssrdf_samples = method->bssrdf_samples_last_frame();
-    glm::uvec2 coverage = method->pixel_coverage();
-    timings.translucent_pixels = coverage.x;
-    timings.map_coverage = coverage.x > 0 ? static_cast<double>(coverage.y) / coverage.x : 1.0;
+    const shader::CountersGPU& c = profiled.counters;
     // Output images: RGBA32F radiance, RGBA8 display, camera G-buffer (RGBA32F + RGBA16F + DEPTH32F).
     std::size_t pixels = static_cast<std::size_t>(output.width) * static_cast<std::size_t>(output.height);
-    timings.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4);
+    t.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4);
+    t.stats.push_back({"translucent_pixels", static_cast<double>(c.translucent_pixels), ""});
+    t.stats.push_back({"coverage", c.translucent_pixels > 0 ? static_cast<double>(c.covered_pixels) / c.translucent_pixels : 1.0, ""});
+    t.stats.push_back({"gpu_memory", static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0), "MiB"});
+    method->statistics({t.passes, c}, t.stats);
+    return t;
+  }
+
+  void take_reported(bool wait) {
+    for (const gpu::ProfiledFrame& f : profiler.collect(wait)) {
+      latest = summarize(f);
+      if (unclaimed.size() == kMaxUnclaimed) unclaimed.erase(unclaimed.begin());
+      unclaimed.push_back(latest);
+    }
   }
 
   void render(const Camera& camera, const RenderTarget& target) {
     if (target.width <= 0 || target.height <= 0)
       throw Error(fmt::format("render target size {}x{} is empty", target.width, target.height));
     output.resize(target.width, target.height);
-    timer.begin_frame();
+    profiler.begin_frame(++frame_counter);
     shader::FrameGPU frame = frame_block(camera);
     restart = false;
     glNamedBufferSubData(frame_buffer, 0, sizeof(frame), &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_FRAME, frame_buffer);
-    if (geometry_dirty && scene_gpu->animated()) scene_gpu->update(time_seconds, &timer);
+    if (geometry_dirty && scene_gpu->animated()) scene_gpu->update(time_seconds, &profiler);
     geometry_dirty = false;
     scene_gpu->bind_buffers();
     if (environment) environment->bind();
     camera_gbuffer_pass();
-    method->render({scene, *scene_gpu, *output.camera_gbuffer, output.hdr, timer, frame.seeds.z != 0});
+    method->render({scene, *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0});
     tonemap_pass();
     glBlitNamedFramebuffer(output.ldr_framebuffer, target.framebuffer, 0, 0, output.width, output.height, 0, 0,
                            target.width, target.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    summarize();
+    profiler.end_frame();
+    take_reported(/*wait=*/false);
   }
 };
 
@@ -191,7 +293,7 @@ Renderer::~Renderer() = default;
 void Renderer::render(const Camera& camera, const RenderTarget& target) { impl_->render(camera, target); }
 Scene& Renderer::scene() { return impl_->scene; }
 const Scene& Renderer::scene() const { return impl_->scene; }
-void Renderer::scene_changed() { impl_->rebuild(); }
+void Renderer::scene_changed() { impl_->scene_changed(); }
 void Renderer::set_time(double seconds) {
   if (seconds == impl_->time_seconds) return;
   impl_->time_seconds = seconds;
@@ -200,7 +302,27 @@ void Renderer::set_time(double seconds) {
 double Renderer::time() const { return impl_->time_seconds; }
 void Renderer::restart() { impl_->restart = true; }
 int Renderer::accumulated_frames() const { return impl_->method->accumulated_frames(); }
-const FrameTimings& Renderer::timings() const { return impl_->timings; }
+const FrameTimings& Renderer::timings() const { return impl_->latest; }
+std::vector<FrameTimings> Renderer::finished_frames(bool wait) {
+  impl_->take_reported(wait);
+  return std::exchange(impl_->unclaimed, {});
+}
+const FrameTimings& Renderer::last_frame_timings() {
+  impl_->take_reported(/*wait=*/true);
+  return impl_->latest;
+}
+
+double FrameTimings::stat(std::string_view name, double fallback) const {
+  for (const FrameStatistic& s : stats)
+    if (s.name == name) return s.value;
+  return fallback;
+}
+
+double FrameTimings::pass_ms(std::string_view name) const {
+  for (const PassTiming& p : passes)
+    if (p.name == name) return p.ms;
+  return 0.0;
+}
 std::string Renderer::device_of_current_context() {
   const auto& caps = platform::current_capabilities();
   return caps.renderer + ", OpenGL " + caps.version;

@@ -8,7 +8,8 @@
 #include "geometry/blob_isosurface.h"
 #include "geometry/isosurface_grid.h"
 #include "gpu/gl_debug.h"
-#include "gpu/gpu_timer.h"
+#include "gpu/frame_profiler.h"
+#include "lucent/error.h"
 #include "shared/shader_io.h"
 
 namespace lucent::render {
@@ -119,8 +120,9 @@ SceneGpu::SceneGpu(const Scene& scene) {
   vertex_bytes_ = vertices.size() * sizeof(VertexGPU);
   vertex_buffer_ = make_buffer(vertices, "scene vertices", deforming_.empty() ? 0 : GL_DYNAMIC_STORAGE_BIT);
   index_buffer_ = make_buffer(indices, "scene indices");
-  material_buffer_ = make_buffer(materials, "materials");
-  object_buffer_ = make_buffer(objects, "objects");
+  material_buffer_ = make_buffer(materials, "materials", GL_DYNAMIC_STORAGE_BIT);
+  object_buffer_ = make_buffer(objects, "objects", GL_DYNAMIC_STORAGE_BIT);
+  material_count_ = materials.size();
   glCreateVertexArrays(1, &vao_);
   glVertexArrayVertexBuffer(vao_, 0, vertex_buffer_, 0, sizeof(VertexGPU));
   glVertexArrayElementBuffer(vao_, index_buffer_);
@@ -155,7 +157,7 @@ void SceneGpu::draw_translucent() const {
   for (std::size_t b = 0; b < translucent_blob_count_; ++b) blobs_[b]->draw();
 }
 
-void SceneGpu::update(double seconds, gpu::GpuTimer* timer) {
+void SceneGpu::update(double seconds, gpu::FrameProfiler* profiler) {
   for (const Deforming& d : deforming_) {
     TriangleMesh world = transformed(deformed_mesh(d.mesh, d.deformation, seconds), d.world_from_object);
     std::vector<VertexGPU> vertices(world.positions.size());
@@ -164,7 +166,28 @@ void SceneGpu::update(double seconds, gpu::GpuTimer* timer) {
     glNamedBufferSubData(vertex_buffer_, static_cast<GLintptr>(d.first_vertex * sizeof(VertexGPU)),
                          static_cast<GLsizeiptr>(vertices.size() * sizeof(VertexGPU)), vertices.data());
   }
-  for (const auto& blob : blobs_) blob->extract(static_cast<float>(seconds), timer);
+  for (const auto& blob : blobs_) blob->extract(static_cast<float>(seconds), profiler);
+}
+
+void SceneGpu::update_materials(const Scene& scene) {
+  std::vector<MaterialGPU> materials;
+  std::vector<ObjectGPU> objects(scene.objects.size());
+  // Same order as the constructor: translucent objects first.
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      const SceneObject& object = scene.objects[i];
+      if (object.translucent() != (pass == 0)) continue;
+      objects[i].info = glm::ivec4(object.translucent() ? static_cast<int>(materials.size()) : -1, 0, 0, 0);
+      objects[i].albedo = glm::vec4(object.albedo, 1.0f);
+      if (object.translucent()) materials.push_back(to_gpu(*object.material, scene.scale_mm));
+    }
+  if (materials.size() != material_count_)
+    throw Error("SceneGpu::update_materials: the translucent objects changed; rebuild the scene instead");
+  if (!materials.empty())
+    glNamedBufferSubData(material_buffer_, 0, static_cast<GLsizeiptr>(materials.size() * sizeof(MaterialGPU)),
+                         materials.data());
+  if (!objects.empty())
+    glNamedBufferSubData(object_buffer_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(ObjectGPU)), objects.data());
 }
 
 std::size_t SceneGpu::gpu_memory_bytes() const {

@@ -13,7 +13,7 @@ namespace lucent::geometry {
 class BlobIsosurface;
 }
 namespace lucent::gpu {
-class GpuTimer;
+class FrameProfiler;
 }
 
 namespace lucent::render {
@@ -37,7 +37,9 @@ class SceneGpu {
   // Animated scenes: deforming objects' vertices are recomputed and uploaded, blob surfaces re-extracted on the
   // GPU, for time t. Bounds are conservative over the whole animation, so views built from them stay valid.
   bool animated() const { return !deforming_.empty() || !blobs_.empty(); }
-  void update(double seconds, gpu::GpuTimer* timer);
+  void update(double seconds, gpu::FrameProfiler* profiler);
+  // New materials and opaque albedos for the same objects (same translucent set): re-uploads the two buffers.
+  void update_materials(const Scene& scene);
 
   BoundingSphere translucent_bounds() const { return translucent_bounds_; }  // all bounds if none translucent
   // Axis-aligned box of the translucent objects, conservative over the animation like translucent_bounds().
@@ -70,6 +72,7 @@ class SceneGpu {
   std::vector<std::unique_ptr<geometry::BlobIsosurface>> blobs_;  // translucent ones first
   std::size_t translucent_blob_count_ = 0;
   std::size_t vertex_bytes_ = 0;
+  std::size_t material_count_ = 0;
 
   GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0, material_buffer_ = 0, object_buffer_ = 0;
   GLsizei translucent_index_count_ = 0, index_count_ = 0;

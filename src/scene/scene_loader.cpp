@@ -15,7 +15,7 @@
 #include "lucent/error.h"
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
-#include "methods/method.h"
+#include "methods/method_info.h"
 #include "params/param_json.h"
 
 namespace lucent {
@@ -381,10 +381,10 @@ ParamSection method_section(const std::string& name) {
 
 void read_method(const json& j, const JsonLocation& where, Scene& scene) {
   require_object(j, where);
-  scene.method = read_string(j, "name", "radiosity-maps", where);
+  scene.method = read_string(j, "name", std::string(methods::default_method().name), where);
   if (!methods::find_method(scene.method)) {
     std::string known;
-    for (const auto& m : methods::method_registry()) known += (known.empty() ? "" : ", ") + std::string(m.name);
+    for (const auto* m : methods::method_registry()) known += (known.empty() ? "" : ", ") + std::string(m->name);
     fail(where.child("name"), fmt::format("unknown method '{}'; known: {}", text_excerpt(scene.method), known));
   }
   scene.method_params = read_params(j, method_section(scene.method), where, {"name"});
@@ -516,7 +516,7 @@ std::vector<ParamSection> scene_param_sections() {
                                         {"lights[]", kLightParams},    {"environment", kEnvironmentParams},
                                         {"objects[]", kObjectParams},          {"objects[].deform", kDeformParams},
                                         {"objects[].material", kMaterialParams}, {"objects[].material.field", kFieldParams}, {"render", kRenderParams}};
-  for (const auto& m : methods::method_registry()) sections.push_back({m.name, m.params});
+  for (const auto* m : methods::method_registry()) sections.push_back({m->name, m->params});
   return sections;
 }
 

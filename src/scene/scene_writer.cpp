@@ -13,7 +13,7 @@
 
 #include "lucent/error.h"
 #include "lucent/output_file.h"
-#include "methods/method.h"
+#include "methods/method_info.h"
 
 namespace lucent {
 namespace {

@@ -4,39 +4,13 @@
 #define LUCENT_SHARED_SHADER_IO_H
 #include "shared/bridge.h"
 
-// Buffer binding points.
-#define LUCENT_BINDING_FRAME 0       // uniform FrameGPU (std140)
-#define LUCENT_BINDING_MATERIALS 1   // buffer MaterialGPU[] (std430)
-#define LUCENT_BINDING_OBJECTS 2     // buffer ObjectGPU[] (std430)
-#define LUCENT_BINDING_PARITY 3      // buffer used by the GPU parity test (std430)
-#define LUCENT_BINDING_COUNTERS 4    // buffer CountersGPU (std430)
-#define LUCENT_BINDING_VPLS 5        // buffer VplGPU[] (std430)
-#define LUCENT_BINDING_PROBES 6      // buffer ProbeGPU[] (std430)
-
-// Texture units (samplers) and image units.
-#define LUCENT_TEX_CAMERA_POSITION 0
-#define LUCENT_TEX_CAMERA_NORMAL 1
-#define LUCENT_TEX_LIGHT_POSITION 2
-#define LUCENT_TEX_LIGHT_NORMAL 3
-#define LUCENT_TEX_LIGHT_DEPTH 4
-#define LUCENT_TEX_MAP_POSITION 5
-#define LUCENT_TEX_MAP_NORMAL 6
-#define LUCENT_TEX_MAP_DEPTH 7
-#define LUCENT_TEX_RADIOSITY 8
-#define LUCENT_TEX_HDR 9
-#define LUCENT_TEX_VPL_POSITION 10
-#define LUCENT_TEX_VPL_NORMAL 11
-#define LUCENT_TEX_VPL_DEPTH 12
-#define LUCENT_TEX_ENVIRONMENT 13
-#define LUCENT_IMAGE_RADIOSITY 0
-#define LUCENT_IMAGE_HDR 1
-#define LUCENT_IMAGE_LDR 2
+#include "shared/bindings.h"
 
 #define LUCENT_MAX_LIGHTS 16       // directional, point and spot lights together
 #define LUCENT_MAX_LIGHT_VIEWS 64  // light G-buffer layers (directional: 2, point and spot: 6 or 7)
-#define LUCENT_MAX_MAPS 64
+#define LUCENT_MAX_LAYERS 64       // views one layered G-buffer pass renders (shaders/gbuffer/layered_views.geom)
 
-// FrameGPU.extra_counts.w bits.
+// FrameGPU.environment.x bits.
 #define LUCENT_ENVIRONMENT_MAP 1         // an environment map is bound at LUCENT_TEX_ENVIRONMENT
 #define LUCENT_ENVIRONMENT_BACKGROUND 2  // camera rays that miss see it
 
@@ -44,10 +18,6 @@
 #define LUCENT_LIGHT_DIRECTIONAL 0
 #define LUCENT_LIGHT_POINT 1
 #define LUCENT_LIGHT_SPOT 2
-
-// Debug views written by the combine pass (FrameGPU.options.y).
-#define LUCENT_VIEW_SHADED 0
-#define LUCENT_VIEW_COVERAGE 1
 
 LUCENT_SHADER_BEGIN
 
@@ -92,31 +62,28 @@ struct VertexGPU {
   vec4 normal;    // xyz world unit normal; w: unused
 };
 
-// Everything a frame's passes read (std140).
+// What every pass of a frame may read, whatever the method (std140). A method's own per-frame data lives in
+// its own block at LUCENT_BINDING_METHOD, declared in its folder.
 struct FrameGPU {
   mat4 clip_from_world;  // camera
   vec4 camera_position;  // xyz [scene units]
   vec4 background;       // rgb radiance
-  ivec4 counts;          // x: lights, y: maps K, z: samples N per band, w: visibility taps per axis
-  ivec4 sizes;           // x: map size, y: light-map size, z: output width, w: output height
+  ivec4 output_size;     // x: width, y: height [pixels]; zw: unused
   uvec4 seeds;           // x: user seed, y: frame counter (never repeats), z: 1 = restart accumulation
-  vec4 biases;           // x: eps_bias [map texels], y: eps_comb [map texels], z: filter lod, w: roughness
-  vec4 options;          // x: exposure scale 2^stops, y: debug view, z: specular on, w: tone-map operator
-  ivec4 extra_counts;    // x: light G-buffer layers, y: VPLs N_vpl (0: off), z: VPL cube map size,
-                         // w: environment flags (LUCENT_ENVIRONMENT_*)
-  vec4 vpl_center;       // xyz: centre of the VPL cube map [scene units]; w: unused
+  vec4 display;          // x: exposure scale 2^stops, y: tone-map operator; zw: unused
+  vec4 shading;          // x: 1 = GGX specular reflection of the lights, y: its roughness (GGX alpha); zw: unused
+  ivec4 light_counts;    // x: lights, y: light G-buffer layers, z: light-map size [texels], w: shadow taps per axis
+  ivec4 environment;     // x: flags (LUCENT_ENVIRONMENT_*); yzw: unused
   LightGPU lights[LUCENT_MAX_LIGHTS];
-  ViewGPU light_views[LUCENT_MAX_LIGHT_VIEWS];  // step 1: the light G-buffer layers
-  ViewGPU maps[LUCENT_MAX_MAPS];                // step 2: the scattered-radiosity map views
-  ViewGPU vpl_views[6];                         // cube map of the translucent objects' outermost surface
+  ViewGPU light_views[LUCENT_MAX_LIGHT_VIEWS];  // the light G-buffer layers (shadows and light-space sampling)
 };
 
-// Per-frame counters written by the methods' passes with atomics (std430, 16 bytes).
+// Per-frame counters written by the passes with atomics (std430, 16 bytes), zeroed by the renderer each frame
+// and read back a few frames later (gpu/frame_profiler.h).
 struct CountersGPU {
-  uint covered_texels;      // map texels that see a translucent surface (radiosity-maps integration)
   uint translucent_pixels;  // camera pixels on translucent objects
-  uint covered_pixels;      // of those, the ones at least one map sees (all of them for per-pixel)
-  uint unused;
+  uint covered_pixels;      // of those, the ones the method has radiance for
+  uint method_counts[2];    // the method's own (its statistics() gives their meaning)
 };
 
 // A virtual point light on a translucent object's outer surface (Dal Corso et al. 2015, Section 3.4; std430).
@@ -155,20 +122,15 @@ static_assert(sizeof(lucent::shader::ObjectGPU) == 32);
 static_assert(sizeof(lucent::shader::ViewGPU) == 96);
 static_assert(sizeof(lucent::shader::VertexGPU) == 32);
 static_assert(sizeof(lucent::shader::ParityCaseGPU) == 128);
-static_assert(offsetof(lucent::shader::FrameGPU, counts) == 96);
+static_assert(offsetof(lucent::shader::FrameGPU, output_size) == 96);
 static_assert(sizeof(lucent::shader::LightGPU) == 64);
 static_assert(sizeof(lucent::shader::VplGPU) == 48);
 static_assert(sizeof(lucent::shader::CountersGPU) == 16);
 static_assert(sizeof(lucent::shader::ProbeGPU) == 48);
-static_assert(offsetof(lucent::shader::FrameGPU, extra_counts) == 176);
-static_assert(offsetof(lucent::shader::FrameGPU, vpl_center) == 192);
-static_assert(offsetof(lucent::shader::FrameGPU, lights) == 208);
-static_assert(offsetof(lucent::shader::FrameGPU, light_views) == 208 + 64 * LUCENT_MAX_LIGHTS);
-static_assert(offsetof(lucent::shader::FrameGPU, maps) == 208 + 64 * LUCENT_MAX_LIGHTS + 96 * LUCENT_MAX_LIGHT_VIEWS);
-static_assert(offsetof(lucent::shader::FrameGPU, vpl_views) ==
-              208 + 64 * LUCENT_MAX_LIGHTS + 96 * (LUCENT_MAX_LIGHT_VIEWS + LUCENT_MAX_MAPS));
-static_assert(sizeof(lucent::shader::FrameGPU) ==
-              208 + 64 * LUCENT_MAX_LIGHTS + 96 * (LUCENT_MAX_LIGHT_VIEWS + LUCENT_MAX_MAPS + 6));
+static_assert(offsetof(lucent::shader::FrameGPU, environment) == 176);
+static_assert(offsetof(lucent::shader::FrameGPU, lights) == 192);
+static_assert(offsetof(lucent::shader::FrameGPU, light_views) == 192 + 64 * LUCENT_MAX_LIGHTS);
+static_assert(sizeof(lucent::shader::FrameGPU) == 192 + 64 * LUCENT_MAX_LIGHTS + 96 * LUCENT_MAX_LIGHT_VIEWS);
 static_assert(sizeof(lucent::shader::FrameGPU) <= 16384, "GL guarantees uniform blocks of 16 KiB only");
 #endif
 

@@ -14,7 +14,7 @@
 #include "../blob_surface_checks.h"
 #include "geometry/blob_isosurface.h"
 #include "geometry/isosurface_cpu.h"
-#include "gpu/gpu_timer.h"
+#include "gpu/frame_profiler.h"
 #include "gpu/shader_program.h"
 #include "image_compare.h"
 #include "lucent/error.h"
@@ -183,7 +183,7 @@ TEST(BlobIsosurfaceGpu, DISABLED_ExtractionTimes) {
   for (int resolution : {32, 48, 64, 128}) {
     IsosurfaceGrid grid = lucent::geometry::blob_grid(resolution);
     BlobIsosurface surface(grid, 0);
-    lucent::gpu::GpuTimer timer;
+    lucent::gpu::FrameProfiler profiler;
     std::vector<double> wall;
     std::vector<std::vector<std::pair<std::string, double>>> passes;
     std::uint32_t triangles = 0, vertices = 0;
@@ -191,8 +191,9 @@ TEST(BlobIsosurfaceGpu, DISABLED_ExtractionTimes) {
       float t = 0.25f * static_cast<float>(frame);
       glFinish();
       auto start = std::chrono::steady_clock::now();
-      timer.begin_frame();
-      surface.extract(t, &timer);
+      profiler.begin_frame(static_cast<std::uint64_t>(frame) + 1);
+      surface.extract(t, &profiler);
+      profiler.end_frame();
       glFinish();
       double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       auto counts = surface.read_counts();
@@ -200,7 +201,7 @@ TEST(BlobIsosurfaceGpu, DISABLED_ExtractionTimes) {
       vertices = std::max(vertices, counts.vertices);
       if (frame < 2) continue;  // warm-up: shader compilation in the driver, first-touch of buffers
       wall.push_back(ms);
-      passes.push_back(timer.resolve());
+      passes.push_back(profiler.collect(/*wait=*/true).back().passes);
     }
     auto median = [](std::vector<double> v) {
       std::sort(v.begin(), v.end());

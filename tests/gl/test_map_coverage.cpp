@@ -17,8 +17,9 @@ double coverage(const std::vector<std::string>& sets) {
   lucent::OffscreenFramebuffer framebuffer(96, 64);
   lucent::Renderer renderer(scene);
   renderer.render(scene.camera, {framebuffer.id(), 96, 64});
-  EXPECT_GT(renderer.timings().translucent_pixels, 1000u);
-  return renderer.timings().map_coverage;
+  const lucent::FrameTimings& timings = renderer.last_frame_timings();
+  EXPECT_GT(timings.stat("translucent_pixels"), 1000.0);
+  return timings.stat("coverage", -1.0);
 }
 
 TEST(MapCoverage, GrowsWithKAndReachesTheWholeVisibleSurface) {

@@ -7,7 +7,7 @@
 #include <imgui.h>
 
 #include "lucent/material.h"
-#include "methods/method.h"
+#include "methods/method_info.h"
 #include "viewer/direction_widget.h"
 #include "viewer/param_widgets.h"
 
@@ -186,9 +186,9 @@ void method_section(ViewerSession& session) {
   Scene& scene = session.edit();
   if (ImGui::BeginCombo("method", scene.method.c_str())) {
     std::string chosen;
-    for (const methods::MethodInfo& method : methods::method_registry()) {
-      if (ImGui::Selectable(std::string(method.name).c_str(), method.name == scene.method)) chosen = method.name;
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(method.summary).c_str());
+    for (const methods::MethodInfo* method : methods::method_registry()) {
+      if (ImGui::Selectable(std::string(method->name).c_str(), method->name == scene.method)) chosen = method->name;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(method->summary).c_str());
     }
     ImGui::EndCombo();
     if (!chosen.empty()) session.set_method(chosen);

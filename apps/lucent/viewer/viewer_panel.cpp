@@ -44,9 +44,11 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
   }
   ImGui::Text("%.1f frames/s, GPU %.2f ms/frame, %.1f MiB", state.frames_per_second, t.total_ms,
               static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0));
+  // Passes and statistics as the method declares them, from the newest frame the GPU has reported (a few frames
+  // behind: reading them never stalls the viewer).
   if (ImGui::TreeNode("GPU passes [ms]")) {
     if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
-      for (const StepTiming& pass : t.passes) {
+      for (const PassTiming& pass : t.passes) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(pass.name.c_str());
@@ -55,10 +57,17 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
       }
       ImGui::EndTable();
     }
-    ImGui::Text("BSSRDF samples %llu, translucent pixels %llu, map coverage %.1f%%",
-                static_cast<unsigned long long>(t.bssrdf_samples), static_cast<unsigned long long>(t.translucent_pixels),
-                100.0 * t.map_coverage);
-    ImGui::TextDisabled("%s", renderer->device().c_str());
+    if (ImGui::BeginTable("stats", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+      for (const FrameStatistic& stat : t.stats) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(stat.name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%.4g %s", stat.value, stat.unit.c_str());
+      }
+      ImGui::EndTable();
+    }
+    ImGui::TextDisabled("frame %llu; %s", static_cast<unsigned long long>(t.frame), renderer->device().c_str());
     ImGui::TreePop();
   }
 }

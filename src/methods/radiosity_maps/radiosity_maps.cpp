@@ -1,6 +1,8 @@
 // radiosity_maps.cpp: the three passes of the scattered-radiosity-maps method (see radiosity_maps.h).
 #include "methods/radiosity_maps/radiosity_maps.h"
 
+#include "methods/method.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -8,9 +10,10 @@
 
 #include <fmt/format.h>
 
-#include "gpu/frame_counters.h"
 #include "gpu/gl_debug.h"
+#include "gpu/layer_views.h"
 #include "gpu/shader_program.h"
+#include "methods/radiosity_maps/radiosity_maps_io.h"
 #include "platform/gl_capabilities.h"
 #include "lucent/error.h"
 #include "render/light_gbuffer.h"
@@ -20,30 +23,8 @@ namespace {
 
 using shader::FrameGPU;
 using shader::LightGPU;
+using shader::RadiosityMapsGPU;
 using shader::ViewGPU;
-
-// Defaults follow Dal Corso et al. 2015, Section 5 (512x512 maps and light map, K = 16) and lucent's
-// benchmark configuration (N = 32 per band).
-constexpr ParamDecl kParams[] = {
-    {"K", ParamType::Int, "16", "maps", 1, LUCENT_MAX_MAPS, "", "number of scattered-radiosity maps (views)"},
-    {"directions", ParamType::Enum, "\"halton\"", "", 0, 0, "halton|fibonacci",
-     "automatic map directions: Halton points (the paper) or a spherical Fibonacci set (more even)"},
-    {"map_directions", ParamType::Vec3List, "[]", "", -1e9, 1e9, "",
-     "user map directions (from the object toward each map camera); non-empty: overrides K and directions"},
-    {"N", ParamType::Int, "32", "samples", 1, 4096, "", "samples per colour band per map texel per frame"},
-    {"map_size", ParamType::Int, "512", "texels", 8, 4096, "", "resolution of each scattered-radiosity map"},
-    {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer"},
-    {"eps_bias", ParamType::Float, "2.0", "map texels", 0, 64, "", "visibility depth bias of Algorithm 1"},
-    {"eps_comb", ParamType::Float, "1.0", "map texels", 0, 64, "", "offset of x_o along -n_o (Algorithm 1)"},
-    {"visibility_taps", ParamType::Int, "3", "taps/axis", 1, 7, "", "multi-sampled visibility: taps per axis"},
-    {"filter_lod", ParamType::Float, "0.0", "mip level", 0, 4, "", "mip level read from the maps (noise filter)"},
-    {"progressive", ParamType::Bool, "true", "", 0, 1, "", "accumulate maps over frames while only the camera moves"},
-    {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights"},
-    {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection"},
-    {"vpls", ParamType::Int, "64", "VPLs", 0, 4096, "", "virtual point lights carrying emergent light to diffuse objects (0: off)"},
-    {"vpl_map_size", ParamType::Int, "256", "texels", 8, 4096, "", "resolution of each face of the VPL placement cube map"},
-    {"view", ParamType::Enum, "\"shaded\"", "", 0, 0, "shaded|coverage", "debug view: coverage shows unmapped areas in magenta"},
-};
 
 float radical_inverse(int index, int base) {
   float inv_base = 1.0f / static_cast<float>(base), fraction = inv_base, result = 0.0f;
@@ -100,6 +81,11 @@ class RadiosityMaps final : public Method {
                          GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, vpl_buffer_, "virtual point lights");
     build_views(scene_gpu);
+    map_layers_ = std::make_unique<gpu::LayerViews>(maps_, "radiosity map views");
+    vpl_layers_ = std::make_unique<gpu::LayerViews>(vpl_views_, "VPL cube-map views");
+    glCreateBuffers(1, &block_buffer_);
+    glNamedBufferStorage(block_buffer_, sizeof(RadiosityMapsGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gpu::label_object(GL_BUFFER, block_buffer_, "radiosity-maps block");
     warn_about_pearling(scene);
     warn_about_low_albedo(scene);
   } catch (const Error& e) {
@@ -113,39 +99,83 @@ class RadiosityMaps final : public Method {
   ~RadiosityMaps() override {
     glDeleteTextures(1, &radiosity_);
     glDeleteBuffers(1, &vpl_buffer_);
+    glDeleteBuffers(1, &block_buffer_);
   }
 
   void prepare_frame(FrameGPU& frame, bool restart) override {
     restart = restart || !params_.boolean("progressive");
-    accumulated_ = restart ? 1 : accumulated_ + 1;
-    frame.counts = glm::ivec4(0, K_, params_.integer("N"), params_.integer("visibility_taps"));
+    const int converged_after = params_.integer("converged_after");
+    if (restart) {
+      accumulated_ = 1, converged_ = false, vpls_placed_ = false;
+    } else if (converged_after > 0 && accumulated_ >= converged_after) {
+      converged_ = true;  // Section 3.2: the maps are final; only step 3 runs
+    } else {
+      ++accumulated_;
+    }
     light_gbuffer_.fill_frame(frame);
-    frame.sizes.x = map_size_;
+    frame.light_counts.w = params_.integer("visibility_taps");
     frame.seeds.z = restart ? 1u : 0u;
-    frame.biases = glm::vec4(params_.number("eps_bias"), params_.number("eps_comb"), params_.number("filter_lod"),
-                             params_.number("roughness"));
-    frame.options.y = params_.text("view") == "coverage" ? LUCENT_VIEW_COVERAGE : LUCENT_VIEW_SHADED;
-    frame.options.z = params_.boolean("specular") ? 1.0f : 0.0f;
-    frame.extra_counts.y = vpl_count_;
-    frame.extra_counts.z = vpl_map_size_;
-    frame.vpl_center = glm::vec4(vpl_center_, 0.0f);
-    std::copy(vpl_views_.begin(), vpl_views_.end(), frame.vpl_views);
-    std::copy(maps_.begin(), maps_.end(), frame.maps);
+    const bool coverage_view = params_.text("view") == "coverage";
+    frame.shading = glm::vec4(params_.boolean("specular") && !coverage_view ? 1.0f : 0.0f,
+                              params_.number("roughness"), 0.0f, 0.0f);
+    RadiosityMapsGPU block{};
+    block.counts = glm::ivec4(K_, params_.integer("N"), map_size_, coverage_view ? LUCENT_VIEW_COVERAGE : LUCENT_VIEW_SHADED);
+    block.biases = glm::vec4(params_.number("eps_bias"), params_.number("eps_comb"), params_.number("filter_lod"), 0.0f);
+    block.vpls = glm::ivec4(vpl_count_, vpl_map_size_, params_.integer("visibility_taps"), 0);
+    block.vpl_center = glm::vec4(vpl_center_, 0.0f);
+    std::copy(maps_.begin(), maps_.end(), block.maps);
+    std::copy(vpl_views_.begin(), vpl_views_.end(), block.vpl_views);
+    glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
   }
 
   void render(const FrameContext& context) override {
-    light_gbuffer_.render(context.scene_gpu, context.timer);
-    render_map_gbuffers(context);
-    integrate(context);
-    generate_mipmaps(context);
-    place_vpls(context);
+    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
+    const float lod = static_cast<float>(params_.number("filter_lod"));
+    if (!converged_) {
+      light_gbuffer_.render(context.scene_gpu, context.profiler);
+      render_map_gbuffers(context);
+      integrate(context);
+      mipmaps_built_ = false;
+      vpls_placed_ = false;
+    }
+    // Only Algorithm 1 with a filter_lod above 0 reads the mip chain.
+    if (lod > 0.0f && !mipmaps_built_) {
+      generate_mipmaps(context);
+      mipmaps_built_ = converged_;
+      vpls_placed_ = false;
+    }
+    // VPL radiosity comes from the maps: once they are converged it is placed once more and kept.
+    if (vpl_count_ > 0 && !(converged_ && vpls_placed_ && vpl_lod_ == lod)) {
+      place_vpls(context);
+      vpls_placed_ = converged_;
+      vpl_lod_ = lod;
+    }
     combine(context);
   }
 
   int accumulated_frames() const override { return accumulated_; }
-  glm::uvec2 pixel_coverage() const override {
-    shader::CountersGPU c = counters_.read();
-    return {c.translucent_pixels, c.covered_pixels};
+
+  void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
+    const double samples = static_cast<double>(record.counters.method_counts[0]) * 3.0 * params_.integer("N") *
+                           light_gbuffer_.light_count();
+    const double integrate_ms = record.pass_ms("integrate");
+    out.push_back({"bssrdf_samples", samples, ""});
+    out.push_back({"bssrdf_samples_per_second", integrate_ms > 0.0 ? samples / (integrate_ms * 1e-3) : 0.0, "1/s"});
+    out.push_back({"covered_texels", static_cast<double>(record.counters.method_counts[0]), ""});
+    out.push_back({"maps", static_cast<double>(K_), ""});
+    out.push_back({"vpls", static_cast<double>(vpl_count_), ""});
+    out.push_back({"converged", !record.ran("integrate") ? 1.0 : 0.0, ""});
+  }
+
+  // N, the biases, taps, filter, specular, view and converged_after are read every frame.
+  bool update_live_params(const Scene& scene) override {
+    (void)scene;
+    return true;
+  }
+  // Materials are read from the scene's material buffer by every pass: a restart is all a change needs.
+  bool update_materials(const Scene& scene) override {
+    warn_about_low_albedo(scene);
+    return true;
   }
 
   std::size_t gpu_memory_bytes() const override {
@@ -182,11 +212,6 @@ class RadiosityMaps final : public Method {
       glGetNamedBufferSubData(vpl_buffer_, 0, static_cast<GLsizeiptr>(vpls.size() * sizeof(shader::VplGPU)), vpls.data());
     return vpls;
   }
-  std::uint64_t bssrdf_samples_last_frame() const override {
-    return static_cast<std::uint64_t>(counters_.read().covered_texels) * 3u * static_cast<std::uint64_t>(params_.integer("N")) *
-           static_cast<std::uint64_t>(light_gbuffer_.light_count());
-  }
-
  private:
   // The user's directions (normalized; checked here because the scene parser does not know the method's
   // meaning), or K automatic ones.
@@ -258,19 +283,15 @@ class RadiosityMaps final : public Method {
   }
 
   void render_map_gbuffers(const FrameContext& context) {
-    gpu::DebugGroup group("map_gbuffers");
-    context.timer.begin("map_gbuffers");
+    auto pass = context.profiler.pass("map_gbuffers");
+    map_layers_->bind();
     map_gbuffer_.begin_pass();
     glUseProgram(gbuffer_program_.id());
-    glUniform1i(glGetUniformLocation(gbuffer_program_.id(), "u_view_set"), 1);
     context.scene_gpu.draw_translucent();
-    context.timer.end();
   }
 
   void integrate(const FrameContext& context) {
-    gpu::DebugGroup group("integrate");
-    context.timer.begin("integrate");
-    counters_.reset_and_bind();
+    auto pass = context.profiler.pass("integrate");
     map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
     light_gbuffer_.bind_textures();
     glBindImageTexture(LUCENT_IMAGE_RADIOSITY, radiosity_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
@@ -279,7 +300,6 @@ class RadiosityMaps final : public Method {
     glDispatchCompute(groups, groups, static_cast<GLuint>(K_));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                     GL_BUFFER_UPDATE_BARRIER_BIT);
-    context.timer.end();
   }
 
   void bind_map_textures() const {
@@ -289,12 +309,10 @@ class RadiosityMaps final : public Method {
 
   // Section 3.4: VPLs on the outermost surface (cube map, farthest depth), their radiosity from the maps.
   void place_vpls(const FrameContext& context) {
-    if (vpl_count_ == 0) return;
-    gpu::DebugGroup group("vpls");
-    context.timer.begin("vpls");
+    auto pass = context.profiler.pass("vpls");
+    vpl_layers_->bind();
     vpl_gbuffer_.begin_pass(/*farthest=*/true);
     glUseProgram(gbuffer_program_.id());
-    glUniform1i(glGetUniformLocation(gbuffer_program_.id(), "u_view_set"), 2);
     context.scene_gpu.draw_translucent();
     glDepthFunc(GL_LESS);
     vpl_gbuffer_.bind_textures(LUCENT_TEX_VPL_POSITION, LUCENT_TEX_VPL_NORMAL, LUCENT_TEX_VPL_DEPTH);
@@ -303,19 +321,15 @@ class RadiosityMaps final : public Method {
     glUseProgram(vpl_program_.id());
     glDispatchCompute(static_cast<GLuint>((vpl_count_ + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    context.timer.end();
   }
 
   void generate_mipmaps(const FrameContext& context) {
-    gpu::DebugGroup group("mipmaps");
-    context.timer.begin("mipmaps");
+    auto pass = context.profiler.pass("mipmaps");
     glGenerateTextureMipmap(radiosity_);
-    context.timer.end();
   }
 
   void combine(const FrameContext& context) {
-    gpu::DebugGroup group("combine");
-    context.timer.begin("combine");
+    auto pass = context.profiler.pass("combine");
     bind_map_textures();
     light_gbuffer_.bind_textures();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_VPLS, vpl_buffer_);
@@ -325,7 +339,6 @@ class RadiosityMaps final : public Method {
     glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                     GL_SHADER_STORAGE_BARRIER_BIT);  // counters read back or cleared next
-    context.timer.end();
   }
 
   const ParamValues& params_;
@@ -338,17 +351,20 @@ class RadiosityMaps final : public Method {
   gpu::GBuffer vpl_gbuffer_;
   gpu::ShaderProgram gbuffer_program_, integrate_program_, combine_program_, vpl_program_, probe_program_;
   GLuint radiosity_ = 0, vpl_buffer_ = 0;
-  gpu::FrameCounters counters_;
   std::vector<ViewGPU> maps_, vpl_views_;
+  std::unique_ptr<gpu::LayerViews> map_layers_, vpl_layers_;
+  GLuint block_buffer_ = 0;
   glm::vec3 vpl_center_{0.0f};
+  bool converged_ = false;      // the maps are final: steps 1-2 are skipped (converged mode)
+  bool mipmaps_built_ = false;  // the mip chain matches the converged maps
+  bool vpls_placed_ = false;    // the VPLs match the converged maps
+  float vpl_lod_ = -1.0f;       // filter_lod the VPLs were placed with
 };
 
 }  // namespace
 
-std::span<const ParamDecl> radiosity_maps_params() { return kParams; }
-
-std::unique_ptr<Method> create_radiosity_maps(const Scene& scene, const render::SceneGpu& scene_gpu) {
-  return std::make_unique<RadiosityMaps>(scene, scene_gpu);
+std::unique_ptr<Method> create_radiosity_maps(const MethodSetup& setup) {
+  return std::make_unique<RadiosityMaps>(setup.scene, setup.scene_gpu);
 }
 
 std::vector<glm::vec3> fibonacci_sphere_directions(int count) {

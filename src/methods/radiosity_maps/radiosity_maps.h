@@ -7,17 +7,15 @@
 //      B(x_o) by Monte Carlo (eq. 9) with N samples per band from p_exp (eqs. 10-12), in a compute shader;
 //      accumulated over frames while only the camera moves; mipmapped for noise filtering;
 //   3. combine: Algorithm 1 per pixel and L_o = F_t B / pi (eq. 5).
+// Converged mode (Section 3.2, converged_after): once the maps have accumulated enough frames and only the
+// camera moves, only step 3 runs.
 // Shaders: shaders/gbuffer/, shaders/radiosity_maps/. Design notes: docs/methods/radiosity-maps.md.
 #pragma once
-#include <span>
+#include <vector>
 
-#include "lucent/params.h"
-#include "methods/method.h"
+#include <glm/glm.hpp>
 
 namespace lucent::methods {
-
-std::span<const ParamDecl> radiosity_maps_params();
-std::unique_ptr<Method> create_radiosity_maps(const Scene& scene, const render::SceneGpu& scene_gpu);
 
 // The unit directions d_k of the K map views (Halton bases 2 and 3 mapped uniformly onto the sphere).
 std::vector<glm::vec3> halton_sphere_directions(int count);

@@ -68,9 +68,11 @@ std::string shader_defines() {
       "#define VOXEL_BINDING_TRIANGLES {}\n#define VOXEL_BINDING_FLIPS {}\n#define VOXEL_BINDING_LABELS {}\n"
       "#define VOXEL_BINDING_DISTANCES {}\n#define VOXEL_BINDING_SIGMA_T {}\n#define VOXEL_BINDING_CHANGED {}\n"
       "#define VOXEL_BINDING_FIELD_MATERIALS {}\n#define VOXEL_BINDING_INDICES {}\n#define VOXEL_TEXTURE_VOLUME {}\n"
-      "#define VOXEL_BINDING_BLOCKS_IN {}\n#define VOXEL_BINDING_BLOCKS_OUT {}\n#define VOXEL_UNREACHED {:.1e}\n",
+      "#define VOXEL_BINDING_BLOCKS_IN {}\n#define VOXEL_BINDING_BLOCKS_OUT {}\n#define VOXEL_UNREACHED {:.1e}\n"
+      "#define VOXEL_TEXTURE_RADIANCE {}\n#define VOXEL_IMAGE_RADIANCE {}\n",
       kBindingTriangles, kBindingFlips, kBindingLabels, kBindingDistances, kBindingSigmaT, kBindingChanged,
-      kBindingFieldMaterials, kBindingIndices, kTextureVolume, kBindingBlocksIn, kBindingBlocksOut, kUnreached);
+      kBindingFieldMaterials, kBindingIndices, kTextureVolume, kBindingBlocksIn, kBindingBlocksOut, kUnreached,
+      kTextureRadiance, kImageRadiance);
 }
 
 }  // namespace lucent::methods::voxel_paths

@@ -12,21 +12,29 @@
 
 #include "lucent/scene.h"
 #include "media/heterogeneous_field.h"
+#include "shared/bindings.h"
 
 namespace lucent::methods::voxel_paths {
 
-// Storage-buffer binding points of the voxel-paths shaders (passed to them as #defines, see shader_defines()).
-inline constexpr int kBindingTriangles = 8;  // shader::VertexGPU per vertex (the scene's vertex buffer)
-inline constexpr int kBindingFlips = 9;      // uint per voxel: parity of the crossings entering at that voxel
-inline constexpr int kBindingLabels = 10;    // uint per voxel: 0 outside, object index + 1 inside
-inline constexpr int kBindingDistances = 11;  // vec4 per voxel: rgb optical path length n(v) per band
-inline constexpr int kBindingSigmaT = 12;     // vec4 per voxel: rgb edge-cost coefficient [1/scene unit]
-inline constexpr int kBindingChanged = 13;    // uint: set to 1 by a relaxation that lowered a distance
-inline constexpr int kBindingFieldMaterials = 14;  // shader::FieldMaterialGPU per label
-inline constexpr int kBindingIndices = 15;         // uint per triangle corner: indices into the vertices
-inline constexpr int kBindingBlocksIn = 16;        // uint per 4^3 block: lowered a value in the previous sweep
-inline constexpr int kBindingBlocksOut = 17;       // uint per 4^3 block: lowered a value in this sweep
-inline constexpr int kTextureVolume = 15;          // texture unit: R32F 3D texture of the scene's volume field
+// Binding points of the voxel-paths shaders (passed to them as #defines, see shader_defines()), in the method
+// ranges of shared/bindings.h. Storage buffers:
+inline constexpr int kBindingTriangles = 20;  // shader::VertexGPU per vertex (the scene's vertex buffer)
+inline constexpr int kBindingFlips = 21;      // uint per voxel: parity of the crossings entering at that voxel
+inline constexpr int kBindingLabels = 22;     // uint per voxel: 0 outside, object index + 1 inside
+inline constexpr int kBindingDistances = 23;  // vec4 per voxel: rgb optical path length n(v) per band
+inline constexpr int kBindingSigmaT = 24;     // vec4 per voxel: rgb edge-cost coefficient [1/scene unit]
+inline constexpr int kBindingChanged = 25;    // uint: set to 1 by a relaxation that lowered a distance
+inline constexpr int kBindingFieldMaterials = 26;  // shader::FieldMaterialGPU per label
+inline constexpr int kBindingIndices = 27;         // uint per triangle corner: indices into the vertices
+inline constexpr int kBindingBlocksIn = 28;        // uint per 4^3 block: lowered a value in the previous sweep
+inline constexpr int kBindingBlocksOut = 29;       // uint per 4^3 block: lowered a value in this sweep
+// Texture units and image units:
+inline constexpr int kTextureVolume = 8;     // R32F 3D texture of the scene's volume field
+inline constexpr int kTextureRadiance = 9;   // RGBA16F 3D texture exp(-n) read by the shading pass
+inline constexpr int kImageRadiance = 2;     // the same texture written by the radiance pass
+static_assert(kBindingTriangles >= LUCENT_METHOD_STORAGE_FIRST && kBindingBlocksOut <= LUCENT_METHOD_STORAGE_LAST);
+static_assert(kTextureVolume >= LUCENT_METHOD_TEX_FIRST && kTextureRadiance <= LUCENT_METHOD_TEX_LAST);
+static_assert(kImageRadiance >= LUCENT_METHOD_IMAGE_FIRST && kImageRadiance <= LUCENT_METHOD_IMAGE_LAST);
 
 // Distances at or above this are "not reached" (outside voxels, or no path from a lit voxel).
 inline constexpr float kUnreached = 1.0e30f;

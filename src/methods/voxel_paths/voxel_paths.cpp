@@ -1,12 +1,18 @@
-// voxel_paths.cpp: see voxel_paths.h.
-#include "methods/voxel_paths/voxel_paths.h"
+// voxel_paths.cpp: the "voxel-paths" method: subsurface scattering as the shortest optical path through a solid
+// voxelization of the translucent objects (after "Real-time rendering of heterogeneous translucent materials
+// using Dijkstra's algorithm", shared/papers/voxel-dijkstra-heterogeneous-sss.txt). Per frame: the light
+// G-buffer (the paper's reflective shadow map), GPU voxelization (voxelizer.h), lit voxels initialized to
+// -ln(F_t P) (eqs. 2-3), shortest optical paths by parallel relaxation (relaxation_solver.h; verified against
+// the CPU Dijkstra of voxel_dijkstra.h), exp(-n) into a 3D texture and surface shading F_t exp(-n) / pi (eq. 1).
+// Limits: point and spot lights scatter only from the outside of the objects (a light inside one sees back faces);
+// deforming objects are voxelized undeformed; blob surfaces are refused. See docs/methods/voxel-paths.md.
+#include "methods/method.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "gpu/frame_counters.h"
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
@@ -19,21 +25,6 @@ namespace lucent::methods {
 namespace {
 
 using namespace voxel_paths;
-
-constexpr ParamDecl kParams[] = {
-    {"resolution", ParamType::Int, "64", "voxels", 8, 256, "", "voxels per axis of the grid over the translucent objects"},
-    {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer"},
-    {"check_every", ParamType::Int, "8", "sweeps", 1, 256, "", "relaxation sweeps between reads of the changed flag"},
-    {"max_iterations", ParamType::Int, "1024", "sweeps", 1, 65536, "", "relaxation sweeps at most per frame"},
-    {"entry_depth", ParamType::Float, "0", "voxels", 0, 4, "",
-     "lit voxels also pay the optical depth of this many voxels of their own medium (0: the paper's n0 = -ln(F_t P))"},
-    {"solver", ParamType::Enum, "\"blocks\"", "", 0, 0, "blocks|sweep",
-     "relaxation schedule: only 4^3 blocks next to a change (blocks) or every voxel every sweep (same result)"},
-    {"extinction", ParamType::Enum, "\"sigma_t\"", "", 0, 0, "sigma_t|sigma_tr",
-     "edge cost coefficient: sigma_t (the paper) or the diffusion's sigma_tr (carries absorption, hence colour)"},
-    {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights"},
-    {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection"},
-};
 
 constexpr int kPaddingVoxels = 2;  // outside voxels around the objects: surface voxels keep outside neighbours
 
@@ -103,49 +94,50 @@ class VoxelPaths final : public Method {
     // again only when something else changed (restart: a new time of an animated scene; other edits rebuild the
     // method), so camera moves cost the shading pass alone.
     solve_needed_ = solve_needed_ || restart;
-    frame.counts = glm::ivec4(0, 0, 1, 3);  // z: unused; w: shadow taps of the direct shading
     light_gbuffer_.fill_frame(frame);
-    frame.biases.w = static_cast<float>(params_.number("roughness"));
-    frame.options.z = params_.boolean("specular") ? 1.0f : 0.0f;
-    width_ = frame.sizes.z, height_ = frame.sizes.w;
+    frame.light_counts.w = 3;  // shadow taps of the direct shading
+    frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
+    width_ = frame.output_size.x, height_ = frame.output_size.y;
   }
 
   void render(const FrameContext& context) override {
     if (!solve_needed_) {
-      gpu::DebugGroup group("voxel_paths");
-      context.timer.begin("voxel_shade");
+      auto pass = context.profiler.pass("voxel_shade");
       shade(context);
-      context.timer.end();
       return;
     }
-    light_gbuffer_.render(context.scene_gpu, context.timer);
-    gpu::DebugGroup group("voxel_paths");
-    context.timer.begin("voxelize");
-    voxelizer_.voxelize(source_, grid_);
-    context.timer.end();
-    context.timer.begin("voxel_field");
-    field_.fill(grid_, voxelizer_.labels_buffer(), triangles_);
-    context.timer.end();
-    context.timer.begin("voxel_initialize");
-    initialize();
-    context.timer.end();
-    context.timer.begin("relax");
-    stats_ = solver_.solve(grid_, voxelizer_.labels_buffer(), field_.buffer(),
-                           params_.integer("check_every"), params_.integer("max_iterations"));
-    context.timer.end();
-    context.timer.begin("voxel_shade");
-    radiance();
-    shade(context);
-    context.timer.end();
+    light_gbuffer_.render(context.scene_gpu, context.profiler);
+    {
+      auto pass = context.profiler.pass("voxelize");
+      voxelizer_.voxelize(source_, grid_);
+    }
+    {
+      auto pass = context.profiler.pass("voxel_field");
+      field_.fill(grid_, voxelizer_.labels_buffer(), triangles_);
+    }
+    {
+      auto pass = context.profiler.pass("voxel_initialize");
+      initialize();
+    }
+    {
+      auto pass = context.profiler.pass("relax");
+      stats_ = solver_.solve(grid_, voxelizer_.labels_buffer(), field_.buffer(),
+                             params_.integer("check_every"), params_.integer("max_iterations"));
+    }
+    {
+      auto pass = context.profiler.pass("voxel_shade");
+      radiance();
+      shade(context);
+    }
     solve_needed_ = false;  // only after a complete solve: a throw above leaves the next frame to solve again
   }
 
   int accumulated_frames() const override { return 1; }
-  glm::uvec2 pixel_coverage() const override {
-    shader::CountersGPU c = counters_.read();
-    return {c.translucent_pixels, c.covered_pixels};
+  void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
+    out.push_back({"voxels", static_cast<double>(grid_.voxel_count()), ""});
+    out.push_back({"solved", record.ran("relax") ? 1.0 : 0.0, ""});
+    out.push_back({"relaxation_sweeps", static_cast<double>(stats_.iterations), ""});
   }
-  std::uint64_t bssrdf_samples_last_frame() const override { return 0; }
   std::size_t gpu_memory_bytes() const override {
     return light_gbuffer_.gpu_memory_bytes() + voxelizer_.gpu_memory_bytes() + field_.gpu_memory_bytes() +
            grid_.voxel_count() * (16 + 12 + 8);
@@ -194,7 +186,7 @@ class VoxelPaths final : public Method {
     const auto r = static_cast<GLuint>(grid_.resolution);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingLabels, voxelizer_.labels_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingDistances, solver_.distances_buffer());
-    glBindImageTexture(0, radiance_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(kImageRadiance, radiance_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glUseProgram(radiance_program_.id());
     set_grid_uniforms(radiance_program_.id());
     glDispatchCompute((r + 3) / 4, (r + 3) / 4, (r + 3) / 4);
@@ -202,9 +194,8 @@ class VoxelPaths final : public Method {
   }
 
   void shade(const FrameContext& context) const {
-    counters_.reset_and_bind();
     light_gbuffer_.bind_textures();
-    glBindTextureUnit(LUCENT_TEX_RADIOSITY, radiance_);
+    glBindTextureUnit(kTextureRadiance, radiance_);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     const GLuint p = shade_program_.id();
     glUseProgram(p);
@@ -225,7 +216,6 @@ class VoxelPaths final : public Method {
   gpu::ShaderProgram flux_program_, distances_program_, radiance_program_, shade_program_;
   GLuint flux_ = 0, radiance_ = 0;
   float flux_unit_ = 1.0f;
-  gpu::FrameCounters counters_;
   RelaxationStats stats_;
   int width_ = 0, height_ = 0;
   bool solve_needed_ = true;
@@ -233,10 +223,8 @@ class VoxelPaths final : public Method {
 
 }  // namespace
 
-std::span<const ParamDecl> voxel_paths_params() { return kParams; }
-
-std::unique_ptr<Method> create_voxel_paths(const Scene& scene, const render::SceneGpu& scene_gpu) {
-  return std::make_unique<VoxelPaths>(scene, scene_gpu);
+std::unique_ptr<Method> create_voxel_paths(const MethodSetup& setup) {
+  return std::make_unique<VoxelPaths>(setup.scene, setup.scene_gpu);
 }
 
 }  // namespace lucent::methods

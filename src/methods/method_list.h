@@ -1,0 +1,7 @@
+// method_list.h: the registered rendering methods, one line each: LUCENT_METHOD(identifier), where the method's
+// folder defines `const MethodInfo <identifier>_info` (data, no GL) and `create_<identifier>(...)` (method.h).
+// The first is the default. Included twice with different LUCENT_METHOD definitions (method_registry.cpp,
+// method_factory.cpp); adding a method is one line here and its folder.
+LUCENT_METHOD(radiosity_maps)
+LUCENT_METHOD(per_pixel)
+LUCENT_METHOD(voxel_paths)

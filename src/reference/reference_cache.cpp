@@ -1,0 +1,84 @@
+// reference_cache.cpp: see reference_cache.h.
+#include "reference/reference_cache.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "lucent/scene.h"
+#include "reference/reference_files.h"
+
+namespace lucent::reference {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::vector<std::string> strings(const json& j, const char* key) {
+  std::vector<std::string> out;
+  if (j.contains(key) && j.at(key).is_array())
+    for (const auto& s : j.at(key))
+      if (s.is_string()) out.push_back(s.get<std::string>());
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator) {
+  std::vector<std::string> relevant;
+  for (const std::string& s : sets) {
+    bool method = s.rfind("method.", 0) == 0 || s.rfind("method=", 0) == 0 || s.rfind("render.frames", 0) == 0;
+    bool model = integrator == "volpath" && s.find(".model=") != std::string::npos;
+    if (!method && !model) relevant.push_back(s);
+  }
+  std::sort(relevant.begin(), relevant.end());
+  return relevant;
+}
+
+std::string reference_key(const std::string& scene, const std::vector<std::string>& sets, const std::string& integrator) {
+  std::string text = scene + "|" + integrator;
+  for (const std::string& s : relevant_overrides(sets, integrator)) text += "|" + s;
+  return fmt::format("{}_{:016x}", integrator, std::hash<std::string>{}(text));
+}
+
+ReferenceImage cached_reference(const std::string& folder, const std::string& scene_path,
+                                const std::vector<std::string>& sets, const std::string& integrator, int spp,
+                                const std::function<void(double)>& progress) {
+  fs::path exr = fs::path(folder) / (reference_key(scene_path, sets, integrator) + ".exr");
+  std::optional<ReferenceImage> cached;
+  std::error_code listing;
+  for (const auto& entry : fs::directory_iterator(exr.parent_path(), listing)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".exr" || name.ends_with(".stderr.exr")) continue;
+    // A damaged cache entry (bad metadata, wrong types, a truncated EXR) is ignored with a warning, never fatal.
+    try {
+      const ReferenceFiles files = reference_files(entry.path().string());
+      const std::optional<json> m = read_reference_metadata(files);
+      auto text = [&](const char* key) { return m->contains(key) && (*m)[key].is_string() ? (*m)[key].get<std::string>() : ""; };
+      if (!m || text("scene") != scene_path || text("integrator") != integrator) continue;
+      if (relevant_overrides(strings(*m, "overrides"), integrator) != relevant_overrides(sets, integrator)) continue;
+      if (cached && cached->samples_per_pixel >= (*m)["samples_per_pixel"].get<int>()) continue;  // keep the best
+      cached = load_reference(files).image;
+      exr = entry.path();
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "lucent: warning: {}; that cached reference is ignored\n", e.what());
+    }
+  }
+  if (cached && cached->samples_per_pixel >= spp) return *cached;
+  Scene scene = load_scene(scene_path, sets);
+  ReferenceSettings settings;
+  settings.integrator = integrator == "volpath" ? Integrator::Volpath : Integrator::Bssrdf;
+  settings.samples_per_pixel = spp - (cached ? cached->samples_per_pixel : 0);
+  fmt::print(stderr, "  reference {} {} spp ({}x{}){}...\n", integrator, spp, scene.render.width, scene.render.height,
+             cached ? fmt::format(", resuming from {} spp", cached->samples_per_pixel) : "");
+  settings.progress = progress;
+  ReferenceImage image = render_reference(scene, settings, cached ? &*cached : nullptr);
+  if (cached) image.seconds += cached->seconds;
+  save_reference(reference_files(exr.string()), image, {{"scene", scene_path}, {"overrides", sets}, {"integrator", integrator}});
+  return image;
+}
+
+}  // namespace lucent::reference

@@ -1,0 +1,26 @@
+// reference_cache.h: converged references kept in a folder and reused across benchmark runs: keyed by the scene,
+// the integrator and the overrides that change the image (not the method's parameters or frame counts), resumed
+// with more samples when a run asks for more than the cache holds.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "reference/reference_renderer.h"
+
+namespace lucent::reference {
+
+// The overrides ("key=value") that change a reference's image: not "method.*", "method=" or "render.frames", and for
+// volpath not the diffusion model ("*.model=") either (the physics does not use it). Sorted.
+std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator);
+// "<integrator>_<16 hex digits>": the cache entry's file stem for the scene, integrator and relevant overrides.
+std::string reference_key(const std::string& scene, const std::vector<std::string>& sets, const std::string& integrator);
+
+// A reference of `scene_path` with `sets` applied and at least `spp` samples per pixel: the best cached one in
+// `folder` when it has enough samples, else that one resumed (or a new one) and saved back. A damaged cache
+// entry is ignored with a warning on stderr. `progress` receives the fraction done of a rendering.
+ReferenceImage cached_reference(const std::string& folder, const std::string& scene_path,
+                                const std::vector<std::string>& sets, const std::string& integrator, int spp,
+                                const std::function<void(double)>& progress = {});
+
+}  // namespace lucent::reference
