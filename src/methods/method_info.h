@@ -28,8 +28,11 @@ struct MethodInfo {
   std::span<const ParamDecl> params;
   std::span<const PassDecl> passes;  // in frame order; a frame may skip some (e.g. a converged or solved state)
   std::span<const StatDecl> stats;
-  // Agreement the method promises with the bssrdf reference on the conformance scene (tests/gl/
-  // test_method_conformance.cpp): relative error of the mean radiance over translucent pixels.
+  // Parameters for a small, fast render (a JSON object merged into the scene's "method"): what the conformance
+  // test (tests/gl/test_method_conformance.cpp) and CI use.
+  std::string_view quick_settings = "{}";
+  // Agreement the method promises with the bssrdf reference on the conformance scene with quick_settings:
+  // relative error of the mean radiance over the object's pixels.
   double reference_tolerance = 0.25;
   bool needs_texture_atlas = false;  // texture-space methods: objects get an atlas, blob surfaces are refused
 };

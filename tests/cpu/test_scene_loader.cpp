@@ -254,7 +254,7 @@ TEST(SceneLoader, UnknownMethodKey) {
   EXPECT_EQ(parse_error(doc),
             "test.json: /method/KK: unknown key; known keys: K, directions, map_directions, N, map_size, light_map_size, "
             "eps_bias, eps_comb, "
-            "visibility_taps, filter_lod, progressive, specular, roughness, vpls, vpl_map_size, view, name");
+            "visibility_taps, filter_lod, progressive, converged_after, specular, roughness, vpls, vpl_map_size, view, name");
 }
 
 TEST(SceneLoader, NegativeSigmaA) {

@@ -216,12 +216,67 @@ TEST(Cli, RenderWritesNonBlackImage) {
   std::string png = lucent::test::output_path("cli_default.png");
   Result r = run(std::string("render ") + kSmall + " --frames 2 -o " + png);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("2. radiosity maps"), std::string::npos);
+  // The summary lists the method's own passes (as it declares them) and its statistics.
+  EXPECT_NE(r.output.find("  integrate "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("statistics (median): translucent_pixels "), std::string::npos) << r.output;
   lucent::ImageRGBA8 image = lucent::read_png(png);
   ASSERT_EQ(image.width, 48);
   double sum = 0.0;
   for (std::size_t i = 0; i < image.pixels.size(); i += 4) sum += image.pixels[i];
   EXPECT_GT(sum / (48.0 * 32.0), 20.0);  // mean red above 20/255: lit objects, not black
+}
+
+// --timings-json: one entry per frame rendered, in order, with the passes the method declares (and the
+// renderer's own) and its statistics.
+TEST(Cli, RenderTimingsJsonHasEveryFrameWithDeclaredPassesAndStatistics) {
+  std::string json_path = lucent::test::output_path("cli_timings.json");
+  std::string png = lucent::test::output_path("cli_timings.png");
+  Result r = run(std::string("render ") + kSmall + " --frames 3 -q -o " + png + " --timings-json " + json_path);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(json_path);
+  nlohmann::json timings = nlohmann::json::parse(in);
+  ASSERT_EQ(timings["frames"].size(), 3u);
+  for (int f = 0; f < 3; ++f) {
+    const nlohmann::json& frame = timings["frames"][static_cast<std::size_t>(f)];
+    EXPECT_EQ(frame["frame"].get<int>(), f + 1);
+    double sum = 0.0;
+    for (const auto& [name, ms] : frame["passes"].items()) sum += ms.get<double>();
+    EXPECT_NEAR(frame["total_ms"].get<double>(), sum, 1e-6 * sum + 1e-9);
+    for (const char* pass : {"camera_gbuffer", "light_gbuffer", "map_gbuffers", "integrate", "combine", "tonemap"})
+      EXPECT_TRUE(frame["passes"].contains(pass)) << pass;
+    EXPECT_GT(frame["stats"]["translucent_pixels"].get<double>(), 0.0);
+    EXPECT_GT(frame["stats"]["bssrdf_samples"].get<double>(), 0.0);
+  }
+}
+
+// `lucent methods --json`: every registered method, with typed parameters marked live or rebuild, its passes and
+// statistics; the text form names the default.
+TEST(Cli, MethodsListsEveryMethodWithParametersPassesAndStatistics) {
+  Result r = run("methods --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  nlohmann::json methods = nlohmann::json::parse(r.output);
+  std::vector<std::string> names;
+  for (const nlohmann::json& m : methods) {
+    names.push_back(m["name"]);
+    EXPECT_FALSE(m["passes"].empty()) << m["name"];
+    for (const nlohmann::json& p : m["params"]) {
+      EXPECT_TRUE(p["update"] == "live" || p["update"] == "rebuild") << p.dump();
+      EXPECT_TRUE(p.contains("type") && p.contains("default") && p.contains("unit")) << p.dump();
+    }
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"radiosity-maps", "per-pixel", "voxel-paths"}));
+  const nlohmann::json& maps = methods[0];
+  auto param = [&](const char* name) {
+    for (const nlohmann::json& p : maps["params"])
+      if (p["name"] == name) return p;
+    return nlohmann::json();
+  };
+  EXPECT_EQ(param("N")["update"], "live");
+  EXPECT_EQ(param("map_size")["update"], "rebuild");
+  EXPECT_EQ(param("map_size")["min"].get<double>(), 8.0);
+  EXPECT_EQ(param("view")["choices"], (nlohmann::json{"shaded", "coverage"}));
+  Result text = run("methods");
+  EXPECT_NE(text.output.find("radiosity-maps (default)"), std::string::npos) << text.output;
 }
 
 TEST(Cli, AnimateWritesNumberedFramesAndCallsFfmpeg) {

@@ -32,6 +32,7 @@ const MethodInfo per_pixel_info{
     kParams,
     kPasses,
     kStats,
+    R"({"N": 16, "light_map_size": 128, "specular": false})",
     0.25,
     false,
 };

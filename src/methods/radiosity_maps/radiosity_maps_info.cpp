@@ -62,6 +62,7 @@ const MethodInfo radiosity_maps_info{
     kParams,
     kPasses,
     kStats,
+    R"({"K": 8, "N": 16, "map_size": 64, "light_map_size": 128, "vpls": 0, "specular": false})",
     0.25,
     false,
 };

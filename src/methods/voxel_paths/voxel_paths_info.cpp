@@ -43,6 +43,7 @@ const MethodInfo voxel_paths_info{
     kParams,
     kPasses,
     kStats,
+    R"({"resolution": 32, "light_map_size": 128, "specular": false})",
     0.6,
     false,
 };
