@@ -14,5 +14,6 @@ void add_tonemap_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_envmap_command(CLI::App& app);
 void add_view_command(CLI::App& app);
+void add_atlas_command(CLI::App& app);
 
 }  // namespace lucent::cli
