@@ -81,42 +81,56 @@ Topology build_topology(const std::vector<glm::vec3>& positions, const std::vect
   return t;
 }
 
+// A cone of directions: every normal added so far is within half_angle of axis.
+struct NormalCone {
+  glm::dvec3 axis;
+  double half_angle;  // [radians]
+  // The smallest cone holding this one and n: the axis turns toward n by half the excess angle.
+  NormalCone enclosing(glm::dvec3 n) const {
+    double theta = std::acos(std::clamp(glm::dot(axis, n), -1.0, 1.0));
+    if (theta <= half_angle) return *this;
+    if (theta >= 3.14159) return {axis, 3.14159};
+    double turn = 0.5 * (theta - half_angle);
+    glm::dvec3 side = glm::normalize(n - axis * glm::dot(axis, n));
+    return {glm::normalize(axis * std::cos(turn) + side * std::sin(turn)), 0.5 * (theta + half_angle)};
+  }
+};
+
 // Grows one chart from `seed` over triangles with owner[f] == free_mark, marking them with chart_mark.
 class ChartGrower {
  public:
   explicit ChartGrower(const Topology& topology) : t_(topology), vertex_use_(topology.position.size(), 0) {}
 
+  // Grows the chart and returns its triangles; `axis` receives the axis of the cone enclosing their normals.
   std::vector<std::uint32_t> grow(std::uint32_t seed, std::vector<std::uint32_t>& owner, std::uint32_t free_mark,
-                                  std::uint32_t chart_mark, double cos_cone) {
+                                  std::uint32_t chart_mark, double cone_rad, glm::dvec3& axis) {
     std::vector<std::uint32_t> members;
-    glm::dvec3 normal_sum(0.0);
-    using Candidate = std::pair<double, std::uint32_t>;  // (deviation, triangle), smallest first
+    NormalCone cone{t_.normal[seed], 0.0};
+    using Candidate = std::pair<double, std::uint32_t>;  // (deviation from the axis, triangle), smallest first
     std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue;
     auto add = [&](std::uint32_t f) {
       owner[f] = chart_mark;
       members.push_back(f);
-      normal_sum += t_.normal[f] * t_.area[f];
       for (int c = 0; c < 3; ++c) ++vertex_use_[t_.corners[3 * f + c]];
-      glm::dvec3 average = average_normal(normal_sum, t_.normal[seed]);
       for (std::uint32_t g : t_.neighbour[f])
-        if (g != kNone && owner[g] == free_mark) queue.push({1.0 - glm::dot(t_.normal[g], average), g});
+        if (g != kNone && owner[g] == free_mark) queue.push({1.0 - glm::dot(t_.normal[g], cone.axis), g});
     };
     add(seed);
     while (!queue.empty()) {
       std::uint32_t f = queue.top().second;
       queue.pop();
       if (owner[f] != free_mark || !keeps_disk(f, owner, chart_mark)) continue;
-      bool degenerate = t_.area[f] <= 0.0;
-      if (degenerate || glm::dot(t_.normal[f], average_normal(normal_sum, t_.normal[seed])) >= cos_cone) add(f);
+      if (t_.area[f] <= 0.0) {
+        add(f);
+        continue;
+      }
+      NormalCone grown = cone.enclosing(t_.normal[f]);
+      if (grown.half_angle <= cone_rad) cone = grown, add(f);
     }
     for (std::uint32_t f : members)
       for (int c = 0; c < 3; ++c) vertex_use_[t_.corners[3 * f + c]] = 0;
+    axis = cone.axis;
     return members;
-  }
-
-  static glm::dvec3 average_normal(glm::dvec3 sum, glm::dvec3 fallback) {
-    double length = glm::length(sum);
-    return length > 0.0 ? sum / length : fallback;
   }
 
  private:
@@ -140,7 +154,7 @@ bool chart_is_valid(const Topology& t, const Chart& chart, double cos_cone) {
   std::vector<glm::dvec2> corners;
   corners.reserve(3 * chart.triangles.size());
   for (std::uint32_t f : chart.triangles) {
-    if (t.area[f] > 0.0 && glm::dot(t.normal[f], chart.normal) < cos_cone - 1e-9) return false;
+    if (t.area[f] > 0.0 && glm::dot(t.normal[f], chart.normal) < cos_cone - 1e-6) return false;
     for (int c = 0; c < 3; ++c) corners.push_back(project(t.position[t.corners[3 * f + c]], chart.normal));
   }
   glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
@@ -149,15 +163,6 @@ bool chart_is_valid(const Topology& t, const Chart& chart, double cos_cone) {
   return !projected_triangles_overlap(corners, 1e-7 * extent);
 }
 
-Chart make_chart(const Topology& t, std::vector<std::uint32_t> triangles) {
-  Chart chart;
-  glm::dvec3 sum(0.0);
-  for (std::uint32_t f : triangles) sum += t.normal[f] * t.area[f];
-  chart.normal = ChartGrower::average_normal(sum, t.normal[triangles.front()]);
-  if (glm::length(chart.normal) == 0.0) chart.normal = {0.0, 0.0, 1.0};
-  chart.triangles = std::move(triangles);
-  return chart;
-}
 
 // Charts over the triangles marked free_mark; invalid charts are regrown with half the cone.
 void grow_into(const Topology& t, ChartGrower& grower, const std::vector<std::uint32_t>& triangles,
@@ -166,7 +171,9 @@ void grow_into(const Topology& t, ChartGrower& grower, const std::vector<std::ui
   for (std::uint32_t seed : triangles) {
     if (owner[seed] != free_mark) continue;
     auto chart_mark = static_cast<std::uint32_t>(out.size());
-    Chart chart = make_chart(t, grower.grow(seed, owner, free_mark, chart_mark, cos_cone));
+    Chart chart;
+    chart.triangles = grower.grow(seed, owner, free_mark, chart_mark, cone_rad, chart.normal);
+    if (!(glm::length(chart.normal) > 0.5)) chart.normal = {0.0, 0.0, 1.0};  // a degenerate seed
     if (chart.triangles.size() == 1 || chart_is_valid(t, chart, cos_cone)) {
       out.push_back(std::move(chart));
       continue;
