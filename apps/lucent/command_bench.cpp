@@ -464,6 +464,7 @@ void add_bench_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("bench", "run a benchmark matrix (bench/*.json) against the CPU references");
   cmd->add_option("config", *config, "benchmark configuration (JSON), e.g. bench/accuracy.json")->required();
   cmd->add_option("-o,--output", *output, "output folder (default out/bench/<config name>)");
+  add_no_cache_flag(cmd);
   cmd->add_option("--run", *only,
                   "run only this run of the configuration (repeatable); its references are cached and refined as in "
                   "the full matrix, e.g. --run grapefruit")

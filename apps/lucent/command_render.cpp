@@ -178,6 +178,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--seed", options->seed, "random seed (render.seed)")->check(whole_number_in(0, 4294967295.0));
   cmd->add_option("--set", options->sets, "override a scene value, e.g. --set method.K=8 --set render.width=320");
   cmd->add_flag("-q,--quiet", options->quiet, "print nothing but errors");
+  add_no_cache_flag(cmd);
   cmd->add_flag("--animate", options->animate,
                 "render --frames animation frames (time f / render.fps) to <output>_NNNN.png, and an MP4 with ffmpeg");
   cmd->add_option("--samples-per-frame", options->samples_per_frame, "--animate: frames accumulated per animation frame")

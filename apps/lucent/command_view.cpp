@@ -12,6 +12,7 @@ void add_view_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("view", "interactive viewer: a window with the scene and a panel of its parameters");
   cmd->add_option("scene", options->scene_path, "scene file (JSON); the built-in default scene when omitted");
   cmd->add_option("--set", options->sets, "override a scene value, e.g. --set method.K=8 (as lucent render)");
+  add_no_cache_flag(cmd);
   cmd->add_option("--width", options->width, "rendered view width in pixels (default: render.width)")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", options->height, "rendered view height in pixels (default: render.height)")->check(CLI::Range(1, 16384));
   cmd->add_option("--frames", options->frames, "render this many frames, write the screenshots and exit")->check(CLI::Range(1, 1000000));

@@ -2,6 +2,8 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include "cache/precompute_cache.h"
+
 namespace lucent::cli {
 
 void add_render_command(CLI::App& app);
@@ -15,5 +17,12 @@ void add_bench_command(CLI::App& app);
 void add_envmap_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_atlas_command(CLI::App& app);
+
+// --no-cache, on the commands that may precompute: the precompute cache is neither read nor written.
+inline void add_no_cache_flag(CLI::App* cmd) {
+  cmd->add_flag_callback("--no-cache", [] { cache::set_enabled(false); },
+                         "neither read nor write the precompute cache ($LUCENT_CACHE_DIR, $XDG_CACHE_HOME/lucent or "
+                         "~/.cache/lucent)");
+}
 
 }  // namespace lucent::cli

@@ -3,6 +3,7 @@
 
 layout(location = 0) in vec4 in_position;  // xyz world [scene units], w: object index
 layout(location = 1) in vec4 in_normal;    // xyz world unit normal
+layout(location = 2) in vec4 in_uv;        // xy: texture coordinates (0 where the mesh has none); not used yet
 
 out VertexData {
   vec3 position;

@@ -34,6 +34,7 @@ void emit_vertices(ivec3 p, uint i, uint edge_mask, uint capacity) {
     vec3 position = a + mt_edge_fraction(f_p, f_q) * (b - a);
     vertices[slot].position = vec4(position, params.spacing.w);
     vertices[slot].normal = vec4(vertex_normal(position, mt_inside(f_p) ? b - a : a - b), 0.0f);
+    vertices[slot].uv = vec4(0.0f);  // an isosurface has no texture coordinates
   }
 }
 

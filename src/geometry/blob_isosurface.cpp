@@ -10,6 +10,7 @@
 #include "geometry/marching_tetrahedra.h"
 #include "gpu/gl_debug.h"
 #include "gpu/gpu_timer.h"
+#include "gpu/vertex_layout.h"
 #include "lucent/error.h"
 
 namespace lucent::geometry {
@@ -131,14 +132,8 @@ BlobIsosurface::BlobIsosurface(const IsosurfaceGrid& grid, int object_index, std
   readback_ = static_cast<const IsosurfaceCountsGPU*>(
       glMapNamedBufferRange(buffers_[kReadback], 0, sizeof(IsosurfaceCountsGPU), mapped));
   glCreateVertexArrays(1, &vao_);
-  glVertexArrayVertexBuffer(vao_, 0, buffers_[kVertices], 0, sizeof(VertexGPU));
+  gpu::set_vertex_gpu_layout(vao_, buffers_[kVertices]);
   glVertexArrayElementBuffer(vao_, buffers_[kIndices]);
-  for (GLuint attribute = 0; attribute < 2; ++attribute) {
-    glEnableVertexArrayAttrib(vao_, attribute);
-    auto offset = attribute * static_cast<GLuint>(sizeof(glm::vec4));
-    glVertexArrayAttribFormat(vao_, attribute, 4, GL_FLOAT, GL_FALSE, offset);
-    glVertexArrayAttribBinding(vao_, attribute, 0);
-  }
   gpu::label_object(GL_VERTEX_ARRAY, vao_, "isosurface");
 }
 

@@ -51,10 +51,10 @@ class BlobIsosurface {
   // Draws the last extraction: binds its vertex array and GL_DRAW_INDIRECT_BUFFER, glDrawElementsIndirect.
   void draw() const;
 
-  // The buffers, for drawing with one's own state: vertex_buffer() holds shader::VertexGPU (attribute 0: vec4
-  // position, 1: vec4 normal, stride 32), index_buffer() GL_UNSIGNED_INT triangles, indirect_buffer() one
-  // DrawElementsIndirectCommand (count = 3 x triangles, or 0 over capacity). vertex_array() binds the first
-  // two with that layout.
+  // The buffers, for drawing with one's own state: vertex_buffer() holds shader::VertexGPU (gpu/vertex_layout.h:
+  // attribute 0: vec4 position, 1: vec4 normal, 2: vec4 texture coordinates, always 0 here; stride 48),
+  // index_buffer() GL_UNSIGNED_INT triangles, indirect_buffer() one DrawElementsIndirectCommand (count = 3 x
+  // triangles, or 0 over capacity). vertex_array() binds the first two with that layout.
   GLuint vertex_buffer() const { return buffers_[kVertices]; }
   GLuint index_buffer() const { return buffers_[kIndices]; }
   GLuint indirect_buffer() const { return buffers_[kDraw]; }

@@ -9,6 +9,7 @@
 #include "geometry/isosurface_grid.h"
 #include "gpu/gl_debug.h"
 #include "gpu/gpu_timer.h"
+#include "gpu/vertex_layout.h"
 #include "shared/shader_io.h"
 
 namespace lucent::render {
@@ -34,6 +35,13 @@ MaterialGPU to_gpu(const Material& m, float scale_mm) {
   out.sigma_s = glm::vec4(m.sigma_s * scale_mm, static_cast<float>(static_cast<int>(m.model)));
   out.g = glm::vec4(m.g, 0.0f);
   return out;
+}
+
+// Vertex v of a world-space mesh (texture coordinates 0 where it has none).
+VertexGPU to_gpu(const TriangleMesh& world, std::size_t v, std::size_t object) {
+  glm::vec2 uv = world.uvs.empty() ? glm::vec2(0.0f) : world.uvs[v];
+  return {glm::vec4(world.positions[v], static_cast<float>(object)), glm::vec4(world.normals[v], 0.0f),
+          glm::vec4(uv, 0.0f, 0.0f)};
 }
 
 template <typename T>
@@ -76,8 +84,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
     } else {
       TriangleMesh world = transformed(object.mesh, object.world_from_object);
       auto base = static_cast<std::uint32_t>(vertices.size());
-      for (std::size_t v = 0; v < world.positions.size(); ++v)
-        vertices.push_back({glm::vec4(world.positions[v], static_cast<float>(i)), glm::vec4(world.normals[v], 0.0f)});
+      for (std::size_t v = 0; v < world.positions.size(); ++v) vertices.push_back(to_gpu(world, v, i));
       if (object.translucent())
         translucent_meshes_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(indices.size()),
                                        static_cast<std::uint32_t>(object.mesh.indices.size())});
@@ -122,13 +129,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
   material_buffer_ = make_buffer(materials, "materials");
   object_buffer_ = make_buffer(objects, "objects");
   glCreateVertexArrays(1, &vao_);
-  glVertexArrayVertexBuffer(vao_, 0, vertex_buffer_, 0, sizeof(VertexGPU));
+  gpu::set_vertex_gpu_layout(vao_, vertex_buffer_);
   glVertexArrayElementBuffer(vao_, index_buffer_);
-  for (GLuint attribute = 0; attribute < 2; ++attribute) {
-    glEnableVertexArrayAttrib(vao_, attribute);
-    glVertexArrayAttribFormat(vao_, attribute, 4, GL_FLOAT, GL_FALSE, attribute * static_cast<GLuint>(sizeof(glm::vec4)));
-    glVertexArrayAttribBinding(vao_, attribute, 0);
-  }
   gpu::label_object(GL_VERTEX_ARRAY, vao_, "scene");
 }
 
@@ -159,8 +161,7 @@ void SceneGpu::update(double seconds, gpu::GpuTimer* timer) {
   for (const Deforming& d : deforming_) {
     TriangleMesh world = transformed(deformed_mesh(d.mesh, d.deformation, seconds), d.world_from_object);
     std::vector<VertexGPU> vertices(world.positions.size());
-    for (std::size_t v = 0; v < vertices.size(); ++v)
-      vertices[v] = {glm::vec4(world.positions[v], static_cast<float>(d.object)), glm::vec4(world.normals[v], 0.0f)};
+    for (std::size_t v = 0; v < vertices.size(); ++v) vertices[v] = to_gpu(world, v, d.object);
     glNamedBufferSubData(vertex_buffer_, static_cast<GLintptr>(d.first_vertex * sizeof(VertexGPU)),
                          static_cast<GLsizeiptr>(vertices.size() * sizeof(VertexGPU)), vertices.data());
   }

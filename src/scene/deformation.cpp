@@ -1,7 +1,11 @@
 // deformation.cpp: per-frame vertex deformations of SceneObject (scene.h) and scene_at_time().
-#include <limits>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+#include <vector>
 
 #include "geometry/isosurface_cpu.h"
 #include "geometry/isosurface_grid.h"
@@ -12,17 +16,40 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-// Area-weighted vertex normals of the deformed faces (vertices duplicated at creases keep their own).
-void recompute_normals(TriangleMesh& mesh) {
+// The smooth-surface vertex of each vertex: vertices with bitwise-equal rest position and rest normal share one.
+// They are copies along a texture seam (or the two rings of a smooth lathe corner), one point of a smooth
+// surface; vertices duplicated at creases differ in their normals and stay apart.
+std::vector<std::uint32_t> smooth_groups(const TriangleMesh& rest) {
+  std::array<std::uint32_t, 6> key{};
+  auto key_of = [&](std::size_t i) {
+    std::memcpy(key.data(), &rest.positions[i], sizeof(glm::vec3));
+    std::memcpy(key.data() + 3, &rest.normals[i], sizeof(glm::vec3));
+    return key;
+  };
+  auto hash = [](const std::array<std::uint32_t, 6>& k) {
+    std::size_t h = 0;
+    for (std::uint32_t word : k) h = (h ^ word) * 0x100000001b3ull;
+    return h;
+  };
+  std::unordered_map<std::array<std::uint32_t, 6>, std::uint32_t, decltype(hash)> ids(rest.positions.size(), hash);
+  std::vector<std::uint32_t> group(rest.positions.size());
+  for (std::size_t i = 0; i < group.size(); ++i)
+    group[i] = ids.emplace(key_of(i), static_cast<std::uint32_t>(ids.size())).first->second;
+  return group;
+}
+
+// Area-weighted vertex normals of the deformed faces, summed over each smooth-surface vertex of the rest pose.
+void recompute_normals(TriangleMesh& mesh, const TriangleMesh& rest) {
+  const std::vector<std::uint32_t> group = smooth_groups(rest);
   std::vector<glm::vec3> sum(mesh.positions.size(), glm::vec3(0.0f));
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
     glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
-    sum[a] += n, sum[b] += n, sum[c] += n;
+    sum[group[a]] += n, sum[group[b]] += n, sum[group[c]] += n;
   }
   for (std::size_t i = 0; i < sum.size(); ++i) {
-    float length = glm::length(sum[i]);
-    if (length > 0.0f) mesh.normals[i] = sum[i] / length;
+    float length = glm::length(sum[group[i]]);
+    if (length > 0.0f) mesh.normals[i] = sum[group[i]] / length;
   }
 }
 
@@ -54,7 +81,7 @@ TriangleMesh deformed_mesh(const TriangleMesh& mesh, const Deformation& d, doubl
         break;
     }
   }
-  recompute_normals(out);
+  recompute_normals(out, mesh);  // texture coordinates stay those of the rest pose
   return out;
 }
 

@@ -57,12 +57,14 @@ constexpr std::uint32_t kMagic = 0x4c4d5348;  // "LMSH"
 constexpr std::uint32_t kMeshResult = 0, kErrorResult = 1;
 constexpr std::uint64_t kMaxMessage = 1 << 16;
 
-// The fixed-size start of the child's reply: a mesh (a = vertex count, b = index count) or an error (a = length).
+// The fixed-size start of the child's reply: a mesh (a = vertex count, b = index count, c = texture coordinate
+// count: 0 or a) or an error (a = length).
 struct ReplyHeader {
   std::uint32_t magic = kMagic;
   std::uint32_t kind = kMeshResult;
   std::uint64_t a = 0;
   std::uint64_t b = 0;
+  std::uint64_t c = 0;
 };
 
 // ---- child ----------------------------------------------------------------------------------------------
@@ -81,17 +83,19 @@ bool write_all(int fd, const void* data, std::size_t size) {
 
 // The arrays go to the shared memory file, then the header to the pipe: its arrival says the data is complete.
 bool send_mesh(int fd, int data_fd, const TriangleMesh& mesh) {
-  const ReplyHeader header{kMagic, kMeshResult, mesh.positions.size(), mesh.indices.size()};
+  const ReplyHeader header{kMagic, kMeshResult, mesh.positions.size(), mesh.indices.size(), mesh.uvs.size()};
   return mesh.normals.size() == mesh.positions.size() &&
+         (mesh.uvs.empty() || mesh.uvs.size() == mesh.positions.size()) &&
          write_all(data_fd, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3)) &&
          write_all(data_fd, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3)) &&
          write_all(data_fd, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t)) &&
+         write_all(data_fd, mesh.uvs.data(), mesh.uvs.size() * sizeof(glm::vec2)) &&
          write_all(fd, &header, sizeof header);
 }
 
 bool send_error(int fd, std::string message) {
   message.resize(std::min<std::size_t>(message.size(), kMaxMessage));
-  const ReplyHeader header{kMagic, kErrorResult, message.size(), 0};
+  const ReplyHeader header{kMagic, kErrorResult, message.size(), 0, 0};
   return write_all(fd, &header, sizeof header) && write_all(fd, message.data(), message.size());
 }
 
@@ -251,9 +255,11 @@ std::optional<Reply> receive(PipeReader& reader, int data_fd) {
   const auto data_size = static_cast<std::uint64_t>(data_stat.st_size);
   std::uint64_t offset = 0;
   TriangleMesh mesh;
-  if (!read_array(data_fd, data_size, offset, header.a, mesh.positions) ||
+  if ((header.c != 0 && header.c != header.a) ||
+      !read_array(data_fd, data_size, offset, header.a, mesh.positions) ||
       !read_array(data_fd, data_size, offset, header.a, mesh.normals) ||
-      !read_array(data_fd, data_size, offset, header.b, mesh.indices))
+      !read_array(data_fd, data_size, offset, header.b, mesh.indices) ||
+      !read_array(data_fd, data_size, offset, header.c, mesh.uvs))
     return std::nullopt;
   reply.mesh = std::move(mesh);
   return reply;

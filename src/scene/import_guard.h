@@ -20,8 +20,8 @@ struct ImportLimits {
 // Process-wide limits of load_mesh's importer; the fuzz targets lower them.
 ImportLimits& mesh_import_limits();
 
-// Calls `import` in a forked child and returns the mesh it produced, read back through a pipe (positions,
-// normals, indices). A lucent::Error or std::exception thrown by `import` is rethrown here with the same message.
+// Calls `import` in a forked child and returns the mesh it produced, read back through a pipe and shared memory
+// (positions, normals, indices, texture coordinates when it has them). A lucent::Error or std::exception thrown by `import` is rethrown here with the same message.
 // When the child dies (signal, CPU or memory limit, sanitizer report) or does not finish within the wall time,
 // throws lucent::Error("<path>: cannot read mesh: the importer crashed (signal 11, Segmentation fault)") or
 // similar. Returns the mesh as the child built it: the caller validates it.

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -24,6 +26,7 @@ namespace {
 glm::vec3 to_glm(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 
 bool is_finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool is_finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 // Twice the area of triangle t, pointing along its front side (counter-clockwise).
 glm::vec3 area_vector(const TriangleMesh& mesh, std::size_t t) {
@@ -42,14 +45,16 @@ std::string one_line(std::string text) {
 }
 
 // Appends the triangles of one assimp mesh; faces that are not triangles (points, lines) are skipped. Indices
-// are checked against the mesh's own vertices (after offsetting they could land on another mesh's).
-void append_mesh(const aiMesh& src, TriangleMesh& dst, const std::string& path) {
+// are checked against the mesh's own vertices (after offsetting they could land on another mesh's). With
+// `with_uvs`, texture channel 0 (u, v; a third component is ignored) is appended too: the mesh must have it.
+void append_mesh(const aiMesh& src, TriangleMesh& dst, bool with_uvs, const std::string& path) {
   if (src.mNumVertices > std::numeric_limits<std::uint32_t>::max() - dst.positions.size())
     throw Error(path + ": cannot read mesh: more than 2^32 vertices");
   const auto base = static_cast<std::uint32_t>(dst.positions.size());
   for (unsigned i = 0; i < src.mNumVertices; ++i) {
     dst.positions.push_back(to_glm(src.mVertices[i]));
     dst.normals.push_back(src.mNormals ? to_glm(src.mNormals[i]) : glm::vec3(0.0f));
+    if (with_uvs) dst.uvs.emplace_back(src.mTextureCoords[0][i].x, src.mTextureCoords[0][i].y);
   }
   for (unsigned f = 0; f < src.mNumFaces; ++f) {
     const aiFace& face = src.mFaces[f];
@@ -95,11 +100,20 @@ TriangleMesh import_triangles(const std::string& path) {
   const aiScene* scene = importer.ReadFile(path, flags);
   if (!scene) throw Error(path + ": cannot read mesh: " + one_line(importer.GetErrorString()));
 
-  TriangleMesh mesh;
   // SortByPType leaves each mesh one primitive type. Point and line meshes are dropped here rather than by
   // AI_CONFIG_PP_SBP_REMOVE, which fails a file of lines alone as "No meshes remaining".
+  std::vector<const aiMesh*> triangle_meshes;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-    if (scene->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) append_mesh(*scene->mMeshes[m], mesh, path);
+    if (scene->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) triangle_meshes.push_back(scene->mMeshes[m]);
+  // Texture coordinates are all or nothing: a vertex without them has no meaningful value to fill in.
+  const auto textured = std::count_if(triangle_meshes.begin(), triangle_meshes.end(),
+                                      [](const aiMesh* m) { return m->HasTextureCoords(0); });
+  const bool with_uvs = !triangle_meshes.empty() && textured == std::ssize(triangle_meshes);
+  if (textured > 0 && !with_uvs)  // printed by the importer's process, on the same stderr
+    std::cerr << "lucent: warning: " << path << ": texture coordinates dropped: only " << textured << " of "
+              << triangle_meshes.size() << " meshes have them\n";
+  TriangleMesh mesh;
+  for (const aiMesh* m : triangle_meshes) append_mesh(*m, mesh, with_uvs, path);
   return mesh;
 }
 
@@ -129,6 +143,9 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& what) {
     throw Error(what + ": index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   if (mesh.normals.size() != mesh.positions.size())
     throw Error(what + ": normals count differs from positions count");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+    throw Error(what + ": texture coordinate count " + std::to_string(mesh.uvs.size()) + " differs from vertex count " +
+                std::to_string(mesh.positions.size()));
   for (std::uint32_t index : mesh.indices)
     if (index >= mesh.positions.size())
       throw Error(what + ": index " + std::to_string(index) + " out of range (" +
@@ -136,6 +153,9 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& what) {
   for (std::size_t i = 0; i < mesh.positions.size(); ++i)
     if (!is_finite(mesh.positions[i]))
       throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+  for (std::size_t i = 0; i < mesh.uvs.size(); ++i)
+    if (!is_finite(mesh.uvs[i]))
+      throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite texture coordinate");
   if (!(surface_area(mesh) > 0.0f)) throw Error(what + ": mesh has zero surface area (degenerate triangles)");
 }
 

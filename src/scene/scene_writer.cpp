@@ -252,7 +252,12 @@ void write_gltf(const std::string& path, const TriangleMesh& mesh) {
   append_bytes(buffer, mesh.positions);
   append_bytes(buffer, mesh.normals);
   append_bytes(buffer, mesh.indices);
+  // glTF's texture origin is the top left of the image, lucent's (OpenGL's) the bottom left.
+  std::vector<glm::vec2> texcoords;
+  for (glm::vec2 uv : mesh.uvs) texcoords.emplace_back(uv.x, 1.0f - uv.y);
+  append_bytes(buffer, texcoords);
   std::size_t vertex_bytes = mesh.positions.size() * sizeof(glm::vec3);
+  std::size_t index_bytes = mesh.indices.size() * sizeof(std::uint32_t);
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   constexpr int kFloat = 5126, kUnsignedInt = 5125, kArrayBuffer = 34962, kElementArrayBuffer = 34963;
@@ -268,12 +273,19 @@ void write_gltf(const std::string& path, const TriangleMesh& mesh) {
       {"bufferViews", json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vertex_bytes}, {"target", kArrayBuffer}},
                                    {{"buffer", 0}, {"byteOffset", vertex_bytes}, {"byteLength", vertex_bytes}, {"target", kArrayBuffer}},
                                    {{"buffer", 0}, {"byteOffset", 2 * vertex_bytes},
-                                    {"byteLength", mesh.indices.size() * sizeof(std::uint32_t)}, {"target", kElementArrayBuffer}}})},
+                                    {"byteLength", index_bytes}, {"target", kElementArrayBuffer}}})},
       {"accessors", json::array({{{"bufferView", 0}, {"componentType", kFloat}, {"count", mesh.positions.size()},
                                   {"type", "VEC3"}, {"min", vec(lo)}, {"max", vec(hi)}},
                                  {{"bufferView", 1}, {"componentType", kFloat}, {"count", mesh.normals.size()}, {"type", "VEC3"}},
                                  {{"bufferView", 2}, {"componentType", kUnsignedInt}, {"count", mesh.indices.size()},
                                   {"type", "SCALAR"}}})}};
+  if (!texcoords.empty()) {
+    gltf["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 3;
+    gltf["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 2 * vertex_bytes + index_bytes},
+                                   {"byteLength", texcoords.size() * sizeof(glm::vec2)}, {"target", kArrayBuffer}});
+    gltf["accessors"].push_back(
+        {{"bufferView", 3}, {"componentType", kFloat}, {"count", texcoords.size()}, {"type", "VEC2"}});
+  }
   write_file(path, gltf.dump() + "\n");
 }
 

@@ -86,10 +86,11 @@ struct LightGPU {
                   // or 6 cube faces +X -X +Y -Y +Z -Z), z: first layer of the scene-wide shadow view(s), w: count
 };
 
-// One vertex of the world-space scene vertex buffer (32 bytes).
+// One vertex of the world-space scene vertex buffer (48 bytes).
 struct VertexGPU {
   vec4 position;  // xyz world [scene units]; w: object index
   vec4 normal;    // xyz world unit normal; w: unused
+  vec4 uv;        // xy: texture coordinates (0 where the mesh has none); zw: unused
 };
 
 // Everything a frame's passes read (std140).
@@ -153,7 +154,7 @@ LUCENT_SHADER_END
 static_assert(sizeof(lucent::shader::MaterialGPU) == 48);
 static_assert(sizeof(lucent::shader::ObjectGPU) == 32);
 static_assert(sizeof(lucent::shader::ViewGPU) == 96);
-static_assert(sizeof(lucent::shader::VertexGPU) == 32);
+static_assert(sizeof(lucent::shader::VertexGPU) == 48);
 static_assert(sizeof(lucent::shader::ParityCaseGPU) == 128);
 static_assert(offsetof(lucent::shader::FrameGPU, counts) == 96);
 static_assert(sizeof(lucent::shader::LightGPU) == 64);

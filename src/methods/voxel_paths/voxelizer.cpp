@@ -36,7 +36,7 @@ void Voxelizer::voxelize(const TranslucentTriangles& triangles, const VoxelGrid&
   std::vector<shader::VertexGPU> vertices(triangles.corners.size());
   std::vector<std::uint32_t> indices(triangles.corners.size());
   for (std::size_t i = 0; i < vertices.size(); ++i) {
-    vertices[i] = {triangles.corners[i] - glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f)};  // w: object index
+    vertices[i] = {triangles.corners[i] - glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f), glm::vec4(0.0f)};  // w: object index
     indices[i] = static_cast<std::uint32_t>(i);
   }
   glNamedBufferData(vertices_, static_cast<GLsizeiptr>(std::max<std::size_t>(1, vertices.size()) * sizeof(shader::VertexGPU)),
