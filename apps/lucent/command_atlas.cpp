@@ -20,6 +20,7 @@ struct AtlasCommandOptions {
   int size = 1024;
   float cone_deg = 60.0f;
   bool json = false;
+  bool charts = false;
 };
 
 // A mesh file becomes a scene of one translucent object (the material only marks it translucent).
@@ -71,6 +72,7 @@ void run(const AtlasCommandOptions& o) {
   texture_space::AtlasOptions options;
   options.size = o.size;
   options.cone_deg = o.cone_deg;
+  options.use_own_uvs = !o.charts;
   texture_space::SceneAtlas result = texture_space::build_scene_atlas(scene, options);
   const texture_space::AtlasMetrics& m = result.atlas.metrics;
   std::size_t triangles = 0;
@@ -111,6 +113,7 @@ void add_atlas_command(CLI::App& app) {
   cmd->add_option("--cone", options->cone_deg, "largest angle between a triangle's normal and its chart's [degrees]")
       ->check(number_in(1, 89, false, "degrees"))->capture_default_str();
   cmd->add_flag("--json", options->json, "print JSON");
+  cmd->add_flag("--charts", options->charts, "build charts even where a single mesh's own texture coordinates are usable");
   cmd->add_option("-o,--output", options->png, "draw the atlas to a PNG: charts in colours, empty texels dark");
   cmd->callback([options] { run(*options); });
 }

@@ -8,14 +8,17 @@ flat in float g_ratio;
 flat in float g_object;
 
 layout(location = 0) out vec4 out_position;      // xyz world [scene units], w: object index + 1
-layout(location = 1) out vec4 out_normal_ratio;  // xyz world unit normal, w: A_S / A_T [scene units^2 per texel]
+layout(location = 1) out vec4 out_normal_ratio;  // xyz world unit normal, w: +-A_S / A_T [scene units^2 per texel]
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
+vec3 barycentric(vec2 a, vec2 b, vec2 c, vec2 p) {
+  return vec3(cross2(c - b, p - b), cross2(a - c, p - c), cross2(b - a, p - a)) / cross2(b - a, c - a);
+}
+
 // Barycentric coordinates of the triangle's point nearest p.
 vec3 nearest_barycentric(vec2 a, vec2 b, vec2 c, vec2 p) {
-  float area = cross2(b - a, c - a);
-  vec3 l = vec3(cross2(c - b, p - b), cross2(a - c, p - c), cross2(b - a, p - a)) / area;
+  vec3 l = barycentric(a, b, c, p);
   if (all(greaterThanEqual(l, vec3(0.0f)))) return l;
   vec2 corners[3] = vec2[3](a, b, c);
   float best = 1e30f;
@@ -50,5 +53,10 @@ void main() {
   vec3 position = l.x * g_position[0] + l.y * g_position[1] + l.z * g_position[2];
   vec3 normal = normalize(l.x * g_normal[0] + l.y * g_normal[1] + l.z * g_normal[2]);
   out_position = vec4(position, g_object + 1.0f);
-  out_normal_ratio = vec4(normal, g_ratio);
+  // Only texels whose centre lies on the triangle carry its area (+A_S / A_T): a sum over texels is then the
+  // midpoint rule of Chang et al.'s Eq. 7. Texels the triangle merely touches hold the nearest point for lookups
+  // and -A_S / A_T.
+  bool centre_inside = all(greaterThanEqual(barycentric(g_texel[0], g_texel[1], g_texel[2], p), vec3(0.0f)));
+  gl_FragDepth = centre_inside ? 0.0f : gl_FragDepth;
+  out_normal_ratio = vec4(normal, centre_inside ? g_ratio : -g_ratio);
 }

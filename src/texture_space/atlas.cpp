@@ -193,9 +193,9 @@ Atlas build_atlas(std::span<const AtlasInput> inputs, const AtlasOptions& option
   std::vector<glm::dvec2> extents;
   for (const PlacedChart& c : charts) extents.push_back(c.extent);
   std::vector<PackedBox> boxes;
-  // The gap between boxes is border + 1 texels: a texel touched by one chart is then border texels clear of any
-  // texel another chart touches.
-  double scale = pack_boxes(extents, options.size, options.border_texels + 1, boxes);
+  // The gap between boxes is border + 2 texels: a chart ending at X touches texels up to floor(X), one starting at
+  // X + border + 2 texels from ceil(X + border + 2) - 1 >= floor(X) + border + 1, so border texels lie between.
+  double scale = pack_boxes(extents, options.size, options.border_texels + 2, boxes);
   if (scale <= 0.0)
     throw Error(fmt::format("{} charts do not fit into a {} x {} atlas with {}-texel borders; use a larger size",
                             charts.size(), options.size, options.size, options.border_texels));

@@ -33,8 +33,10 @@ inline constexpr std::uint32_t kAtlasBuilderVersion = 1;
 
 struct AtlasOptions {
   int size = 1024;              // atlas width = height [texels]
-  float cone_deg = 60.0f;       // largest angle between a triangle's normal and its chart's average normal
+  float cone_deg = 30.0f;       // half-angle of the cone holding a chart's normals: at most 2 cone_deg between two
+                                // normals of a chart, 1 / cos(cone_deg) stretch
   int border_texels = 3;        // empty texels at least between the texels any two charts touch
+  bool use_own_uvs = true;      // build_scene_atlas: keep a single object's own usable texture coordinates
 };
 
 // Distortion of the map from the atlas to the surface, per triangle from the Jacobian J of texture -> surface

@@ -45,7 +45,7 @@ struct Fnv1a {
 SceneAtlas build_scene_atlas(const Scene& scene, const AtlasOptions& options) {
   SceneAtlas out;
   out.object_index = translucent_objects(scene);
-  if (out.object_index.size() == 1) {
+  if (out.object_index.size() == 1 && options.use_own_uvs) {
     const SceneObject& object = scene.objects[out.object_index.front()];
     if (!object.mesh.uvs.empty()) {
       std::optional<std::string> problem = uv_problem(object.mesh, options.size);
@@ -81,6 +81,7 @@ std::string atlas_cache_key(const Scene& scene, const AtlasOptions& options) {
                             static_cast<std::uint32_t>(options.border_texels)};
   h.add(header, sizeof header);
   h.add(&options.cone_deg, sizeof options.cone_deg);
+  h.add(&options.use_own_uvs, sizeof options.use_own_uvs);
   for (std::size_t i : translucent_objects(scene)) {
     const SceneObject& object = scene.objects[i];
     h.add_vector(object.mesh.positions), h.add_vector(object.mesh.normals), h.add_vector(object.mesh.indices);

@@ -3,8 +3,10 @@
 // their rest-pose coordinates). Per texel:
 //   position  RGBA32F: xyz world position [scene units]; w: scene object index + 1 (0: empty texel)
 //   normal    RGBA32F: xyz world unit normal (interpolated); w: A_S / A_T of the triangle, its world area per
-//             atlas area [scene units^2 per texel] (Chang et al. 2008, Eqs. 6-7): the surface area a texel stands
-//             for, so a sum over texels of f * w approximates the surface integral of f.
+//             atlas area [scene units^2 per texel] (Chang et al. 2008, Eqs. 6-7), positive where the texel's
+//             centre lies on the triangle: the surface area the texel stands for, so the sum over texels of
+//             f * max(w, 0) is the midpoint rule for the surface integral of f (Eq. 7). Negative (-A_S / A_T) on
+//             texels the triangle only touches: they hold a surface point for lookups but no area.
 // Rasterization is conservative: every texel whose square a triangle touches is written (llvmpipe has no
 // conservative-raster extension): the geometry shader draws the triangle's texel-space bounding box grown by one
 // texel, and the fragment shader keeps texels whose square overlaps the triangle (separating axes: the box and the
