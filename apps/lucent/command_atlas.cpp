@@ -17,8 +17,8 @@ namespace {
 struct AtlasCommandOptions {
   std::string input;  // mesh file or scene (.json); the built-in default scene when empty
   std::string png;
-  int size = 1024;
-  float cone_deg = 60.0f;
+  int size = texture_space::AtlasOptions{}.size;
+  float cone_deg = texture_space::AtlasOptions{}.cone_deg;  // [degrees]
   bool json = false;
   bool charts = false;
 };
@@ -110,7 +110,7 @@ void add_atlas_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("atlas", "build the texture atlas of a mesh or of a scene's translucent objects");
   cmd->add_option("input", options->input, "mesh file or scene (.json); the built-in default scene when omitted");
   cmd->add_option("--size", options->size, "atlas width and height [texels]")->check(whole_number_in(16, 16384, "texels"))->capture_default_str();
-  cmd->add_option("--cone", options->cone_deg, "largest angle between a triangle's normal and its chart's [degrees]")
+  cmd->add_option("--cone", options->cone_deg, "half-angle of the cone holding each chart's normals [degrees]")
       ->check(number_in(1, 89, false, "degrees"))->capture_default_str();
   cmd->add_flag("--json", options->json, "print JSON");
   cmd->add_flag("--charts", options->charts, "build charts even where a single mesh's own texture coordinates are usable");
