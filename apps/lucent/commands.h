@@ -17,6 +17,7 @@ void add_bench_command(CLI::App& app);
 void add_envmap_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
+void add_atlas_command(CLI::App& app);
 
 // --no-cache, on the commands that may precompute: the precompute cache is neither read nor written.
 inline void add_no_cache_flag(CLI::App* cmd) {

@@ -21,7 +21,7 @@
 #define LUCENT_BINDING_COUNTERS 3   // CountersGPU of the frame (std430), zeroed by the renderer each frame
 #define LUCENT_BINDING_LAYER_VIEWS 4  // ViewGPU[] of the layered G-buffer pass being drawn (std430): each such pass
                                       // binds its own views (light layers, a method's maps) before drawing
-// 0, 7: reserved for frame data; 5-6: tests
+// 0: reserved for frame data
 
 // ---- texture units (samplers) -----------------------------------------------------------------------------
 #define LUCENT_TEX_CAMERA_POSITION 0
@@ -52,16 +52,16 @@
 #define LUCENT_ISOSURFACE_STORAGE_FIRST 8
 #define LUCENT_ISOSURFACE_STORAGE_LAST 19
 
-#define LUCENT_TEXTURE_SPACE_STORAGE_FIRST 30
-#define LUCENT_TEXTURE_SPACE_STORAGE_LAST 31
+#define LUCENT_TEXTURE_SPACE_STORAGE_FIRST 5
+#define LUCENT_TEXTURE_SPACE_STORAGE_LAST 7
 #define LUCENT_TEXTURE_SPACE_TEX_FIRST 24
 #define LUCENT_TEXTURE_SPACE_TEX_LAST 31
 #define LUCENT_TEXTURE_SPACE_IMAGE_FIRST 6
 #define LUCENT_TEXTURE_SPACE_IMAGE_LAST 7
 
-#define LUCENT_TEST_STORAGE_FIRST 5
-#define LUCENT_TEST_STORAGE_LAST 6
-#define LUCENT_BINDING_PARITY 5  // the GPU parity test's cases and results (std430)
+#define LUCENT_TEST_STORAGE_FIRST 30
+#define LUCENT_TEST_STORAGE_LAST 31
+#define LUCENT_BINDING_PARITY 30  // the GPU parity test's cases and results (std430)
 
 #if defined(__cplusplus)
 namespace lucent::shader {
@@ -83,7 +83,7 @@ inline constexpr SlotRange kSlotTable[] = {
     {"LUCENT_BINDING_OBJECTS", SlotKind::Storage, LUCENT_BINDING_OBJECTS, LUCENT_BINDING_OBJECTS, true},
     {"LUCENT_BINDING_COUNTERS", SlotKind::Storage, LUCENT_BINDING_COUNTERS, LUCENT_BINDING_COUNTERS, true},
     {"LUCENT_BINDING_LAYER_VIEWS", SlotKind::Storage, LUCENT_BINDING_LAYER_VIEWS, LUCENT_BINDING_LAYER_VIEWS, true},
-    {"frame storage (reserved)", SlotKind::Storage, 7, 7, true},
+    {"frame storage (reserved)", SlotKind::Storage, 0, 0, true},
     {"LUCENT_TEX_CAMERA_POSITION", SlotKind::Texture, LUCENT_TEX_CAMERA_POSITION, LUCENT_TEX_CAMERA_POSITION, true},
     {"LUCENT_TEX_CAMERA_NORMAL", SlotKind::Texture, LUCENT_TEX_CAMERA_NORMAL, LUCENT_TEX_CAMERA_NORMAL, true},
     {"LUCENT_TEX_CAMERA_DEPTH", SlotKind::Texture, LUCENT_TEX_CAMERA_DEPTH, LUCENT_TEX_CAMERA_DEPTH, true},

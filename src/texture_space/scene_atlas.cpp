@@ -1,0 +1,94 @@
+// scene_atlas.cpp: see scene_atlas.h.
+#include "texture_space/scene_atlas.h"
+
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "lucent/error.h"
+
+namespace lucent::texture_space {
+namespace {
+
+std::vector<std::size_t> translucent_objects(const Scene& scene) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    if (!object.translucent()) continue;
+    if (object.blob_resolution > 0)
+      throw Error(fmt::format("{}: object '{}': a blob surface has no stable texture parameterisation (it is "
+                              "re-extracted every frame); texture-space methods need a mesh",
+                              scene.source, object.name));
+    out.push_back(i);
+  }
+  if (out.empty()) throw Error(fmt::format("{}: no translucent object to lay out in a texture atlas", scene.source));
+  return out;
+}
+
+// 64-bit FNV-1a over raw bytes.
+struct Fnv1a {
+  std::uint64_t hash = 1469598103934665603ull;
+  void add(const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+  }
+  template <typename T>
+  void add_vector(const std::vector<T>& v) {
+    std::uint64_t n = v.size();
+    add(&n, sizeof n);
+    if (!v.empty()) add(v.data(), v.size() * sizeof(T));
+  }
+};
+
+}  // namespace
+
+SceneAtlas build_scene_atlas(const Scene& scene, const AtlasOptions& options) {
+  SceneAtlas out;
+  out.object_index = translucent_objects(scene);
+  if (out.object_index.size() == 1 && options.use_own_uvs) {
+    const SceneObject& object = scene.objects[out.object_index.front()];
+    if (!object.mesh.uvs.empty()) {
+      std::optional<std::string> problem = uv_problem(object.mesh, options.size);
+      if (!problem) {
+        out.own_uvs = true;
+        out.atlas.size = options.size;
+        AtlasObject own;
+        own.mesh = object.mesh;
+        for (std::size_t v = 0; v < own.mesh.positions.size(); ++v) own.source_vertex.push_back(static_cast<std::uint32_t>(v));
+        own.chart.assign(own.mesh.indices.size() / 3, 0);
+        out.atlas.objects.push_back(std::move(own));
+        out.atlas.metrics = uv_metrics(object.mesh, options.size);
+        return out;
+      }
+      out.own_uv_problem = *problem;
+    }
+  }
+  std::vector<AtlasInput> inputs;
+  for (std::size_t i : out.object_index) inputs.push_back({&scene.objects[i].mesh, scene.objects[i].world_from_object});
+  out.atlas = build_atlas(inputs, options);
+  return out;
+}
+
+Scene with_atlas_meshes(const Scene& scene, const SceneAtlas& atlas) {
+  Scene out = scene;
+  for (std::size_t k = 0; k < atlas.object_index.size(); ++k) out.objects[atlas.object_index[k]].mesh = atlas.atlas.objects[k].mesh;
+  return out;
+}
+
+std::string atlas_cache_key(const Scene& scene, const AtlasOptions& options) {
+  Fnv1a h;
+  std::uint32_t header[] = {kAtlasBuilderVersion, static_cast<std::uint32_t>(options.size),
+                            static_cast<std::uint32_t>(options.border_texels)};
+  h.add(header, sizeof header);
+  h.add(&options.cone_deg, sizeof options.cone_deg);
+  h.add(&options.use_own_uvs, sizeof options.use_own_uvs);
+  for (std::size_t i : translucent_objects(scene)) {
+    const SceneObject& object = scene.objects[i];
+    h.add_vector(object.mesh.positions), h.add_vector(object.mesh.normals), h.add_vector(object.mesh.indices);
+    h.add_vector(object.mesh.uvs);
+    h.add(&object.world_from_object, sizeof object.world_from_object);
+  }
+  return fmt::format("texture-atlas-v{}-{:016x}", kAtlasBuilderVersion, h.hash);
+}
+
+}  // namespace lucent::texture_space
