@@ -3,6 +3,7 @@
 set terminal pngcairo size 820,460 font ",11"
 set output out
 set datafile separator "\t"
+set datafile columnheaders  # results.tsv names its columns; read them by name
 set key top left
 set xlabel "K (scattered-radiosity maps)"
 set ylabel "time per frame [ms]"
@@ -11,6 +12,7 @@ set y2range [0:1.05]
 set ytics nomirror
 set y2tics
 set grid
-plot tsv using 3:6 skip 1 with linespoints lw 2 pt 7 title "total (median)", \
-     tsv using 3:7 skip 1 with linespoints lw 2 pt 5 title "step 2: radiosity maps", \
-     tsv using 3:8 skip 1 axes x1y2 with linespoints lw 2 pt 9 title "coverage"
+plot tsv using "K":"total_ms" with linespoints lw 2 pt 7 title "total (median)", \
+     tsv using "K":(column("ms:map_gbuffers") + column("ms:integrate")) with linespoints lw 2 pt 5 \
+         title "step 2: radiosity maps", \
+     tsv using "K":"coverage" axes x1y2 with linespoints lw 2 pt 9 title "coverage"

@@ -4,10 +4,11 @@
 set terminal pngcairo size 820,460 font ",11"
 set output out
 set datafile separator "\t"
+set datafile columnheaders
 set key top right
 set logscale x
 set xlabel "bunny width [mm]"
 set ylabel "RMSE sqrt(dr^2+dg^2+db^2) vs converged reference"
 set grid
-plot tsv using ($5*2):9 skip 1 with linespoints lw 2 pt 7 title "radiosity-maps, 1 frame", \
-     tsv using ($5*2):11 skip 1 with linespoints lw 2 pt 5 title "BSSRDF ray tracer, equal time"
+plot tsv using (column("scale_mm") * 2):"rmse_bssrdf" with linespoints lw 2 pt 7 title "radiosity-maps, 1 frame", \
+     tsv using (column("scale_mm") * 2):"rmse_equal_time_bssrdf" with linespoints lw 2 pt 5 title "BSSRDF ray tracer, equal time"

@@ -4,7 +4,7 @@ mkdir -p out/bench
 run() {
   local name=$1; shift
   echo "== $name: $lucent render $*"
-  "$lucent" render "$@" -o "out/bench/$name.png" 2>/dev/null | sed -n '2,10p'
+  "$lucent" render "$@" -o "out/bench/$name.png" 2>/dev/null | sed -n "2,14p"
 }
 date -u +"date: %Y-%m-%d %H:%M UTC"
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"

@@ -38,7 +38,6 @@ constexpr ParamDecl kVariantParams[] = {
     {"name", ParamType::String, "\"default\"", "", 0, 0, "", "variant name in the tables"},
     {"id", ParamType::String, "", "", 0, 0, "", "file stem of its images (default: the name)"},
     {"frames", ParamType::Int, "", "frames", 1, 1e6, "", "frames rendered (default: the scene's render.frames)"},
-    {"coverage", ParamType::Bool, "false", "", 0, 1, "", "measure the maps' coverage of the visible surface"},
     {"equal_time", ParamType::Bool, "false", "", 0, 1, "", "also measure a bssrdf reference given the same time"},
     {"restart_every_frame", ParamType::Bool, "false", "", 0, 1, "", "recompute cached state every frame"},
 };

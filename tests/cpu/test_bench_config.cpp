@@ -60,7 +60,7 @@ TEST(BenchConfig, UnknownKeysAreNamedWithTheKnownOnes) {
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "varients": []})")),
             "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frame": 4}]})")),
-            "b.json: /runs/0/variants/0/frame: unknown key; known keys: name, id, frames, coverage, equal_time, "
+            "b.json: /runs/0/variants/0/frame: unknown key; known keys: name, id, frames, equal_time, "
             "restart_every_frame, set");
   EXPECT_EQ(problem(R"({"runs": [], "references": {"volpth": {"spp": 4}}})"),
             "b.json: /references/volpth: unknown integrator; known: bssrdf, volpath");

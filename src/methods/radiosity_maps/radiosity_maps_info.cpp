@@ -63,7 +63,7 @@ const MethodInfo radiosity_maps_info{
     kPasses,
     kStats,
     R"({"K": 8, "N": 16, "map_size": 64, "light_map_size": 128, "vpls": 0, "specular": false})",
-    0.25,
+    0.05,  // measured 1.2% on llvmpipe (the same model as the reference; what remains is map resolution and noise)
     false,
 };
 
