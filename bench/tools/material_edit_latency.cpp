@@ -2,7 +2,8 @@
 // edit Scene::objects[i].material, Renderer::scene_changed(), render one frame, glFinish. Uses the public API
 // only, so the same source measures any version of the library.
 //
-//   material_edit_latency [SCENE] [EDITS]     (default: the built-in scene at 320x240, 10 edits)
+//   material_edit_latency [SCENE|-] [EDITS] [key=value ...]   (default: the built-in scene at 320x240, 10 edits;
+//                                                             further arguments are --set overrides)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,6 +18,7 @@ int main(int argc, char** argv) {
   try {
     auto context = lucent::create_headless_context();
     std::vector<std::string> sets = {"render.width=320", "render.height=240"};
+    for (int i = 3; i < argc; ++i) sets.push_back(argv[i]);
     lucent::Scene scene = argc > 1 && std::string(argv[1]) != "-" ? lucent::load_scene(argv[1], sets)
                                                                   : lucent::default_scene(sets);
     const int edits = argc > 2 ? std::stoi(argv[2]) : 10;

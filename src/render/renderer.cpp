@@ -98,7 +98,9 @@ SceneChange classify_change(const Scene& built, const Scene& now) {
        built.environment->intensity != now.environment->intensity ||
        built.environment->background != now.environment->background || built.environment->map != now.environment->map))
     return SceneChange::Rebuild;
-  bool materials = built.scale_mm != now.scale_mm;
+  // scale_mm converts point-light intensities and media fields as well as materials: a rebuild.
+  if (built.scale_mm != now.scale_mm) return SceneChange::Rebuild;
+  bool materials = false;
   for (std::size_t i = 0; i < built.objects.size(); ++i) {
     const SceneObject &a = built.objects[i], &b = now.objects[i];
     if (a.translucent() != b.translucent() || a.blob_resolution != b.blob_resolution ||
