@@ -1,5 +1,6 @@
 // command_atlas.cpp: `lucent atlas [MESH_OR_SCENE]`: the texture atlas of a mesh file or of a scene's translucent
 // objects (src/texture_space/): chart count, utilization, stretch and build time, and optionally a picture of it.
+// The atlas goes through the precompute cache ("(cached)" after the build time when it was read back; --no-cache).
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -8,7 +9,7 @@
 #include "commands.h"
 #include "lucent/lucent.h"
 #include "option_checks.h"
-#include "texture_space/scene_atlas.h"
+#include "texture_space/scene_atlas_cache.h"
 #include "texture_space/uv_raster.h"
 
 namespace lucent::cli {
@@ -73,7 +74,8 @@ void run(const AtlasCommandOptions& o) {
   options.size = o.size;
   options.cone_deg = o.cone_deg;
   options.use_own_uvs = !o.charts;
-  texture_space::SceneAtlas result = texture_space::build_scene_atlas(scene, options);
+  texture_space::CachedSceneAtlas cached = texture_space::load_or_build_scene_atlas(scene, options);
+  const texture_space::SceneAtlas& result = cached.atlas;
   const texture_space::AtlasMetrics& m = result.atlas.metrics;
   std::size_t triangles = 0;
   for (const texture_space::AtlasObject& object : result.atlas.objects) triangles += object.chart.size();
@@ -87,7 +89,8 @@ void run(const AtlasCommandOptions& o) {
                           {"charts", m.chart_count},         {"utilization", m.utilization},
                           {"stretch_l2", m.stretch_l2},      {"stretch_max", m.stretch_max},
                           {"angle_mean", m.angle_mean},      {"angle_max", m.angle_max},
-                          {"texel_size", m.texel_size},      {"build_ms", m.build_ms}};
+                          {"texel_size", m.texel_size},      {"build_ms", m.build_ms},
+                          {"cached", cached.from_cache}};
     if (!result.own_uv_problem.empty()) out["own_uv_problem"] = result.own_uv_problem;
     fmt::print("{}\n", out.dump(2));
     return;
@@ -100,7 +103,7 @@ void run(const AtlasCommandOptions& o) {
   fmt::print("  stretch (area)    L2 {:.4f}, max {:.4f}\n", m.stretch_l2, m.stretch_max);
   fmt::print("  stretch (angle)   mean {:.4f}, max {:.4f}\n", m.angle_mean, m.angle_max);
   fmt::print("  texel size        {:.4g} scene units\n", m.texel_size);
-  fmt::print("  build time        {:.1f} ms\n", m.build_ms);
+  fmt::print("  build time        {:.1f} ms{}\n", m.build_ms, cached.from_cache ? " (cached)" : "");
 }
 
 }  // namespace
@@ -115,6 +118,7 @@ void add_atlas_command(CLI::App& app) {
   cmd->add_flag("--json", options->json, "print JSON");
   cmd->add_flag("--charts", options->charts, "build charts even where a single mesh's own texture coordinates are usable");
   cmd->add_option("-o,--output", options->png, "draw the atlas to a PNG: charts in colours, empty texels dark");
+  add_no_cache_flag(cmd);
   cmd->callback([options] { run(*options); });
 }
 

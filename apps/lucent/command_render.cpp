@@ -11,6 +11,7 @@
 #include "option_checks.h"
 #include "lucent/lucent.h"
 #include "progress_bar.h"
+#include "step_progress.h"
 #include "stats/frame_summary.h"
 
 namespace lucent::cli {
@@ -61,7 +62,7 @@ void warn_if_black(const ImageRGBA32F& image) {
 // <stem>_0000.png, ...; with ffmpeg on the PATH also <stem>.mp4.
 void run_animation(const RenderOptions& o, const Scene& scene, const std::string& png) {
   auto context = create_headless_context();
-  Renderer renderer(scene);
+  Renderer renderer(scene, o.quiet ? RenderProgress{} : RenderProgress(StepProgress()));
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
   OffscreenFramebuffer target(width, height);
   std::filesystem::path base = std::filesystem::path(png).replace_extension("");
@@ -119,7 +120,7 @@ void run(const RenderOptions& o) {
   check_outputs(outputs, scene_input_files(scene));
   if (o.animate) return run_animation(o, scene, png);
   auto context = create_headless_context();
-  Renderer renderer(scene);
+  Renderer renderer(scene, o.quiet ? RenderProgress{} : RenderProgress(StepProgress()));
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
   OffscreenFramebuffer target(width, height);
   ProgressBar progress("rendering", o.quiet ? 1 : frames);

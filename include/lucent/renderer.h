@@ -6,6 +6,7 @@
 //   renderer.timings();                                     // per-step GPU milliseconds
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -59,10 +60,17 @@ struct VirtualPointLight {
   float eta = 1.0f;           // relative refractive index of its material
 };
 
+// Progress of the CPU work a method needs before its first frame (texture-space methods' atlas, a method's
+// precomputation): `step` names the work ("texture atlas", or the method's precompute kind), `fraction` runs from
+// 0 to 1 within a step (non-decreasing, 1 last; at once when the precompute cache had it). Called on the thread
+// that constructs the renderer or calls scene_changed(). Methods that precompute nothing never call it.
+using RenderProgress = std::function<void(std::string_view step, double fraction)>;
+
 class Renderer {
  public:
   // Needs a current OpenGL 4.5 core context. Compiles shaders and uploads the scene; throws lucent::Error.
-  explicit Renderer(Scene scene);
+  // `progress` (may be empty) hears of the precomputation, here and in later rebuilds (scene_changed()).
+  explicit Renderer(Scene scene, RenderProgress progress = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,10 +19,15 @@
 
 namespace lucent::methods {
 
-// What a method is built from.
+// What a method is built from. For needs_texture_atlas methods `scene` is the scene as the GPU holds it (each
+// translucent mesh replaced by its atlas mesh) and `atlas` its atlas; `precomputed` is what the method's
+// PrecomputeDecl computed (from the cache when it could), empty for methods without one. Both stay valid while
+// the method lives.
 struct MethodSetup {
   const Scene& scene;
   const render::SceneGpu& scene_gpu;
+  std::span<const std::byte> precomputed = {};
+  const texture_space::SceneAtlas* atlas = nullptr;
 };
 
 // What the renderer hands a method each frame. The camera G-buffer is filled and bound (LUCENT_TEX_CAMERA_*),

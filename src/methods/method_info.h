@@ -2,10 +2,20 @@
 // scene parser, `lucent methods`, the docs and the CPU tools read it without a context. The method's GPU side
 // (method.h) is created from it by create_method().
 #pragma once
+#include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "lucent/params.h"
+#include "lucent/scene.h"
+
+namespace lucent::texture_space {
+struct AtlasOptions;
+struct SceneAtlas;
+}  // namespace lucent::texture_space
 
 namespace lucent::methods {
 
@@ -22,6 +32,26 @@ struct StatDecl {
   std::string_view doc;
 };
 
+// What a method's precompute step sees: the scene as the GPU gets it (for needs_texture_atlas methods every
+// translucent mesh replaced by its atlas mesh, texture coordinates set) and the atlas (null for other methods).
+struct PrecomputeInput {
+  const Scene& scene;
+  const texture_space::SceneAtlas* atlas = nullptr;
+};
+
+// CPU preprocessing a method declares: run before its GPU side is created, its bytes cached in lucent::cache
+// (src/cache/precompute_cache.h) and handed to create_method in MethodSetup::precomputed. The cache key
+// (precompute_key in methods/precompute.h) is `kind`, `version`, the method's name and parameters, the scene's
+// scale_mm, and each object's mesh, transform, material or albedo (and the atlas's size and chart ids): compute
+// must depend on nothing else of the scene (lights, camera and render settings belong in the frames).
+struct PrecomputeDecl {
+  std::string_view kind;  // names the cache folder: letters, digits, '-', '_' and '.'
+  std::uint32_t version = 1;  // bump whenever the bytes change for the same inputs (encoding or computation)
+  // The bytes; `progress(fraction)` from 0 to 1 as work is done (the runner keeps what it reports in [0, 1] and
+  // non-decreasing, and reports 1 at the end). Throws lucent::Error for inputs it cannot handle.
+  std::vector<std::byte> (*compute)(const PrecomputeInput& input, const std::function<void(double)>& progress) = nullptr;
+};
+
 struct MethodInfo {
   std::string_view name;
   std::string_view summary;
@@ -35,6 +65,9 @@ struct MethodInfo {
   // relative error of the mean radiance over the object's pixels.
   double reference_tolerance = 0.25;
   bool needs_texture_atlas = false;  // texture-space methods: objects get an atlas, blob surfaces are refused
+  // needs_texture_atlas: the atlas options from the method's parameters (null: AtlasOptions{}).
+  texture_space::AtlasOptions (*atlas_options)(const ParamValues& params) = nullptr;
+  const PrecomputeDecl* precompute = nullptr;  // null: the method precomputes nothing on the CPU
 };
 
 // Every registered method (src/methods/method_list.h), the default first.

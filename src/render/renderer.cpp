@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <optional>
 #include <utility>
 
 #include "gpu/gbuffer.h"
@@ -11,10 +12,12 @@
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
 #include "methods/method.h"
+#include "methods/precompute.h"
 #include "platform/gl_capabilities.h"
 #include "render/environment_texture.h"
 #include "render/scene_gpu.h"
 #include "shared/shader_io.h"
+#include "texture_space/scene_atlas_cache.h"
 
 namespace lucent {
 namespace {
@@ -132,6 +135,12 @@ SceneChange classify_change(const Scene& built, const Scene& now) {
 struct Renderer::Impl {
   Scene scene;
   Scene built;  // the scene as the GPU resources were built from it (for scene_changed())
+  RenderProgress progress;
+  // needs_texture_atlas methods: the scene's atlas and the scene with its translucent meshes replaced by the atlas
+  // meshes, as the GPU and the method see it (empty for other methods, which see `scene`).
+  std::optional<texture_space::SceneAtlas> atlas;
+  std::optional<Scene> atlas_scene;
+  std::vector<std::byte> precomputed;  // the method's PrecomputeDecl bytes (empty when it has none)
   std::unique_ptr<render::SceneGpu> scene_gpu;
   std::unique_ptr<methods::Method> method;
   std::unique_ptr<render::EnvironmentTexture> environment;
@@ -147,7 +156,7 @@ struct Renderer::Impl {
   std::vector<FrameTimings> unclaimed;   // reported frames not yet taken by finished_frames()
   static constexpr std::size_t kMaxUnclaimed = 4096;
 
-  explicit Impl(Scene s) : scene(std::move(s)) {
+  Impl(Scene s, RenderProgress p) : scene(std::move(s)), progress(std::move(p)) {
     if (platform::current_capabilities().version.empty())
       throw Error("no OpenGL context: create one (lucent::create_headless_context) before lucent::Renderer");
     if (scene.method.empty()) scene.method = std::string(methods::default_method().name);
@@ -161,40 +170,72 @@ struct Renderer::Impl {
   }
   ~Impl() { glDeleteBuffers(1, &frame_buffer); }
 
+  // The scene as the GPU and the method see it.
+  const Scene& method_scene() const { return atlas_scene ? *atlas_scene : scene; }
+
+  std::function<void(double)> step_progress(std::string_view step) const {
+    if (!progress) return {};
+    return [this, step](double fraction) { progress(step, fraction); };
+  }
+
+  // The method's precomputation (through the cache), then the method.
+  void make_method() {
+    const methods::MethodInfo& info = *methods::find_method(scene.method);
+    const texture_space::SceneAtlas* atlas_ptr = atlas ? &*atlas : nullptr;
+    precomputed.clear();
+    if (info.precompute)
+      precomputed = methods::run_precompute(*info.precompute, {method_scene(), atlas_ptr}, step_progress(info.precompute->kind)).bytes;
+    method = methods::create_method({method_scene(), *scene_gpu, precomputed, atlas_ptr});
+  }
+
   void rebuild() {
     if (scene.method.empty()) scene.method = std::string(methods::default_method().name);
-    if (!methods::find_method(scene.method))
-      throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
+    const methods::MethodInfo* info = methods::find_method(scene.method);
+    if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
     method.reset();
-    scene_gpu = std::make_unique<render::SceneGpu>(scene);
+    atlas.reset();
+    atlas_scene.reset();
+    if (info->needs_texture_atlas) {  // blob surfaces refused here, before anything reaches the GPU
+      texture_space::AtlasOptions options = info->atlas_options ? info->atlas_options(scene.method_params) : texture_space::AtlasOptions{};
+      atlas = texture_space::load_or_build_scene_atlas(scene, options, step_progress("texture atlas")).atlas;
+      atlas_scene = texture_space::with_atlas_meshes(scene, *atlas);
+    }
+    scene_gpu = std::make_unique<render::SceneGpu>(method_scene());
     geometry_dirty = true;
     environment.reset();
     if (scene.environment && scene.environment->map)
       environment = std::make_unique<render::EnvironmentTexture>(*scene.environment->map);
-    method = methods::create_method({scene, *scene_gpu});
+    make_method();
     built = scene;
     restart = true;
+  }
+
+  // After an edit that keeps the meshes: the atlas scene takes everything else from `scene` again.
+  void refresh_atlas_scene() {
+    if (atlas) atlas_scene = texture_space::with_atlas_meshes(scene, *atlas);
   }
 
   // Applies an edited scene with the least work: live parameters and materials without recreating the method
   // (and recompiling its shaders) when it accepts them, anything else by rebuilding.
   void scene_changed() {
-    switch (classify_change(built, scene)) {
+    SceneChange change = classify_change(built, scene);
+    if (change != SceneChange::Rebuild) refresh_atlas_scene();
+    switch (change) {
       case SceneChange::None:
         restart = true;
         break;
       case SceneChange::Live:
-        if (!method->update_live_params(scene)) return rebuild();
+        if (!method->update_live_params(method_scene())) return rebuild();
         built.method_params = scene.method_params;
         restart = true;
         break;
       case SceneChange::Materials:
-        if (!method->update_materials(scene)) {
-          scene_gpu->update_materials(scene);
+        if (!method->update_materials(method_scene())) {
+          scene_gpu->update_materials(method_scene());
           method.reset();
-          method = methods::create_method({scene, *scene_gpu});
+          make_method();  // a precomputation keyed on the materials runs again
         } else {
-          scene_gpu->update_materials(scene);
+          scene_gpu->update_materials(method_scene());
         }
         built = scene;
         restart = true;
@@ -280,7 +321,7 @@ struct Renderer::Impl {
     scene_gpu->bind_buffers();
     if (environment) environment->bind();
     camera_gbuffer_pass();
-    method->render({scene, *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0});
+    method->render({method_scene(), *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0});
     tonemap_pass();
     glBlitNamedFramebuffer(output.ldr_framebuffer, target.framebuffer, 0, 0, output.width, output.height, 0, 0,
                            target.width, target.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -289,7 +330,8 @@ struct Renderer::Impl {
   }
 };
 
-Renderer::Renderer(Scene scene) : impl_(std::make_unique<Impl>(std::move(scene))) {}
+Renderer::Renderer(Scene scene, RenderProgress progress)
+    : impl_(std::make_unique<Impl>(std::move(scene), std::move(progress))) {}
 Renderer::~Renderer() = default;
 
 void Renderer::render(const Camera& camera, const RenderTarget& target) { impl_->render(camera, target); }

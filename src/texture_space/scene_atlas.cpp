@@ -1,11 +1,10 @@
 // scene_atlas.cpp: see scene_atlas.h.
 #include "texture_space/scene_atlas.h"
 
-#include <cstring>
-
 #include <fmt/format.h>
 
 #include "lucent/error.h"
+#include "texture_space/atlas_encoding.h"
 
 namespace lucent::texture_space {
 namespace {
@@ -24,21 +23,6 @@ std::vector<std::size_t> translucent_objects(const Scene& scene) {
   if (out.empty()) throw Error(fmt::format("{}: no translucent object to lay out in a texture atlas", scene.source));
   return out;
 }
-
-// 64-bit FNV-1a over raw bytes.
-struct Fnv1a {
-  std::uint64_t hash = 1469598103934665603ull;
-  void add(const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
-  }
-  template <typename T>
-  void add_vector(const std::vector<T>& v) {
-    std::uint64_t n = v.size();
-    add(&n, sizeof n);
-    if (!v.empty()) add(v.data(), v.size() * sizeof(T));
-  }
-};
 
 }  // namespace
 
@@ -75,20 +59,17 @@ Scene with_atlas_meshes(const Scene& scene, const SceneAtlas& atlas) {
   return out;
 }
 
-std::string atlas_cache_key(const Scene& scene, const AtlasOptions& options) {
-  Fnv1a h;
-  std::uint32_t header[] = {kAtlasBuilderVersion, static_cast<std::uint32_t>(options.size),
-                            static_cast<std::uint32_t>(options.border_texels)};
-  h.add(header, sizeof header);
-  h.add(&options.cone_deg, sizeof options.cone_deg);
-  h.add(&options.use_own_uvs, sizeof options.use_own_uvs);
+cache::Key atlas_cache_key(const Scene& scene, const AtlasOptions& options) {
+  cache::Key key("texture-atlas", kSceneAtlasEncodingVersion);
+  key.integer(kAtlasBuilderVersion).integer(options.size).number(options.cone_deg).integer(options.border_texels);
+  key.integer(options.use_own_uvs ? 1 : 0);
   for (std::size_t i : translucent_objects(scene)) {
     const SceneObject& object = scene.objects[i];
-    h.add_vector(object.mesh.positions), h.add_vector(object.mesh.normals), h.add_vector(object.mesh.indices);
-    h.add_vector(object.mesh.uvs);
-    h.add(&object.world_from_object, sizeof object.world_from_object);
+    key.integer(static_cast<std::int64_t>(i)).mesh(object.mesh);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) key.number(object.world_from_object[c][r]);
   }
-  return fmt::format("texture-atlas-v{}-{:016x}", kAtlasBuilderVersion, h.hash);
+  return key;
 }
 
 }  // namespace lucent::texture_space

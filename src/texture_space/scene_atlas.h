@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cache/precompute_cache.h"
 #include "lucent/scene.h"
 #include "texture_space/atlas.h"
 
@@ -28,7 +29,9 @@ SceneAtlas build_scene_atlas(const Scene& scene, const AtlasOptions& options);
 // corner, vertices split at seams, uvs set); deformations keep working on the rest pose.
 Scene with_atlas_meshes(const Scene& scene, const SceneAtlas& atlas);
 
-// A key for the precompute cache: the builder version, the options and every input's mesh and transform.
-std::string atlas_cache_key(const Scene& scene, const AtlasOptions& options);
+// The scene atlas's key in the precompute cache (kind "texture-atlas"): the encoding and builder versions, the
+// options, and each translucent object's index, mesh (with its own texture coordinates) and transform. Throws as
+// build_scene_atlas does for blob surfaces and scenes without a translucent object.
+cache::Key atlas_cache_key(const Scene& scene, const AtlasOptions& options);
 
 }  // namespace lucent::texture_space

@@ -219,11 +219,16 @@ TEST(SceneAtlas, AllTranslucentObjectsShareOneAtlasObjectByObject) {
 
 TEST(SceneAtlas, CacheKeyFollowsMeshesAndOptions) {
   lucent::Scene scene = two_object_scene();
-  std::string key = atlas_cache_key(scene, {.size = 512});
-  EXPECT_EQ(key, atlas_cache_key(scene, {.size = 512}));
-  EXPECT_NE(key, atlas_cache_key(scene, {.size = 1024}));
+  lucent::cache::Digest key = atlas_cache_key(scene, {.size = 512}).digest();
+  EXPECT_EQ(key, atlas_cache_key(scene, {.size = 512}).digest());
+  EXPECT_NE(key, atlas_cache_key(scene, {.size = 1024}).digest());
+  EXPECT_NE(key, atlas_cache_key(scene, {.size = 512, .cone_deg = 20.0f}).digest());
+  EXPECT_NE(key, atlas_cache_key(scene, {.size = 512, .use_own_uvs = false}).digest());
+  lucent::Scene moved = scene;
+  moved.objects[2].world_from_object[3][1] += 0.5f;
+  EXPECT_NE(key, atlas_cache_key(moved, {.size = 512}).digest());
   scene.objects[2].mesh.positions[0].x += 1e-3f;
-  EXPECT_NE(key, atlas_cache_key(scene, {.size = 512}));
+  EXPECT_NE(key, atlas_cache_key(scene, {.size = 512}).digest());
 }
 
 TEST(SceneAtlas, BlobSurfacesAreRefused) {
