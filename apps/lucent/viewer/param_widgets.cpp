@@ -34,6 +34,8 @@ void tooltip(const ParamDecl& d) {
   std::string range = range_text(d);
   if (!range.empty()) ImGui::TextDisabled("%s", range.c_str());
   if (!d.default_json.empty()) ImGui::TextDisabled("default %s", std::string(d.default_json).c_str());
+  ImGui::TextDisabled("%s", d.update == ParamUpdate::Live ? "live: taken by the next frame"
+                                                          : "rebuild: a change recreates the method");
   ImGui::EndTooltip();
 }
 
