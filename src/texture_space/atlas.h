@@ -68,7 +68,7 @@ struct AtlasObject {
 
 struct Atlas {
   int size = 0;                      // [texels]
-  std::vector<AtlasObject> objects;  // in the order given; each object's charts are packed next to each other
+  std::vector<AtlasObject> objects;  // in the order given; charts of all objects packed together
   AtlasMetrics metrics;
 };
 

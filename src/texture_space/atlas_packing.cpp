@@ -7,17 +7,49 @@
 namespace lucent::texture_space {
 namespace {
 
-// Shelf packing at one scale; false when the boxes do not fit.
+// Skyline (bottom-left) packing at one scale; false when the boxes do not fit. The skyline is the upper outline
+// of what is placed, as segments left to right; each box goes where its top ends lowest (then leftmost), resting on
+// the highest segment under it. Boxes come in the caller's order (tallest first packs best).
 bool pack_at(const std::vector<glm::dvec2>& extents, int size, int gap, double scale, std::vector<PackedBox>& out) {
+  struct Segment {
+    double x, y, width;
+  };
+  std::vector<Segment> skyline = {{0.0, 0.0, static_cast<double>(size)}};
   out.resize(extents.size());
-  double x = 0.0, y = 0.0, shelf = 0.0;
   const double half_gap = 0.5 * gap;
   for (std::size_t i = 0; i < extents.size(); ++i) {
-    double w = std::ceil(extents[i].x * scale) + gap, h = std::ceil(extents[i].y * scale) + gap;
-    if (x + w > size) x = 0.0, y += shelf, shelf = 0.0;
-    if (x + w > size || y + h > size) return false;
-    out[i].origin = {x + half_gap, y + half_gap};
-    x += w, shelf = std::max(shelf, h);
+    const double w = std::ceil(extents[i].x * scale) + gap, h = std::ceil(extents[i].y * scale) + gap;
+    double best_top = 1e300, best_x = 0.0, best_y = 0.0;
+    std::size_t best = skyline.size();
+    for (std::size_t s = 0; s < skyline.size(); ++s) {
+      const double x = skyline[s].x;
+      if (x + w > size) break;
+      // The box spans segments s.. until their widths cover w; it rests on the highest of them.
+      double y = 0.0, covered = 0.0;
+      for (std::size_t t = s; t < skyline.size() && covered < w; ++t) y = std::max(y, skyline[t].y), covered += skyline[t].width;
+      if (y + h > size) continue;
+      if (y + h < best_top) best_top = y + h, best_x = x, best_y = y, best = s;
+    }
+    if (best == skyline.size()) return false;
+    out[i].origin = {best_x + half_gap, best_y + half_gap};
+    // The skyline left of the box, the box's top, the skyline right of it.
+    std::vector<Segment> next;
+    for (const Segment& g : skyline)
+      if (g.x < best_x) next.push_back({g.x, g.y, std::min(g.x + g.width, best_x) - g.x});
+    next.push_back({best_x, best_y + h, w});
+    for (const Segment& g : skyline)
+      if (g.x + g.width > best_x + w) {
+        const double start = std::max(g.x, best_x + w);
+        next.push_back({start, g.y, g.x + g.width - start});
+      }
+    // Merge neighbours of equal height.
+    skyline.clear();
+    for (const Segment& g : next) {
+      if (!skyline.empty() && skyline.back().y == g.y && skyline.back().x + skyline.back().width == g.x)
+        skyline.back().width += g.width;
+      else
+        skyline.push_back(g);
+    }
   }
   return true;
 }
