@@ -8,7 +8,7 @@
 namespace lucent::gpu {
 
 struct EmbeddedFile {
-  const char* path;  // "bssrdf/fresnel.h", "radiosity_maps/integrate.comp"
+  const char* path;  // "bssrdf/fresnel.h", "methods/radiosity_maps/shaders/integrate.comp"
   const char* text;
   std::size_t size;
 };

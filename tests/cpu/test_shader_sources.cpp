@@ -36,7 +36,7 @@ TEST(ShaderSources, EmbedsShadersAndSharedHeaders) {
   bool has_integrate = false, has_dipole = false;
   for (std::size_t i = 0; i < kEmbeddedFileCount; ++i) {
     std::string_view path = kEmbeddedFiles[i].path;
-    has_integrate = has_integrate || path == "radiosity_maps/integrate.comp";
+    has_integrate = has_integrate || path == "methods/radiosity_maps/shaders/integrate.comp";
     has_dipole = has_dipole || path == "bssrdf/directional_dipole.h";
     EXPECT_GT(kEmbeddedFiles[i].size, 0u) << path;
     EXPECT_EQ(kEmbeddedFiles[i].text[kEmbeddedFiles[i].size], '\0') << path;
@@ -67,12 +67,12 @@ TEST(ShaderSources, EveryStageExpands) {
 }
 
 TEST(ShaderSources, IntegrateIncludesDirectionalDipoleOnce) {
-  ExpandedSource source = expand_shader("radiosity_maps/integrate.comp");
+  ExpandedSource source = expand_shader("methods/radiosity_maps/shaders/integrate.comp");
   EXPECT_EQ(source.text.rfind("#version 450 core", 0), 0u);
   EXPECT_EQ(count(source.text, "LUCENT_INLINE float directional_dipole_Sd("), 1u);
   EXPECT_EQ(count(source.text, "LUCENT_INLINE vec3 refracted_direction("), 1u);
   ASSERT_FALSE(source.files.empty());
-  EXPECT_EQ(source.files[0], "radiosity_maps/integrate.comp");
+  EXPECT_EQ(source.files[0], "methods/radiosity_maps/shaders/integrate.comp");
   EXPECT_TRUE(contains(source.files, "bssrdf/directional_dipole.h"));
   EXPECT_TRUE(contains(source.files, "bssrdf/model.h"));
   EXPECT_TRUE(contains(source.files, "common/frame.glsl"));
@@ -82,7 +82,7 @@ TEST(ShaderSources, IntegrateIncludesDirectionalDipoleOnce) {
 }
 
 TEST(ShaderSources, DefinesFollowVersion) {
-  ExpandedSource source = expand_shader("radiosity_maps/integrate.comp", "#define LUCENT_TEST_DEFINE 1\n");
+  ExpandedSource source = expand_shader("methods/radiosity_maps/shaders/integrate.comp", "#define LUCENT_TEST_DEFINE 1\n");
   EXPECT_EQ(source.text.rfind("#version 450 core\n#define LUCENT_TEST_DEFINE 1\n", 0), 0u);
 }
 
@@ -96,11 +96,11 @@ TEST(ShaderSources, MissingFileThrowsNamingIt) {
 }
 
 TEST(ShaderSources, AnnotateLogNamesFileAndLine) {
-  ExpandedSource source = expand_shader("radiosity_maps/integrate.comp");
+  ExpandedSource source = expand_shader("methods/radiosity_maps/shaders/integrate.comp");
   ASSERT_GE(source.files.size(), 2u);
   // Mesa style.
   EXPECT_EQ(source.annotate_log("0:12(5): error: x"), source.files[0] + ":12(5): error: x");
-  EXPECT_EQ(source.annotate_log("0:12(5): error: x"), "radiosity_maps/integrate.comp:12(5): error: x");
+  EXPECT_EQ(source.annotate_log("0:12(5): error: x"), "methods/radiosity_maps/shaders/integrate.comp:12(5): error: x");
   // NVIDIA style, second source string.
   EXPECT_EQ(source.annotate_log("1(7) : error C0000: y"), source.files[1] + ":7 : error C0000: y");
   // Several references in a multi-line log.

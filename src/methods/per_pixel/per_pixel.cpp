@@ -2,7 +2,7 @@
 // sampling of eq. 9 evaluated per screen pixel every frame, as translucent shadow maps do, instead of per map
 // texel. Same light G-buffer (step 1) and estimator as radiosity-maps; cost grows with the pixels the
 // translucent objects cover, which is what the break-even measurement of Fig. 11 varies.
-// Shader: shaders/per_pixel/shade.comp.
+// Shader: src/methods/per_pixel/shaders/shade.comp.
 #include "methods/method.h"
 
 #include <cstring>
@@ -20,7 +20,7 @@ class PerPixel final : public Method {
   PerPixel(const Scene& scene, const render::SceneGpu& scene_gpu)
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
-        program_(gpu::ShaderProgram::compute("per_pixel/shade.comp", render::light_sampling_defines(scene))) {
+        program_(gpu::ShaderProgram::compute("methods/per_pixel/shaders/shade.comp", render::light_sampling_defines(scene))) {
     glCreateBuffers(1, &block_buffer_);
     glNamedBufferStorage(block_buffer_, sizeof(shader::PerPixelGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, block_buffer_, "per-pixel block");

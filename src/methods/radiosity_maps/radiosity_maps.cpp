@@ -71,10 +71,10 @@ class RadiosityMaps final : public Method {
         vpl_gbuffer_(vpl_count_ > 0 ? vpl_map_size_ : 1, vpl_count_ > 0 ? vpl_map_size_ : 1, 6, "VPL cube map"),
         gbuffer_program_(gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "gbuffer/layered_views.geom",
                                                       "gbuffer/gbuffer.frag")),
-        integrate_program_(gpu::ShaderProgram::compute("radiosity_maps/integrate.comp", render::light_sampling_defines(scene))),
-        combine_program_(gpu::ShaderProgram::compute("radiosity_maps/combine.comp")),
-        vpl_program_(gpu::ShaderProgram::compute("radiosity_maps/vpl.comp")),
-        probe_program_(gpu::ShaderProgram::compute("radiosity_maps/probe.comp")) {
+        integrate_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/integrate.comp", render::light_sampling_defines(scene))),
+        combine_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/combine.comp")),
+        vpl_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/vpl.comp")),
+        probe_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/probe.comp")) {
     radiosity_ = make_radiosity_texture(map_size_, K_);
     glCreateBuffers(1, &vpl_buffer_);
     glNamedBufferStorage(vpl_buffer_, static_cast<GLsizeiptr>(sizeof(shader::VplGPU)) * std::max(1, vpl_count_), nullptr,

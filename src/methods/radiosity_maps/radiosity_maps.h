@@ -9,7 +9,7 @@
 //   3. combine: Algorithm 1 per pixel and L_o = F_t B / pi (eq. 5).
 // Converged mode (Section 3.2, converged_after): once the maps have accumulated enough frames and only the
 // camera moves, only step 3 runs.
-// Shaders: shaders/gbuffer/, shaders/radiosity_maps/. Design notes: docs/methods/radiosity-maps.md.
+// Shaders: shaders/gbuffer/, src/methods/radiosity_maps/shaders/. Design notes: docs/methods/radiosity-maps.md.
 #pragma once
 #include <vector>
 

@@ -31,7 +31,7 @@ std::vector<glm::vec4> coefficient_field(const VoxelGrid& grid, std::span<const 
 }
 
 CoefficientField::CoefficientField()
-    : program_(gpu::ShaderProgram::compute("voxel_paths/fill_coefficients.comp", shader_defines())) {
+    : program_(gpu::ShaderProgram::compute("methods/voxel_paths/shaders/fill_coefficients.comp", shader_defines())) {
   GLuint buffers[2];
   glCreateBuffers(2, buffers);
   coefficients_ = buffers[0], materials_ = buffers[1];

@@ -1,6 +1,6 @@
 // coefficient_field.h: the per-voxel edge-cost coefficients of voxel-paths (rgb, one vec4 per voxel, 0 outside):
 // each inside voxel's material (by label) modified by its heterogeneous field (media/heterogeneous_field.h) at the
-// voxel centre. Filled on the GPU every frame after voxelization (shaders/voxel_paths/fill_coefficients.comp);
+// voxel centre. Filled on the GPU every frame after voxelization (src/methods/voxel_paths/shaders/fill_coefficients.comp);
 // coefficient_field() is the CPU evaluation of the same header for the tests and the CPU Dijkstra.
 #pragma once
 #include <cstdint>

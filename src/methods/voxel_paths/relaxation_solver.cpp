@@ -8,7 +8,7 @@ namespace lucent::methods::voxel_paths {
 RelaxationSolver::RelaxationSolver(RelaxationSchedule schedule)
     : schedule_(schedule),
       program_(gpu::ShaderProgram::compute(
-          "voxel_paths/relax.comp",
+          "methods/voxel_paths/shaders/relax.comp",
           shader_defines() + (schedule == RelaxationSchedule::kActiveBlocks ? "#define VOXEL_ACTIVE_BLOCKS 1\n" : ""))) {
   GLuint buffers[4];
   glCreateBuffers(4, buffers);

@@ -1,5 +1,5 @@
 // relaxation_solver.h: shortest optical paths n(v) on the GPU by iterated parallel relaxation (Bellman-Ford
-// sweeps, shaders/voxel_paths/relax.comp) over the graph of voxel_dijkstra.h, all three colour bands in one
+// sweeps, src/methods/voxel_paths/shaders/relax.comp) over the graph of voxel_dijkstra.h, all three colour bands in one
 // sweep. Sweeps run in batches of `check_every`; after each batch the "changed" flag is read back and the solver
 // stops when a whole batch lowered nothing (converged: the result equals Dijkstra's up to float rounding) or
 // after `max_iterations` sweeps.

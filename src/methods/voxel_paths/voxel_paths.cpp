@@ -46,10 +46,10 @@ class VoxelPaths final : public Method {
                           kPaddingVoxels)),
         source_{scene_gpu.vertex_buffer(), scene_gpu.index_buffer(), {}},
         solver_(params_.text("solver") == "sweep" ? RelaxationSchedule::kSweep : RelaxationSchedule::kActiveBlocks),
-        flux_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_flux.comp", shader_defines())),
-        distances_program_(gpu::ShaderProgram::compute("voxel_paths/initialize_distances.comp", shader_defines())),
-        radiance_program_(gpu::ShaderProgram::compute("voxel_paths/radiance.comp", shader_defines())),
-        shade_program_(gpu::ShaderProgram::compute("voxel_paths/shade.comp",
+        flux_program_(gpu::ShaderProgram::compute("methods/voxel_paths/shaders/initialize_flux.comp", shader_defines())),
+        distances_program_(gpu::ShaderProgram::compute("methods/voxel_paths/shaders/initialize_distances.comp", shader_defines())),
+        radiance_program_(gpu::ShaderProgram::compute("methods/voxel_paths/shaders/radiance.comp", shader_defines())),
+        shade_program_(gpu::ShaderProgram::compute("methods/voxel_paths/shaders/shade.comp",
                                                    render::light_sampling_defines(scene) + shader_defines())) {
     for (const render::SceneGpu::MeshRange& mesh : scene_gpu.translucent_meshes())
       source_.objects.push_back({mesh.first_index, mesh.index_count, mesh.object + 1});

@@ -20,8 +20,8 @@ GLuint make_buffer(const char* label) {
 }  // namespace
 
 Voxelizer::Voxelizer()
-    : triangles_program_(gpu::ShaderProgram::compute("voxel_paths/voxelize_triangles.comp", shader_defines())),
-      scan_program_(gpu::ShaderProgram::compute("voxel_paths/voxelize_scan.comp", shader_defines())),
+    : triangles_program_(gpu::ShaderProgram::compute("methods/voxel_paths/shaders/voxelize_triangles.comp", shader_defines())),
+      scan_program_(gpu::ShaderProgram::compute("methods/voxel_paths/shaders/voxelize_scan.comp", shader_defines())),
       vertices_(make_buffer("voxel-paths uploaded vertices")),
       indices_(make_buffer("voxel-paths uploaded indices")),
       flips_(make_buffer("voxel-paths flips")),

@@ -1,5 +1,5 @@
 // voxelizer.h: solid voxelization of the translucent objects on the GPU by parity counting along z
-// (shaders/voxel_paths/voxelize_triangles.comp, voxelize_scan.comp), from triangles already on the GPU. Objects must be closed meshes; where they
+// (src/methods/voxel_paths/shaders/voxelize_triangles.comp, voxelize_scan.comp), from triangles already on the GPU. Objects must be closed meshes; where they
 // overlap, the later object's label wins. Cost: one invocation per triangle over the columns its projection
 // covers, then one per column; no rasterization, so no conservative-raster or MSAA requirement.
 #pragma once

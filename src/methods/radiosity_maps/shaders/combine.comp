@@ -5,9 +5,9 @@
 // (misses, opaque direct light, specular) is the shared skeleton of common/camera_pixel.glsl.
 #include "common/frame.glsl"
 #include "common/lights.glsl"
-#include "radiosity_maps/method_block.glsl"
-#include "radiosity_maps/map_lookup.glsl"
-#include "radiosity_maps/vpl_gather.glsl"
+#include "methods/radiosity_maps/shaders/method_block.glsl"
+#include "methods/radiosity_maps/shaders/map_lookup.glsl"
+#include "methods/radiosity_maps/shaders/vpl_gather.glsl"
 #define LUCENT_OPAQUE_INDIRECT(x, n) vpl_irradiance(x, n)
 #include "common/camera_pixel.glsl"
 

@@ -4,7 +4,7 @@
 // an irradiance; every other voxel starts unreached. With `u_entry_depth` d > 0 (parameter entry_depth, in
 // voxels; 0 is the paper), the light also pays the optical depth d h c(v) of the segment from the surface to the
 // voxel's centre, c the voxel's own edge-cost coefficient, so a lit voxel in a dense vein starts darker.
-#include "voxel_paths/grid.glsl"
+#include "methods/voxel_paths/shaders/grid.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 

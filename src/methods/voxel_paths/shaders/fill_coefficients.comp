@@ -2,7 +2,7 @@
 // label's material and field (media/heterogeneous_field.h) at the voxel centre; 0 outside. Runs every frame
 // after voxelization; relax.comp reads the result per voxel. The volume field is trilinear by texelFetch, the
 // same arithmetic as MediumVolume::multiplier on the CPU.
-#include "voxel_paths/grid.glsl"
+#include "methods/voxel_paths/shaders/grid.glsl"
 #include "media/heterogeneous_field.h"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

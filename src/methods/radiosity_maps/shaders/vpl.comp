@@ -4,8 +4,8 @@
 // deforms. Its area is A_v = (4 pi / N) |x_v - c|^2 / cos(u_v, n_v), the surface the direction's solid angle
 // covers (sum over v: the outermost surface's area), and its radiosity B(x_v) comes from the maps (Algorithm 1).
 #include "common/frame.glsl"
-#include "radiosity_maps/method_block.glsl"
-#include "radiosity_maps/map_lookup.glsl"
+#include "methods/radiosity_maps/shaders/method_block.glsl"
+#include "methods/radiosity_maps/shaders/map_lookup.glsl"
 #include "bssrdf/constants.h"
 
 layout(local_size_x = 64) in;

@@ -1,8 +1,8 @@
 // probe.comp: the scattered radiosity B from the maps (Algorithm 1) at arbitrary surface points, for
 // diagnostics and tests (symmetry, VPL energy).
 #include "common/frame.glsl"
-#include "radiosity_maps/method_block.glsl"
-#include "radiosity_maps/map_lookup.glsl"
+#include "methods/radiosity_maps/shaders/method_block.glsl"
+#include "methods/radiosity_maps/shaders/map_lookup.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -9,7 +9,7 @@
 #include "common/frame.glsl"
 #include "common/lights.glsl"
 #include "bssrdf/fresnel.h"
-#include "voxel_paths/grid.glsl"
+#include "methods/voxel_paths/shaders/grid.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;  // z: the layer among the light's views.y layers
 

@@ -2,7 +2,7 @@
 // view direction): exp(-n(v)) per band into an RGBA16F 3D texture that the shading interpolates trilinearly.
 // Outside voxels take the mean of their reached inside neighbours, so that interpolation at the surface does not
 // blend in the zero of the outside.
-#include "voxel_paths/grid.glsl"
+#include "methods/voxel_paths/shaders/grid.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 

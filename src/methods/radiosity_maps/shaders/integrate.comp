@@ -2,7 +2,7 @@
 // the K map views from all lights (common/light_sampling.glsl). Each texel accumulates (sum of B over frames,
 // number of frames).
 #include "common/frame.glsl"
-#include "radiosity_maps/method_block.glsl"
+#include "methods/radiosity_maps/shaders/method_block.glsl"
 #include "common/lights.glsl"
 #include "common/light_sampling.glsl"
 
