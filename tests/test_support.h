@@ -5,6 +5,8 @@
 #include <string>
 #include <system_error>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "lucent/error.h"
@@ -16,8 +18,10 @@ class TempFile {
  public:
   explicit TempFile(const std::string& extension) {
     const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    // The process id keeps two test runs on one machine (two checkouts, a sanitizer build) apart.
     path_ = std::filesystem::path(::testing::TempDir()) /
-            (std::string("lucent_") + test->test_suite_name() + "_" + test->name() + extension);
+            (std::string("lucent_") + test->test_suite_name() + "_" + test->name() + "_" +
+             std::to_string(::getpid()) + extension);
   }
   ~TempFile() {
     std::error_code ignored;
