@@ -5,3 +5,4 @@
 LUCENT_METHOD(radiosity_maps)
 LUCENT_METHOD(per_pixel)
 LUCENT_METHOD(voxel_paths)
+LUCENT_METHOD(texture_space_is)

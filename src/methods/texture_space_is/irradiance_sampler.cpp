@@ -1,0 +1,104 @@
+// irradiance_sampler.cpp: see irradiance_sampler.h.
+#include "methods/texture_space_is/irradiance_sampler.h"
+
+#include <algorithm>
+
+#include "gpu/gl_debug.h"
+
+namespace lucent::methods {
+namespace {
+
+GLuint groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
+
+}  // namespace
+
+IrradianceSampler::IrradianceSampler(int size)
+    : reduce_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/mip_reduce.comp")),
+      row_cdf_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/row_cdf.comp")),
+      sample_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/sample.comp")) {
+  while (size_ < size) size_ *= 2, ++levels_;
+  glCreateTextures(GL_TEXTURE_2D, 1, &pyramid_);
+  glTextureStorage2D(pyramid_, levels_, GL_RGBA32F, size_, size_);
+  glTextureParameteri(pyramid_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  glTextureParameteri(pyramid_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gpu::label_object(GL_TEXTURE, pyramid_, "texture-space-is E' pyramid");
+  glCreateBuffers(1, &samples_);
+  glNamedBufferStorage(samples_, 16 + kMaxSamples * static_cast<GLsizeiptr>(sizeof(shader::TsisSampleGPU)), nullptr, 0);
+  gpu::label_object(GL_BUFFER, samples_, "texture-space-is samples");
+  glCreateBuffers(1, &row_cdf_buffer_);
+  glNamedBufferStorage(row_cdf_buffer_, static_cast<GLsizeiptr>(sizeof(float)) * (static_cast<GLsizeiptr>(size_) * size_ + size_),
+                       nullptr, 0);
+  gpu::label_object(GL_BUFFER, row_cdf_buffer_, "texture-space-is row-major CDF");
+  clear_level0();
+}
+
+IrradianceSampler::~IrradianceSampler() {
+  glDeleteTextures(1, &pyramid_);
+  glDeleteBuffers(1, &samples_);
+  glDeleteBuffers(1, &row_cdf_buffer_);
+}
+
+void IrradianceSampler::clear_level0() {
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glClearTexImage(pyramid_, 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+void IrradianceSampler::bind_level0_for_writing() const {
+  glBindImageTexture(LUCENT_IMAGE_TSIS_TARGET, pyramid_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
+void IrradianceSampler::build(int order) {
+  glUseProgram(reduce_.id());
+  for (int level = 1; level < levels_; ++level) {
+    glBindImageTexture(LUCENT_IMAGE_TSIS_SOURCE, pyramid_, level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(LUCENT_IMAGE_TSIS_TARGET, pyramid_, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    const int n = size_ >> level;
+    glDispatchCompute(groups(n, 8), groups(n, 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  if (order == LUCENT_TSIS_ORDER_ROW_MAJOR) {
+    glUseProgram(row_cdf_.id());
+    glProgramUniform1i(row_cdf_.id(), 0, size_);
+    glBindImageTexture(LUCENT_IMAGE_TSIS_SOURCE, pyramid_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_ROW_CDF, row_cdf_buffer_);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+}
+
+void IrradianceSampler::sample(int n, int order, std::uint32_t seed, std::uint32_t frame, bool write_counters) {
+  n = std::clamp(n, 1, kMaxSamples);
+  const GLuint p = sample_.id();
+  glUseProgram(p);
+  glProgramUniform1i(p, 0, n);
+  glProgramUniform1i(p, 1, order);
+  glProgramUniform1i(p, 2, size_);
+  glProgramUniform1i(p, 3, levels_);
+  glProgramUniform1ui(p, 4, seed);
+  glProgramUniform1ui(p, 5, frame);
+  glProgramUniform1i(p, 6, write_counters ? 1 : 0);
+  glBindTextureUnit(LUCENT_TEX_TSIS_PYRAMID, pyramid_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_SAMPLES, samples_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_ROW_CDF, row_cdf_buffer_);
+  glDispatchCompute(groups(n, 64), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void IrradianceSampler::bind_samples() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_SAMPLES, samples_);
+}
+
+std::vector<shader::TsisSampleGPU> IrradianceSampler::read_samples(int n, glm::vec4* total) const {
+  std::vector<shader::TsisSampleGPU> out(static_cast<std::size_t>(std::clamp(n, 0, kMaxSamples)));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  if (total) glGetNamedBufferSubData(samples_, 0, 16, total);
+  glGetNamedBufferSubData(samples_, 16, static_cast<GLsizeiptr>(out.size() * sizeof(shader::TsisSampleGPU)), out.data());
+  return out;
+}
+
+std::size_t IrradianceSampler::gpu_memory_bytes() const {
+  const std::size_t texels = static_cast<std::size_t>(size_) * static_cast<std::size_t>(size_);
+  return texels * 16 * 4 / 3 + 16 + kMaxSamples * sizeof(shader::TsisSampleGPU) + (texels + static_cast<std::size_t>(size_)) * 4;
+}
+
+}  // namespace lucent::methods

@@ -1,0 +1,159 @@
+// texture_space_is.cpp: texture-space importance sampling (Chang, Lin, Lee, Chen, "Real-Time Translucent
+// Rendering Using GPU-based Texture Space Importance Sampling", CGF 27(2), 2008, Section 3, without the hybrid
+// with local sampling): stage 1 renders E' = (A_S / A_T) F_t E into the atlas (irradiance.comp), stage 2 draws N
+// texels with density proportional to E' (irradiance_sampler.h), stage 3 sums R_d over those N samples for every
+// camera pixel (shade.comp, Eq. 11). The texture-space G-buffer is redrawn every frame (deforming meshes).
+#include "methods/method.h"
+
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "gpu/gl_debug.h"
+#include "gpu/shader_program.h"
+#include "methods/texture_space_is/irradiance_sampler.h"
+#include "methods/texture_space_is/texture_space_is_io.h"
+#include "render/light_gbuffer.h"
+#include "texture_space/texture_gbuffer.h"
+
+namespace lucent::methods {
+namespace {
+
+std::string defines(const Scene& scene) {
+  return render::light_sampling_defines(scene) +
+         fmt::format("#define TSIS_TEX_POSITION {}\n#define TSIS_TEX_NORMAL_RATIO {}\n", texture_space::kTexturePosition,
+                     texture_space::kTextureNormalRatio);
+}
+
+int order_of(const ParamValues& params) {
+  return params.text("order") == "row-major" ? LUCENT_TSIS_ORDER_ROW_MAJOR : LUCENT_TSIS_ORDER_MIPMAP;
+}
+
+class TextureSpaceIs final : public Method {
+ public:
+  TextureSpaceIs(const Scene& scene, const render::SceneGpu& scene_gpu, const texture_space::SceneAtlas& atlas)
+      : params_(scene.method_params),
+        light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
+        texture_gbuffer_(scene_gpu, atlas),
+        sampler_(texture_gbuffer_.size()),
+        irradiance_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/irradiance.comp", defines(scene))),
+        shade_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/shade.comp", defines(scene))) {
+    glCreateBuffers(1, &block_buffer_);
+    glNamedBufferStorage(block_buffer_, sizeof(shader::TextureSpaceIsGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gpu::label_object(GL_BUFFER, block_buffer_, "texture-space-is block");
+  }
+  ~TextureSpaceIs() override {
+    glDeleteTextures(1, &accumulated_);
+    glDeleteBuffers(1, &block_buffer_);
+  }
+
+  void prepare_frame(shader::FrameGPU& frame, bool restart) override {
+    const bool camera_moved = std::memcmp(&frame.clip_from_world, &last_camera_, sizeof(last_camera_)) != 0;
+    last_camera_ = frame.clip_from_world;
+    const int width = frame.output_size.x, height = frame.output_size.y;
+    restart = restart || camera_moved || width != width_ || height != height_;
+    accumulated_frames_ = restart ? 1 : accumulated_frames_ + 1;
+    light_gbuffer_.fill_frame(frame);
+    frame.light_counts.w = kShadowTaps;
+    frame.seeds.z = restart ? 1u : 0u;
+    seed_ = frame.seeds.x;
+    frame_index_ = frame.seeds.y;
+    frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
+    const shader::TextureSpaceIsGPU block{
+        glm::ivec4(params_.integer("N"), order_of(params_), sampler_.pyramid_size(), sampler_.levels()),
+        glm::ivec4(texture_gbuffer_.size(), 0, 0, 0)};
+    glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
+    if (width != width_ || height != height_) resize(width, height);
+  }
+
+  void render(const FrameContext& context) override {
+    light_gbuffer_.render(context.scene_gpu, context.profiler);
+    {
+      auto pass = context.profiler.pass("texture_gbuffer");
+      texture_gbuffer_.render(context.scene_gpu);
+    }
+    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
+    {
+      auto pass = context.profiler.pass("irradiance");
+      light_gbuffer_.bind_textures();
+      texture_gbuffer_.bind_textures();
+      sampler_.bind_level0_for_writing();
+      glUseProgram(irradiance_.id());
+      const GLuint groups = static_cast<GLuint>((texture_gbuffer_.size() + 7) / 8);
+      glDispatchCompute(groups, groups, 1);
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    const int order = order_of(params_);
+    {
+      auto pass = context.profiler.pass("mipmaps");
+      sampler_.build(order);
+    }
+    {
+      auto pass = context.profiler.pass("sampling");
+      sampler_.sample(params_.integer("N"), order, seed_, frame_index_, true);
+    }
+    auto pass = context.profiler.pass("shade");
+    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
+    light_gbuffer_.bind_textures();
+    texture_gbuffer_.bind_textures();
+    sampler_.bind_samples();
+    glBindImageTexture(LUCENT_IMAGE_TSIS_SUM, accumulated_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glUseProgram(shade_.id());
+    glDispatchCompute(static_cast<GLuint>((width_ + 7) / 8), static_cast<GLuint>((height_ + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+
+  int accumulated_frames() const override { return accumulated_frames_; }
+  void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
+    float total = 0.0f;
+    std::memcpy(&total, &record.counters.method_counts[1], sizeof(total));
+    out.push_back({"samples", static_cast<double>(params_.integer("N")), ""});
+    out.push_back({"texels_lit", static_cast<double>(record.counters.method_counts[0]), ""});
+    out.push_back({"irradiance_total", static_cast<double>(total), "W"});
+  }
+  // N, order, specular and roughness are read every frame; materials from the scene's material buffer.
+  bool update_live_params(const Scene& scene) override {
+    (void)scene;
+    return true;
+  }
+  bool update_materials(const Scene& scene) override {
+    (void)scene;
+    return true;
+  }
+  std::size_t gpu_memory_bytes() const override {
+    const std::size_t atlas = static_cast<std::size_t>(texture_gbuffer_.size()) * static_cast<std::size_t>(texture_gbuffer_.size());
+    return light_gbuffer_.gpu_memory_bytes() + atlas * 36 + sampler_.gpu_memory_bytes() +
+           static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 16;
+  }
+
+ private:
+  static constexpr int kShadowTaps = 3;
+
+  void resize(int width, int height) {
+    glDeleteTextures(1, &accumulated_);
+    glCreateTextures(GL_TEXTURE_2D, 1, &accumulated_);
+    glTextureStorage2D(accumulated_, 1, GL_RGBA32F, width, height);
+    gpu::label_object(GL_TEXTURE, accumulated_, "texture-space-is accumulated radiance");
+    width_ = width, height_ = height;
+  }
+
+  const ParamValues& params_;
+  render::LightGBuffer light_gbuffer_;
+  texture_space::TextureGBuffer texture_gbuffer_;
+  IrradianceSampler sampler_;
+  gpu::ShaderProgram irradiance_, shade_;
+  GLuint accumulated_ = 0, block_buffer_ = 0;
+  int width_ = 0, height_ = 0, accumulated_frames_ = 0;
+  std::uint32_t seed_ = 0, frame_index_ = 0;
+  glm::mat4 last_camera_{0.0f};
+};
+
+}  // namespace
+
+std::unique_ptr<Method> create_texture_space_is(const MethodSetup& setup) {
+  if (!setup.atlas) throw Error("texture-space-is: the renderer gave no texture atlas");
+  return std::make_unique<TextureSpaceIs>(setup.scene, setup.scene_gpu, *setup.atlas);
+}
+
+}  // namespace lucent::methods

@@ -1,0 +1,68 @@
+// test_texture_space_is.cpp: the texture-space-is sampler on the GPU (irradiance_sampler.h, sample.comp): for a
+// synthetic E' image, the histogram of the drawn texels matches p = E'_a / E'_total,a (chi-square) in both orders,
+// empty texels are never drawn, and each sample's weight is E' E'_total,a / (E'_a N).
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+
+#include "methods/texture_space_is/irradiance_sampler.h"
+#include "image_compare.h"
+
+namespace {
+
+void check_density(int order) {
+  lucent::test::ensure_gl_context();
+  const int size = 16, n = 4096, rounds = 100;
+  lucent::methods::IrradianceSampler sampler(size);
+  ASSERT_EQ(sampler.pyramid_size(), size);
+  std::vector<glm::vec4> image(static_cast<std::size_t>(size * size));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  double total = 0.0;
+  for (glm::vec4& e : image) {
+    const float v = uniform(rng);
+    const float a = v < 0.3f ? 0.0f : (v > 0.97f ? 40.0f * v : v * v);
+    e = glm::vec4(a * 0.5f, a, a * 1.5f, a);  // coloured: a is the mean of the bands
+    total += a;
+  }
+  glTextureSubImage2D(sampler.pyramid(), 0, 0, 0, size, size, GL_RGBA, GL_FLOAT, image.data());
+  sampler.build(order);
+  std::vector<int> histogram(image.size(), 0);
+  for (int round = 0; round < rounds; ++round) {
+    sampler.sample(n, order, 7u, static_cast<std::uint32_t>(round), false);
+    glm::vec4 sum;
+    const auto samples = sampler.read_samples(n, &sum);
+    ASSERT_NEAR(sum.a, total, 1e-4 * total);
+    for (const auto& s : samples) {
+      ASSERT_TRUE(s.texel.x >= 0 && s.texel.y >= 0 && s.texel.x < size && s.texel.y < size);
+      const glm::vec4 e = image[static_cast<std::size_t>(s.texel.y * size + s.texel.x)];
+      ++histogram[static_cast<std::size_t>(s.texel.y * size + s.texel.x)];
+      if (e.a > 0.0f) {
+        ASSERT_NEAR(s.weight.g, total / n, 1e-4 * total / n);  // E'_g = E'_a here
+      }
+    }
+  }
+  double chi2 = 0.0;
+  int cells = 0;
+  const double draws = static_cast<double>(n) * rounds;
+  for (std::size_t i = 0; i < image.size(); ++i) {
+    if (image[i].a == 0.0f) {
+      EXPECT_EQ(histogram[i], 0) << "texel " << i << " has no density";
+      continue;
+    }
+    const double expected = draws * image[i].a / total;
+    chi2 += (histogram[i] - expected) * (histogram[i] - expected) / expected;
+    ++cells;
+  }
+  const double dof = cells - 1;
+  std::printf("order %d: chi-square %.1f over %d cells (%.0f draws)\n", order, chi2, cells, draws);
+  EXPECT_LT(chi2, dof + 5.0 * std::sqrt(2.0 * dof));
+}
+
+TEST(TextureSpaceIsSampler, MipmapOrderDensityMatchesIrradiance) { check_density(LUCENT_TSIS_ORDER_MIPMAP); }
+TEST(TextureSpaceIsSampler, RowMajorOrderDensityMatchesIrradiance) { check_density(LUCENT_TSIS_ORDER_ROW_MAJOR); }
+
+}  // namespace
