@@ -8,7 +8,8 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
-#include "methods/texture_space_is/irradiance_sampler.h"
+#include "methods/texture_space_is/texture_space_is_io.h"
+#include "texture_space/irradiance_sampler.h"
 #include "image_compare.h"
 
 namespace {
@@ -16,7 +17,9 @@ namespace {
 void check_density(int order) {
   lucent::test::ensure_gl_context();
   const int size = 16, n = 4096, rounds = 100;
-  lucent::methods::IrradianceSampler sampler(size);
+  lucent::texture_space::IrradianceSampler sampler(
+      size, {LUCENT_IMAGE_TSIS_SOURCE, LUCENT_IMAGE_TSIS_TARGET, LUCENT_TEX_TSIS_PYRAMID, LUCENT_BINDING_TSIS_SAMPLES,
+             LUCENT_BINDING_TSIS_ROW_CDF});
   ASSERT_EQ(sampler.pyramid_size(), size);
   std::vector<glm::vec4> image(static_cast<std::size_t>(size * size));
   std::mt19937 rng(11);

@@ -1,7 +1,7 @@
 // texture_space_is.cpp: texture-space importance sampling (Chang, Lin, Lee, Chen, "Real-Time Translucent
 // Rendering Using GPU-based Texture Space Importance Sampling", CGF 27(2), 2008, Section 3, without the hybrid
 // with local sampling): stage 1 renders E' = (A_S / A_T) F_t E into the atlas (irradiance.comp), stage 2 draws N
-// texels with density proportional to E' (irradiance_sampler.h), stage 3 sums R_d over those N samples for every
+// texels with density proportional to E' (both texture_space/irradiance_sampler.h), stage 3 sums R_d over those N samples for every
 // camera pixel (shade.comp, Eq. 11). The texture-space G-buffer is redrawn every frame (deforming meshes).
 #include "methods/method.h"
 
@@ -11,9 +11,9 @@
 
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
-#include "methods/texture_space_is/irradiance_sampler.h"
 #include "methods/texture_space_is/texture_space_is_io.h"
 #include "render/light_gbuffer.h"
+#include "texture_space/irradiance_sampler.h"
 #include "texture_space/texture_gbuffer.h"
 
 namespace lucent::methods {
@@ -25,6 +25,9 @@ std::string defines(const Scene& scene) {
                      texture_space::kTextureNormalRatio);
 }
 
+constexpr texture_space::SamplerSlots kSamplerSlots{LUCENT_IMAGE_TSIS_SOURCE, LUCENT_IMAGE_TSIS_TARGET, LUCENT_TEX_TSIS_PYRAMID,
+                                                 LUCENT_BINDING_TSIS_SAMPLES, LUCENT_BINDING_TSIS_ROW_CDF};
+
 int order_of(const ParamValues& params) {
   return params.text("order") == "row-major" ? LUCENT_TSIS_ORDER_ROW_MAJOR : LUCENT_TSIS_ORDER_MIPMAP;
 }
@@ -35,8 +38,7 @@ class TextureSpaceIs final : public Method {
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
         texture_gbuffer_(scene_gpu, atlas),
-        sampler_(texture_gbuffer_.size()),
-        irradiance_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/irradiance.comp", defines(scene))),
+        sampler_(texture_gbuffer_.size(), kSamplerSlots, defines(scene)),
         shade_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/shade.comp", defines(scene))) {
     glCreateBuffers(1, &block_buffer_);
     glNamedBufferStorage(block_buffer_, sizeof(shader::TextureSpaceIsGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -77,11 +79,7 @@ class TextureSpaceIs final : public Method {
       auto pass = context.profiler.pass("irradiance");
       light_gbuffer_.bind_textures();
       texture_gbuffer_.bind_textures();
-      sampler_.bind_level0_for_writing();
-      glUseProgram(irradiance_.id());
-      const GLuint groups = static_cast<GLuint>((texture_gbuffer_.size() + 7) / 8);
-      glDispatchCompute(groups, groups, 1);
-      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      sampler_.irradiance(texture_gbuffer_.size());
     }
     const int order = order_of(params_);
     {
@@ -141,8 +139,8 @@ class TextureSpaceIs final : public Method {
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;
   texture_space::TextureGBuffer texture_gbuffer_;
-  IrradianceSampler sampler_;
-  gpu::ShaderProgram irradiance_, shade_;
+  texture_space::IrradianceSampler sampler_;
+  gpu::ShaderProgram shade_;
   GLuint accumulated_ = 0, block_buffer_ = 0;
   int width_ = 0, height_ = 0, accumulated_frames_ = 0;
   std::uint32_t seed_ = 0, frame_index_ = 0;

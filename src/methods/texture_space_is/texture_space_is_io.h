@@ -1,9 +1,10 @@
 // texture_space_is_io.h: the texture-space importance sampling method's own GPU data: its uniform block (at
-// LUCENT_BINDING_METHOD), the sample layout and its binding points, inside the method ranges of shared/bindings.h
-// (C++ and GLSL).
+// LUCENT_BINDING_METHOD) and the binding points of its sampler (texture_space/irradiance_sampler.h; the sample
+// layout is shared/tsis_samples.h), inside the method ranges of shared/bindings.h (C++ and GLSL).
 #ifndef LUCENT_METHODS_TEXTURE_SPACE_IS_IO_H
 #define LUCENT_METHODS_TEXTURE_SPACE_IS_IO_H
 #include "shared/shader_io.h"
+#include "shared/tsis_samples.h"
 
 #define LUCENT_IMAGE_TSIS_SOURCE 2       // RGBA32F: E' pyramid level read (mip reduction), level 0 (irradiance, row CDF)
 #define LUCENT_IMAGE_TSIS_TARGET 3       // RGBA32F: E' pyramid level written (irradiance: level 0)
@@ -12,9 +13,6 @@
 #define LUCENT_BINDING_TSIS_SAMPLES 20   // TsisSamplesGPU (std430): the frame's N samples
 #define LUCENT_BINDING_TSIS_ROW_CDF 21   // float[size * size + size] (std430): row-major CDF (order row-major)
 
-#define LUCENT_TSIS_ORDER_MIPMAP 0
-#define LUCENT_TSIS_ORDER_ROW_MAJOR 1
-
 LUCENT_SHADER_BEGIN
 
 struct TextureSpaceIsGPU {
@@ -22,18 +20,10 @@ struct TextureSpaceIsGPU {
   ivec4 atlas;   // x: atlas size (texels of the texture-space G-buffer, <= P); y: pyramid level being reduced
 };
 
-// One sample of the frame: the texel it landed on and its estimator weight per band,
-// E'(texel) E'_total,a / (E'_a(texel) N) (Eq. 10 with p = E'_a / E'_total,a; a = mean of the bands).
-struct TsisSampleGPU {
-  ivec4 texel;   // xy: texel of level 0; zw: unused
-  vec4 weight;   // rgb: weight per band [irradiance x area]; a: unused
-};
-
 LUCENT_SHADER_END
 
 #if defined(__cplusplus)
 static_assert(sizeof(lucent::shader::TextureSpaceIsGPU) == 32);
-static_assert(sizeof(lucent::shader::TsisSampleGPU) == 32);
 static_assert(LUCENT_IMAGE_TSIS_SOURCE >= LUCENT_METHOD_IMAGE_FIRST && LUCENT_IMAGE_TSIS_SUM <= LUCENT_METHOD_IMAGE_LAST);
 static_assert(LUCENT_TEX_TSIS_PYRAMID >= LUCENT_METHOD_TEX_FIRST && LUCENT_TEX_TSIS_PYRAMID <= LUCENT_METHOD_TEX_LAST);
 static_assert(LUCENT_BINDING_TSIS_SAMPLES >= LUCENT_METHOD_STORAGE_FIRST &&

@@ -1,6 +1,6 @@
 // shade.comp: stage 3 of texture-space importance sampling (Chang et al. 2008, Eq. 11): for every camera pixel on
 // a translucent object, L = F_t(eta, n . w_o) / pi sum_i weight_i R_d(|x_o - x_i|) over the frame's samples on
-// the same object (weight_i = E'(x_i) E'_total / (E'(x_i) N) per band, sample.comp), with the model's radially
+// the same object (weight_i = E'(x_i) E'_total / (E'(x_i) N) per band, texture_space/irradiance_sample.comp), with the model's radially
 // symmetric R_d (bssrdf/model.h). View dependent: accumulates only while nothing, camera included, changes.
 #include "common/frame.glsl"
 #include "common/lights.glsl"

@@ -1,11 +1,12 @@
-// sample.comp: stage 2 of texture-space importance sampling: N texels drawn with probability E'_a / E'_total,a
+// irradiance_sample.comp: stage 2 of texture-space importance sampling: N texels drawn with probability E'_a / E'_total,a
 // (Chang et al. 2008, Eq. 9) by the inverse CDF, one invocation per sample. Stratified: sample i inverts
 // u = (i + xi_i) / N. Mipmap order (Fig. 2b): one top-down descent of the sum pyramid (shared/mip_sampling.h);
-// row-major order (Fig. 2a): binary search over the row totals, then within the row (row_cdf.comp). Each sample
+// row-major order (Fig. 2a): binary search over the row totals, then within the row (irradiance_row_cdf.comp). Each sample
 // stores its texel and its weight E'(texel) E'_total,a / (E'_a(texel) N) per band (Eq. 10).
 #include "shared/mip_sampling.h"
 #include "shared/random.h"
-#include "methods/texture_space_is/texture_space_is_io.h"
+#include "shared/shader_io.h"
+#include "shared/tsis_samples.h"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 layout(location = 0) uniform int count;
@@ -15,12 +16,12 @@ layout(location = 3) uniform int levels;
 layout(location = 4) uniform uint seed;
 layout(location = 5) uniform uint frame_index;
 layout(location = 6) uniform int write_counters;
-layout(binding = LUCENT_TEX_TSIS_PYRAMID) uniform sampler2D pyramid;
-layout(std430, binding = LUCENT_BINDING_TSIS_SAMPLES) buffer Samples {
+layout(binding = TSIS_TEX_PYRAMID) uniform sampler2D pyramid;
+layout(std430, binding = TSIS_BINDING_SAMPLES) buffer Samples {
   vec4 total;
   TsisSampleGPU samples[];
 };
-layout(std430, binding = LUCENT_BINDING_TSIS_ROW_CDF) readonly buffer RowCdf { float cdf[]; };
+layout(std430, binding = TSIS_BINDING_ROW_CDF) readonly buffer RowCdf { float cdf[]; };
 layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
 
 // First index in [first, first + n) whose cdf exceeds target (n when none).

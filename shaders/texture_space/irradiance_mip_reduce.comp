@@ -1,10 +1,10 @@
-// mip_reduce.comp: one level of the E' sum pyramid: each texel of the target level is the sum of its four
+// irradiance_mip_reduce.comp: one level of the E' sum pyramid: each texel of the target level is the sum of its four
 // children in the source level (all four channels; a is the sampled density).
-#include "methods/texture_space_is/texture_space_is_io.h"
+#include "shared/tsis_samples.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(rgba32f, binding = LUCENT_IMAGE_TSIS_SOURCE) uniform readonly image2D source;
-layout(rgba32f, binding = LUCENT_IMAGE_TSIS_TARGET) uniform writeonly image2D target;
+layout(rgba32f, binding = TSIS_IMAGE_SOURCE) uniform readonly image2D source;
+layout(rgba32f, binding = TSIS_IMAGE_TARGET) uniform writeonly image2D target;
 
 void main() {
   ivec2 t = ivec2(gl_GlobalInvocationID.xy);

@@ -1,34 +1,47 @@
 // irradiance_sampler.cpp: see irradiance_sampler.h.
-#include "methods/texture_space_is/irradiance_sampler.h"
+#include "texture_space/irradiance_sampler.h"
 
 #include <algorithm>
 
-#include "gpu/gl_debug.h"
+#include <fmt/format.h>
 
-namespace lucent::methods {
+#include "gpu/gl_debug.h"
+#include "lucent/error.h"
+
+namespace lucent::texture_space {
 namespace {
 
 GLuint groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
 
+std::string slot_defines(const SamplerSlots& s) {
+  return fmt::format(
+      "#define TSIS_IMAGE_SOURCE {}\n#define TSIS_IMAGE_TARGET {}\n#define TSIS_TEX_PYRAMID {}\n"
+      "#define TSIS_BINDING_SAMPLES {}\n#define TSIS_BINDING_ROW_CDF {}\n",
+      s.source_image, s.target_image, s.pyramid_texture, s.samples_buffer, s.row_cdf_buffer);
+}
+
 }  // namespace
 
-IrradianceSampler::IrradianceSampler(int size)
-    : reduce_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/mip_reduce.comp")),
-      row_cdf_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/row_cdf.comp")),
-      sample_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/sample.comp")) {
+IrradianceSampler::IrradianceSampler(int size, const SamplerSlots& slots, const std::string& irradiance_defines)
+    : slots_(slots),
+      reduce_(gpu::ShaderProgram::compute("texture_space/irradiance_mip_reduce.comp", slot_defines(slots))),
+      row_cdf_(gpu::ShaderProgram::compute("texture_space/irradiance_row_cdf.comp", slot_defines(slots))),
+      sample_(gpu::ShaderProgram::compute("texture_space/irradiance_sample.comp", slot_defines(slots))) {
+  if (!irradiance_defines.empty())
+    irradiance_ = gpu::ShaderProgram::compute("texture_space/irradiance.comp", slot_defines(slots) + irradiance_defines);
   while (size_ < size) size_ *= 2, ++levels_;
   glCreateTextures(GL_TEXTURE_2D, 1, &pyramid_);
   glTextureStorage2D(pyramid_, levels_, GL_RGBA32F, size_, size_);
   glTextureParameteri(pyramid_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
   glTextureParameteri(pyramid_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gpu::label_object(GL_TEXTURE, pyramid_, "texture-space-is E' pyramid");
+  gpu::label_object(GL_TEXTURE, pyramid_, "texture-space E' pyramid");
   glCreateBuffers(1, &samples_);
   glNamedBufferStorage(samples_, 16 + kMaxSamples * static_cast<GLsizeiptr>(sizeof(shader::TsisSampleGPU)), nullptr, 0);
-  gpu::label_object(GL_BUFFER, samples_, "texture-space-is samples");
+  gpu::label_object(GL_BUFFER, samples_, "texture-space samples");
   glCreateBuffers(1, &row_cdf_buffer_);
   glNamedBufferStorage(row_cdf_buffer_, static_cast<GLsizeiptr>(sizeof(float)) * (static_cast<GLsizeiptr>(size_) * size_ + size_),
                        nullptr, 0);
-  gpu::label_object(GL_BUFFER, row_cdf_buffer_, "texture-space-is row-major CDF");
+  gpu::label_object(GL_BUFFER, row_cdf_buffer_, "texture-space row-major CDF");
   clear_level0();
 }
 
@@ -44,14 +57,23 @@ void IrradianceSampler::clear_level0() {
 }
 
 void IrradianceSampler::bind_level0_for_writing() const {
-  glBindImageTexture(LUCENT_IMAGE_TSIS_TARGET, pyramid_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(static_cast<GLuint>(slots_.target_image), pyramid_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
+void IrradianceSampler::irradiance(int atlas_size) {
+  if (irradiance_.id() == 0) throw Error("IrradianceSampler::irradiance: created without irradiance defines");
+  bind_level0_for_writing();
+  glUseProgram(irradiance_.id());
+  glProgramUniform1i(irradiance_.id(), 0, atlas_size);
+  glDispatchCompute(groups(atlas_size, 8), groups(atlas_size, 8), 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void IrradianceSampler::build(int order) {
   glUseProgram(reduce_.id());
   for (int level = 1; level < levels_; ++level) {
-    glBindImageTexture(LUCENT_IMAGE_TSIS_SOURCE, pyramid_, level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(LUCENT_IMAGE_TSIS_TARGET, pyramid_, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(static_cast<GLuint>(slots_.source_image), pyramid_, level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(static_cast<GLuint>(slots_.target_image), pyramid_, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     const int n = size_ >> level;
     glDispatchCompute(groups(n, 8), groups(n, 8), 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -59,8 +81,8 @@ void IrradianceSampler::build(int order) {
   if (order == LUCENT_TSIS_ORDER_ROW_MAJOR) {
     glUseProgram(row_cdf_.id());
     glProgramUniform1i(row_cdf_.id(), 0, size_);
-    glBindImageTexture(LUCENT_IMAGE_TSIS_SOURCE, pyramid_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_ROW_CDF, row_cdf_buffer_);
+    glBindImageTexture(static_cast<GLuint>(slots_.source_image), pyramid_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(slots_.row_cdf_buffer), row_cdf_buffer_);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -77,15 +99,15 @@ void IrradianceSampler::sample(int n, int order, std::uint32_t seed, std::uint32
   glProgramUniform1ui(p, 4, seed);
   glProgramUniform1ui(p, 5, frame);
   glProgramUniform1i(p, 6, write_counters ? 1 : 0);
-  glBindTextureUnit(LUCENT_TEX_TSIS_PYRAMID, pyramid_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_SAMPLES, samples_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_ROW_CDF, row_cdf_buffer_);
+  glBindTextureUnit(static_cast<GLuint>(slots_.pyramid_texture), pyramid_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(slots_.samples_buffer), samples_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(slots_.row_cdf_buffer), row_cdf_buffer_);
   glDispatchCompute(groups(n, 64), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void IrradianceSampler::bind_samples() const {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_TSIS_SAMPLES, samples_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(slots_.samples_buffer), samples_);
 }
 
 std::vector<shader::TsisSampleGPU> IrradianceSampler::read_samples(int n, glm::vec4* total) const {
@@ -101,4 +123,4 @@ std::size_t IrradianceSampler::gpu_memory_bytes() const {
   return texels * 16 * 4 / 3 + 16 + kMaxSamples * sizeof(shader::TsisSampleGPU) + (texels + static_cast<std::size_t>(size_)) * 4;
 }
 
-}  // namespace lucent::methods
+}  // namespace lucent::texture_space

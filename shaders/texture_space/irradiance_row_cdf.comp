@@ -1,12 +1,12 @@
-// row_cdf.comp: the row-major CDF of E'_a (Chang et al. 2008, Fig. 2a) as two levels: cdf[y * P + x] the
+// irradiance_row_cdf.comp: the row-major CDF of E'_a (Chang et al. 2008, Fig. 2a) as two levels: cdf[y * P + x] the
 // inclusive prefix sum of row y up to x, cdf[P * P + y] the inclusive prefix sum of the row totals up to row y.
 // One work group: each invocation sums its rows, then the first one the row totals.
-#include "methods/texture_space_is/texture_space_is_io.h"
+#include "shared/tsis_samples.h"
 
 layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
 layout(location = 0) uniform int size;
-layout(rgba32f, binding = LUCENT_IMAGE_TSIS_SOURCE) uniform readonly image2D level0;
-layout(std430, binding = LUCENT_BINDING_TSIS_ROW_CDF) buffer RowCdf { float cdf[]; };
+layout(rgba32f, binding = TSIS_IMAGE_SOURCE) uniform readonly image2D level0;
+layout(std430, binding = TSIS_BINDING_ROW_CDF) buffer RowCdf { float cdf[]; };
 
 void main() {
   for (int y = int(gl_LocalInvocationID.x); y < size; y += 256) {
