@@ -264,7 +264,7 @@ TEST(Cli, MethodsListsEveryMethodWithParametersPassesAndStatistics) {
       EXPECT_TRUE(p.contains("type") && p.contains("default") && p.contains("unit")) << p.dump();
     }
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"radiosity-maps", "per-pixel", "voxel-paths", "texture-space-is"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"radiosity-maps", "per-pixel", "voxel-paths", "texture-space-is", "hybrid"}));
   const nlohmann::json& maps = methods[0];
   auto param = [&](const char* name) {
     for (const nlohmann::json& p : maps["params"])

@@ -1,0 +1,218 @@
+// hybrid.cpp: the hybrid of Chang, Lin, Lee, Chen, "Real-Time Translucent Rendering Using GPU-based Texture Space
+// Importance Sampling", CGF 27(2), 2008, Section 4: R_d = R_d W_l + R_d W_g (bssrdf/hybrid_split.h). The global
+// term is texture-space importance sampling as in texture-space-is (texture_space/irradiance_sampler.h: E' into
+// the atlas, N texels by the inverse CDF) with R_d W_g in Eq. 11; the local term a circular pattern of L C + 1
+// points around each shaded point (shade.comp) whose radii and weights are tabulated per material on the CPU.
+#include "methods/method.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "bssrdf/hybrid_split.h"
+#include "gpu/gl_debug.h"
+#include "gpu/shader_program.h"
+#include "methods/hybrid/hybrid_io.h"
+#include "render/light_gbuffer.h"
+#include "texture_space/irradiance_sampler.h"
+#include "texture_space/texture_gbuffer.h"
+
+namespace lucent::methods {
+namespace {
+
+constexpr texture_space::SamplerSlots kSamplerSlots{LUCENT_IMAGE_HYBRID_SOURCE, LUCENT_IMAGE_HYBRID_TARGET,
+                                                    LUCENT_TEX_HYBRID_PYRAMID, LUCENT_BINDING_HYBRID_SAMPLES,
+                                                    LUCENT_BINDING_HYBRID_ROW_CDF};
+
+std::string irradiance_defines(const Scene& scene) {
+  return render::light_sampling_defines(scene) +
+         fmt::format("#define TSIS_TEX_POSITION {}\n#define TSIS_TEX_NORMAL_RATIO {}\n", texture_space::kTexturePosition,
+                     texture_space::kTextureNormalRatio);
+}
+
+std::string shade_defines(const Scene& scene) {
+  return render::light_sampling_defines(scene) + fmt::format("#define HYBRID_TEX_POSITION {}\n", texture_space::kTexturePosition);
+}
+
+int order_of(const ParamValues& params) {
+  return params.text("order") == "row-major" ? LUCENT_TSIS_ORDER_ROW_MAJOR : LUCENT_TSIS_ORDER_MIPMAP;
+}
+
+// R_p [scene units] of a material: the largest over the bands (Section 4.1).
+float split_radius(const Material& material, float scale_mm, float c) {
+  float Rp = 0.0f;
+  const glm::vec3 sigma_a = material.sigma_a * scale_mm, sigma_s = material.sigma_s * scale_mm;
+  for (int band = 0; band < 3; ++band) {
+    const shader::BandMedium m = shader::make_band_medium(sigma_a[band], sigma_s[band], material.g[band]);
+    const float r_max = 16.0f / std::max(m.sigma_tr, 1e-4f * m.sigma_t_prime);
+    Rp = std::max(Rp, shader::hybrid_band_Rp(static_cast<int>(material.model), m, material.eta, c, r_max));
+  }
+  return Rp;
+}
+
+}  // namespace
+
+class Hybrid final : public Method {
+ public:
+  Hybrid(const Scene& scene, const render::SceneGpu& scene_gpu, const texture_space::SceneAtlas& atlas)
+      : params_(scene.method_params),
+        light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
+        texture_gbuffer_(scene_gpu, atlas),
+        sampler_(texture_gbuffer_.size(), kSamplerSlots, irradiance_defines(scene)),
+        shade_(gpu::ShaderProgram::compute("methods/hybrid/shaders/shade.comp", shade_defines(scene))) {
+    glCreateBuffers(1, &block_buffer_);
+    glNamedBufferStorage(block_buffer_, sizeof(shader::HybridGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gpu::label_object(GL_BUFFER, block_buffer_, "hybrid block");
+    upload_pattern(scene);
+  }
+  ~Hybrid() override {
+    glDeleteTextures(1, &accumulated_);
+    glDeleteBuffers(1, &block_buffer_);
+    glDeleteBuffers(1, &pattern_buffer_);
+  }
+
+  void prepare_frame(shader::FrameGPU& frame, bool restart) override {
+    const bool camera_moved = std::memcmp(&frame.clip_from_world, &last_camera_, sizeof(last_camera_)) != 0;
+    last_camera_ = frame.clip_from_world;
+    const int width = frame.output_size.x, height = frame.output_size.y;
+    restart = restart || camera_moved || width != width_ || height != height_;
+    accumulated_frames_ = restart ? 1 : accumulated_frames_ + 1;
+    light_gbuffer_.fill_frame(frame);
+    frame.light_counts.w = kShadowTaps;
+    frame.seeds.z = restart ? 1u : 0u;
+    seed_ = frame.seeds.x;
+    frame_index_ = frame.seeds.y;
+    frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
+    const shader::HybridGPU block{glm::ivec4(params_.integer("N"), rings_, ring_points_, rings_ + 2),
+                                  glm::vec4(K_, 0.0f, 0.0f, 0.0f)};
+    glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
+    if (width != width_ || height != height_) resize(width, height);
+  }
+
+  void render(const FrameContext& context) override {
+    light_gbuffer_.render(context.scene_gpu, context.profiler);
+    {
+      auto pass = context.profiler.pass("texture_gbuffer");
+      texture_gbuffer_.render(context.scene_gpu);
+    }
+    {
+      auto pass = context.profiler.pass("irradiance");
+      light_gbuffer_.bind_textures();
+      texture_gbuffer_.bind_textures();
+      sampler_.irradiance(texture_gbuffer_.size());
+    }
+    const int order = order_of(params_);
+    {
+      auto pass = context.profiler.pass("mipmaps");
+      sampler_.build(order);
+    }
+    {
+      auto pass = context.profiler.pass("sampling");
+      sampler_.sample(params_.integer("N"), order, seed_, frame_index_, true);
+    }
+    auto pass = context.profiler.pass("shade");
+    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
+    light_gbuffer_.bind_textures();
+    texture_gbuffer_.bind_textures();
+    sampler_.bind_samples();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_HYBRID_PATTERN, pattern_buffer_);
+    glBindImageTexture(LUCENT_IMAGE_HYBRID_SUM, accumulated_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glUseProgram(shade_.id());
+    glDispatchCompute(static_cast<GLuint>((width_ + 7) / 8), static_cast<GLuint>((height_ + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+
+  int accumulated_frames() const override { return accumulated_frames_; }
+  void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
+    float total = 0.0f;
+    std::memcpy(&total, &record.counters.method_counts[1], sizeof(total));
+    out.push_back({"samples", static_cast<double>(params_.integer("N")), ""});
+    out.push_back({"local_samples", static_cast<double>(rings_ * ring_points_ + 1), ""});
+    out.push_back({"split_radius", static_cast<double>(split_radius_mm_), "mm"});
+    out.push_back({"texels_lit", static_cast<double>(record.counters.method_counts[0]), ""});
+    out.push_back({"irradiance_total", static_cast<double>(total), "W"});
+  }
+  // N, order, specular and roughness are read every frame; the rest rebuilds.
+  bool update_live_params(const Scene& scene) override {
+    (void)scene;
+    return true;
+  }
+  // The local pattern depends on the materials: tabulated again.
+  bool update_materials(const Scene& scene) override {
+    upload_pattern(scene);
+    return true;
+  }
+  std::size_t gpu_memory_bytes() const override {
+    const std::size_t atlas = static_cast<std::size_t>(texture_gbuffer_.size()) * static_cast<std::size_t>(texture_gbuffer_.size());
+    return light_gbuffer_.gpu_memory_bytes() + atlas * 36 + sampler_.gpu_memory_bytes() + pattern_bytes_ +
+           static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 16;
+  }
+
+ private:
+  static constexpr int kShadowTaps = 3;
+
+  // Per translucent object (the order of SceneGpu's materials): R_p, then the L + 1 strata of hybrid_ring.
+  void upload_pattern(const Scene& scene) {
+    rings_ = params_.integer("rings");
+    ring_points_ = params_.integer("ring_points");
+    K_ = static_cast<float>(params_.number("K")) * scene.scale_mm;
+    const float c = static_cast<float>(params_.number("importance_threshold")) * scene.scale_mm;
+    std::vector<glm::vec4> table;
+    split_radius_mm_ = -1.0f;
+    for (const auto& object : scene.objects) {
+      if (!object.translucent()) continue;
+      const Material& material = *object.material;
+      const float Rp = split_radius(material, scene.scale_mm, c);
+      if (split_radius_mm_ < 0.0f) split_radius_mm_ = Rp * scene.scale_mm;
+      table.push_back(glm::vec4(Rp, 0.0f, 0.0f, 0.0f));
+      const glm::vec3 sigma_a = material.sigma_a * scene.scale_mm, sigma_s = material.sigma_s * scene.scale_mm;
+      shader::BandMedium m[3];
+      for (int band = 0; band < 3; ++band) m[band] = shader::make_band_medium(sigma_a[band], sigma_s[band], material.g[band]);
+      for (int ring = 0; ring <= rings_; ++ring)
+        table.push_back(shader::hybrid_ring(static_cast<int>(material.model), m[0], m[1], m[2], material.eta, Rp, K_, ring,
+                                            rings_, ring_points_));
+    }
+    if (table.empty()) table.push_back(glm::vec4(0.0f));
+    split_radius_mm_ = std::max(split_radius_mm_, 0.0f);
+    const auto bytes = static_cast<GLsizeiptr>(table.size() * sizeof(glm::vec4));
+    if (pattern_buffer_ == 0 || static_cast<std::size_t>(bytes) != pattern_bytes_) {
+      glDeleteBuffers(1, &pattern_buffer_);
+      glCreateBuffers(1, &pattern_buffer_);
+      glNamedBufferStorage(pattern_buffer_, bytes, table.data(), GL_DYNAMIC_STORAGE_BIT);
+      gpu::label_object(GL_BUFFER, pattern_buffer_, "hybrid local pattern");
+      pattern_bytes_ = static_cast<std::size_t>(bytes);
+    } else {
+      glNamedBufferSubData(pattern_buffer_, 0, bytes, table.data());
+    }
+  }
+
+  void resize(int width, int height) {
+    glDeleteTextures(1, &accumulated_);
+    glCreateTextures(GL_TEXTURE_2D, 1, &accumulated_);
+    glTextureStorage2D(accumulated_, 1, GL_RGBA32F, width, height);
+    gpu::label_object(GL_TEXTURE, accumulated_, "hybrid accumulated radiosity");
+    width_ = width, height_ = height;
+  }
+
+  const ParamValues& params_;
+  render::LightGBuffer light_gbuffer_;
+  texture_space::TextureGBuffer texture_gbuffer_;
+  texture_space::IrradianceSampler sampler_;
+  gpu::ShaderProgram shade_;
+  GLuint accumulated_ = 0, block_buffer_ = 0, pattern_buffer_ = 0;
+  std::size_t pattern_bytes_ = 0;
+  int width_ = 0, height_ = 0, accumulated_frames_ = 0, rings_ = 1, ring_points_ = 1;
+  float K_ = 1.0f, split_radius_mm_ = 0.0f;
+  std::uint32_t seed_ = 0, frame_index_ = 0;
+  glm::mat4 last_camera_{0.0f};
+};
+
+std::unique_ptr<Method> create_hybrid(const MethodSetup& setup) {
+  if (!setup.atlas) throw Error("hybrid: the renderer gave no texture atlas");
+  return std::make_unique<Hybrid>(setup.scene, setup.scene_gpu, *setup.atlas);
+}
+
+}  // namespace lucent::methods
