@@ -1,6 +1,6 @@
-// test_texture_space_is.cpp: the texture-space-is sampler on the GPU (irradiance_sampler.h, sample.comp): for a
-// synthetic E' image, the histogram of the drawn texels matches p = E'_a / E'_total,a (chi-square) in both orders,
-// empty texels are never drawn, and each sample's weight is E' E'_total,a / (E'_a N).
+// test_texture_space_is.cpp: the texture-space-is sampler on the GPU (texture_space/irradiance_sampler.h,
+// irradiance_sample.comp): for a synthetic E' image, the histogram of the drawn texels matches p = E'_a / E'_total,a
+// (chi-square) in both orders, empty texels are never drawn, and each sample's weight is E' E'_total,a / (E'_a N).
 #include <cmath>
 #include <random>
 #include <vector>
