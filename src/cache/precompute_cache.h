@@ -13,7 +13,7 @@
 // Failures: a directory that cannot be created or written is one warning line (once while it stays the cache
 // directory), and the work is simply not cached. set_enabled(false) (the CLI's --no-cache) turns loads into misses and stores into nothing.
 //
-//   cache::Key key("radiosity-maps", 3);
+//   cache::Key key("texture atlas", 3);   // kind, format version
 //   key.mesh(object.mesh).material(*object.material).params(method_params);
 //   if (auto bytes = cache::load(key)) return decode(*bytes);
 //   std::vector<std::byte> bytes = encode(compute());

@@ -1,4 +1,4 @@
-// heterogeneous_field.h: heterogeneous translucent media (issue 5), shared by the voxel-paths method and the
+// heterogeneous_field.h: heterogeneous translucent media, shared by the voxel-paths method and the
 // volumetric path tracer: a density multiplier m(x) >= 0 of a material over its object, in world space over the
 // object's world-space bounds. The medium at x:
 //   sigma_t(x) = m sigma_t,   sigma_s(x) = min(m, 1) sigma_s
