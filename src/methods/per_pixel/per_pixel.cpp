@@ -11,6 +11,7 @@
 #include "methods/per_pixel/per_pixel_io.h"
 #include "gpu/shader_program.h"
 #include "render/light_gbuffer.h"
+#include "render/view_accumulator.h"
 
 namespace lucent::methods {
 namespace {
@@ -25,25 +26,17 @@ class PerPixel final : public Method {
     glNamedBufferStorage(block_buffer_, sizeof(shader::PerPixelGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, block_buffer_, "per-pixel block");
   }
-  ~PerPixel() override {
-    glDeleteTextures(1, &accumulated_);
-    glDeleteBuffers(1, &block_buffer_);
-  }
+  ~PerPixel() override { glDeleteBuffers(1, &block_buffer_); }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
     // View dependent: a camera change restarts accumulation too.
-    bool camera_moved = std::memcmp(&frame.clip_from_world, &last_camera_, sizeof(last_camera_)) != 0;
-    last_camera_ = frame.clip_from_world;
-    const int width = frame.output_size.x, height = frame.output_size.y;
-    restart = restart || camera_moved || !params_.boolean("progressive") || width != width_ || height != height_;
-    accumulated_frames_ = restart ? 1 : accumulated_frames_ + 1;
+    restart = accumulated_.begin_frame(frame, restart || !params_.boolean("progressive"));
     light_gbuffer_.fill_frame(frame);
     frame.light_counts.w = params_.integer("visibility_taps");
     frame.seeds.z = restart ? 1u : 0u;
     frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
     const shader::PerPixelGPU block{glm::ivec4(params_.integer("N"), 0, 0, 0)};
     glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
-    if (width != width_ || height != height_) resize(width, height);
   }
 
   void render(const FrameContext& context) override {
@@ -51,14 +44,14 @@ class PerPixel final : public Method {
     auto pass = context.profiler.pass("per_pixel");
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
     light_gbuffer_.bind_textures();
-    glBindImageTexture(LUCENT_IMAGE_PER_PIXEL_SUM, accumulated_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    accumulated_.bind(LUCENT_IMAGE_PER_PIXEL_SUM);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(program_.id());
-    glDispatchCompute(static_cast<GLuint>((width_ + 7) / 8), static_cast<GLuint>((height_ + 7) / 8), 1);
+    glDispatchCompute(static_cast<GLuint>((accumulated_.width() + 7) / 8), static_cast<GLuint>((accumulated_.height() + 7) / 8), 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
 
-  int accumulated_frames() const override { return accumulated_frames_; }
+  int accumulated_frames() const override { return accumulated_.frames(); }
   void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
     const double samples = static_cast<double>(record.counters.translucent_pixels) * 3.0 * params_.integer("N") *
                            light_gbuffer_.light_count();
@@ -76,24 +69,15 @@ class PerPixel final : public Method {
     return true;
   }
   std::size_t gpu_memory_bytes() const override {
-    return light_gbuffer_.gpu_memory_bytes() + static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 16;
+    return light_gbuffer_.gpu_memory_bytes() + accumulated_.gpu_memory_bytes();
   }
 
  private:
-  void resize(int width, int height) {
-    glDeleteTextures(1, &accumulated_);
-    glCreateTextures(GL_TEXTURE_2D, 1, &accumulated_);
-    glTextureStorage2D(accumulated_, 1, GL_RGBA32F, width, height);
-    gpu::label_object(GL_TEXTURE, accumulated_, "per-pixel accumulated radiosity");
-    width_ = width, height_ = height;
-  }
-
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;
   gpu::ShaderProgram program_;
-  GLuint accumulated_ = 0, block_buffer_ = 0;
-  int width_ = 0, height_ = 0, accumulated_frames_ = 0;
-  glm::mat4 last_camera_{0.0f};
+  render::ViewAccumulator accumulated_{"per-pixel accumulated radiosity"};
+  GLuint block_buffer_ = 0;
 };
 
 }  // namespace

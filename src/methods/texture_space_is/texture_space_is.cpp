@@ -13,6 +13,7 @@
 #include "gpu/shader_program.h"
 #include "methods/texture_space_is/texture_space_is_io.h"
 #include "render/light_gbuffer.h"
+#include "render/view_accumulator.h"
 #include "texture_space/irradiance_sampler.h"
 #include "texture_space/texture_gbuffer.h"
 
@@ -45,16 +46,11 @@ class TextureSpaceIs final : public Method {
     gpu::label_object(GL_BUFFER, block_buffer_, "texture-space-is block");
   }
   ~TextureSpaceIs() override {
-    glDeleteTextures(1, &accumulated_);
     glDeleteBuffers(1, &block_buffer_);
   }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
-    const bool camera_moved = std::memcmp(&frame.clip_from_world, &last_camera_, sizeof(last_camera_)) != 0;
-    last_camera_ = frame.clip_from_world;
-    const int width = frame.output_size.x, height = frame.output_size.y;
-    restart = restart || camera_moved || width != width_ || height != height_;
-    accumulated_frames_ = restart ? 1 : accumulated_frames_ + 1;
+    restart = accumulated_.begin_frame(frame, restart);  // view dependent: a camera move restarts too
     light_gbuffer_.fill_frame(frame);
     frame.light_counts.w = kShadowTaps;
     frame.seeds.z = restart ? 1u : 0u;
@@ -65,7 +61,6 @@ class TextureSpaceIs final : public Method {
         glm::ivec4(params_.integer("N"), order_of(params_), sampler_.pyramid_size(), sampler_.levels()),
         glm::ivec4(texture_gbuffer_.size(), 0, 0, 0)};
     glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
-    if (width != width_ || height != height_) resize(width, height);
   }
 
   void render(const FrameContext& context) override {
@@ -95,14 +90,14 @@ class TextureSpaceIs final : public Method {
     light_gbuffer_.bind_textures();
     texture_gbuffer_.bind_textures();
     sampler_.bind_samples();
-    glBindImageTexture(LUCENT_IMAGE_TSIS_SUM, accumulated_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    accumulated_.bind(LUCENT_IMAGE_TSIS_SUM);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(shade_.id());
-    glDispatchCompute(static_cast<GLuint>((width_ + 7) / 8), static_cast<GLuint>((height_ + 7) / 8), 1);
+    glDispatchCompute(static_cast<GLuint>((accumulated_.width() + 7) / 8), static_cast<GLuint>((accumulated_.height() + 7) / 8), 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
 
-  int accumulated_frames() const override { return accumulated_frames_; }
+  int accumulated_frames() const override { return accumulated_.frames(); }
   void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
     float total = 0.0f;
     std::memcpy(&total, &record.counters.method_counts[1], sizeof(total));
@@ -122,29 +117,20 @@ class TextureSpaceIs final : public Method {
   std::size_t gpu_memory_bytes() const override {
     const std::size_t atlas = static_cast<std::size_t>(texture_gbuffer_.size()) * static_cast<std::size_t>(texture_gbuffer_.size());
     return light_gbuffer_.gpu_memory_bytes() + atlas * 36 + sampler_.gpu_memory_bytes() +
-           static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 16;
+           accumulated_.gpu_memory_bytes();
   }
 
  private:
   static constexpr int kShadowTaps = 3;
-
-  void resize(int width, int height) {
-    glDeleteTextures(1, &accumulated_);
-    glCreateTextures(GL_TEXTURE_2D, 1, &accumulated_);
-    glTextureStorage2D(accumulated_, 1, GL_RGBA32F, width, height);
-    gpu::label_object(GL_TEXTURE, accumulated_, "texture-space-is accumulated radiance");
-    width_ = width, height_ = height;
-  }
 
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;
   texture_space::TextureGBuffer texture_gbuffer_;
   texture_space::IrradianceSampler sampler_;
   gpu::ShaderProgram shade_;
-  GLuint accumulated_ = 0, block_buffer_ = 0;
-  int width_ = 0, height_ = 0, accumulated_frames_ = 0;
+  render::ViewAccumulator accumulated_{"texture-space-is accumulated radiance"};
+  GLuint block_buffer_ = 0;
   std::uint32_t seed_ = 0, frame_index_ = 0;
-  glm::mat4 last_camera_{0.0f};
 };
 
 }  // namespace
