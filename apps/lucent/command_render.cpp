@@ -27,6 +27,7 @@ struct RenderOptions {
   std::vector<std::string> sets;
   bool quiet = false;
   bool animate = false;
+  bool restart_every_frame = false;
   int samples_per_frame = 1;
 };
 
@@ -126,6 +127,7 @@ void run(const RenderOptions& o) {
   ProgressBar progress("rendering", o.quiet ? 1 : frames);
   std::vector<FrameTimings> timings;
   for (int f = 0; f < frames; ++f) {
+    if (o.restart_every_frame) renderer.restart();
     renderer.render(scene.camera, {target.id(), width, height});
     for (FrameTimings& t : renderer.finished_frames(false)) timings.push_back(std::move(t));
     progress.update(f + 1);
@@ -169,6 +171,10 @@ void add_render_command(CLI::App& app) {
   add_no_cache_flag(cmd);
   cmd->add_flag("--animate", options->animate,
                 "render --frames animation frames (time f / render.fps) to <output>_NNNN.png, and an MP4 with ffmpeg");
+  cmd->add_flag("--restart-every-frame", options->restart_every_frame,
+                "recompute everything the method caches every frame, as when the scene changes (for timings; the "
+                "image is then the last frame alone)")
+      ->excludes("--animate");
   cmd->add_option("--samples-per-frame", options->samples_per_frame, "--animate: frames accumulated per animation frame")
       ->check(CLI::Range(1, 100000));
   cmd->footer(render_help_footer());

@@ -249,6 +249,32 @@ TEST(Cli, RenderTimingsJsonHasEveryFrameWithDeclaredPassesAndStatistics) {
   }
 }
 
+// --restart-every-frame: every frame recomputes what the method caches (radiosity-maps stops recomputing its maps
+// once converged; with the flag it never converges) and the image is the last frame alone; it cannot be combined
+// with --animate.
+TEST(Cli, RenderRestartEveryFrameRecomputesCachedState) {
+  std::string png = lucent::test::output_path("cli_restart.png");
+  auto converged_per_frame = [&](const std::string& extra) {
+    std::string json_path = lucent::test::output_path("cli_restart.json");
+    Result r = run(std::string("render ") + kSmall + " --set method.converged_after=1 --frames 3 -o " + png +
+                   " --timings-json " + json_path + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream in(json_path);
+    nlohmann::json timings = nlohmann::json::parse(in);
+    std::vector<double> converged;
+    for (const nlohmann::json& frame : timings["frames"]) converged.push_back(frame["stats"]["converged"].get<double>());
+    return std::make_pair(converged, r.output);
+  };
+  auto [cached, cached_output] = converged_per_frame("");
+  (void)cached_output;
+  EXPECT_EQ(cached, (std::vector<double>{0, 1, 1}));
+  auto [restarted, restarted_output] = converged_per_frame(" --restart-every-frame");
+  EXPECT_EQ(restarted, (std::vector<double>{0, 0, 0}));
+  EXPECT_NE(restarted_output.find(", 1 frame(s) accumulated"), std::string::npos) << restarted_output;
+  expect_one_line_error(run("render --restart-every-frame --animate -q -o " + png),
+                        "lucent: --animate excludes --restart-every-frame (lucent --help lists the options)");
+}
+
 // `lucent methods --json`: every registered method, with typed parameters marked live or rebuild, its passes and
 // statistics; the text form names the default.
 TEST(Cli, MethodsListsEveryMethodWithParametersPassesAndStatistics) {
