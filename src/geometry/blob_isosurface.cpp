@@ -110,7 +110,7 @@ BlobIsosurface::BlobIsosurface(const IsosurfaceGrid& grid, int object_index, std
   buffers_[kIndices] = make_buffer(capacity * 12, 0, "isosurface indices");
   buffers_[kCounts] = make_buffer(sizeof(IsosurfaceCountsGPU), 0, "isosurface counts");
   DrawElementsIndirectGPU empty{0, 1, 0, 0, 0};  // draws nothing before the first extraction
-  buffers_[kDraw] = make_buffer(sizeof(empty), 0, "isosurface draw command", &empty);
+  buffers_[kDraw] = make_buffer(sizeof(empty), GL_DYNAMIC_STORAGE_BIT, "isosurface draw command", &empty);
   GLbitfield mapped = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
   buffers_[kReadback] = make_buffer(sizeof(IsosurfaceCountsGPU), mapped, "isosurface counts readback");
   readback_ = static_cast<const IsosurfaceCountsGPU*>(
@@ -176,6 +176,7 @@ void BlobIsosurface::extract(float time_seconds, gpu::FrameProfiler* profiler) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_ISO_DRAW, buffers_[kDraw]);
     glUseProgram(finalize_.id());
     glDispatchCompute(1, 1, 1);
+    command_instances_ = 1;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   }
 
@@ -246,7 +247,13 @@ void BlobIsosurface::check_previous_counts() {
   counts_from(*readback_);
 }
 
-void BlobIsosurface::draw() const {
+void BlobIsosurface::draw(int instances) const {
+  if (instances != command_instances_) {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // after finalize's writes to the same command
+    const auto count = static_cast<GLuint>(instances);
+    glNamedBufferSubData(buffers_[kDraw], offsetof(DrawElementsIndirectGPU, instance_count), sizeof(count), &count);
+    command_instances_ = instances;
+  }
   glBindVertexArray(vao_);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffers_[kDraw]);
   glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr);

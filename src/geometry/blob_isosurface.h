@@ -48,8 +48,9 @@ class BlobIsosurface {
   // needed more than the capacity. With `profiler`, each pass is timed under "isosurface <pass>".
   void extract(float time_seconds, gpu::FrameProfiler* profiler = nullptr);
 
-  // Draws the last extraction: binds its vertex array and GL_DRAW_INDIRECT_BUFFER, glDrawElementsIndirect.
-  void draw() const;
+  // Draws the last extraction `instances` times (layered passes draw one instance per view): binds its vertex
+  // array and GL_DRAW_INDIRECT_BUFFER, sets the command's instance count, glDrawElementsIndirect.
+  void draw(int instances = 1) const;
 
   // The buffers, for drawing with one's own state: vertex_buffer() holds shader::VertexGPU (gpu/vertex_layout.h:
   // attribute 0: vec4 position, 1: vec4 normal, 2: vec4 texture coordinates, always 0 here; stride 48),
@@ -94,6 +95,7 @@ class BlobIsosurface {
   gpu::ShaderProgram sample_, classify_, scan_, scan_add_, finalize_, emit_;
   GLuint buffers_[kBufferCount] = {};
   GLuint vao_ = 0;
+  mutable int command_instances_ = 1;  // instance count in the kDraw command (finalize writes 1)
   std::vector<ScanLevel> scan_levels_;
   std::size_t scan_sums_bytes_ = 0;
   GLsync readback_fence_ = nullptr;

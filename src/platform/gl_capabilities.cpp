@@ -40,14 +40,16 @@ GLCapabilities check_capabilities() {
   caps.is_llvmpipe = caps.renderer.find("llvmpipe") != std::string::npos;
   caps.is_nvidia = caps.renderer.find("NVIDIA") != std::string::npos;
   caps.max_array_texture_layers = get_integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
-  caps.max_geometry_shader_invocations = get_integer(GL_MAX_GEOMETRY_SHADER_INVOCATIONS);
   constexpr GLenum kTotalAvailableMemoryNvx = 0x9048;  // GPU_MEMORY_INFO_TOTAL_AVAILABLE_MEMORY_NVX, in KiB
   if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info"))
     caps.device_memory_bytes = static_cast<std::uint64_t>(get_integer(kTotalAvailableMemoryNvx)) * 1024u;
   else if (caps.is_llvmpipe)
     caps.device_memory_bytes = static_cast<std::uint64_t>(sysconf(_SC_PHYS_PAGES)) * static_cast<std::uint64_t>(sysconf(_SC_PAGE_SIZE));
   require_limit("GL_MAX_ARRAY_TEXTURE_LAYERS", caps.max_array_texture_layers, 64);
-  require_limit("GL_MAX_GEOMETRY_SHADER_INVOCATIONS", caps.max_geometry_shader_invocations, 32);
+  // Layered G-buffers set gl_Layer in the vertex shader (gpu/layer_views.h).
+  if (!epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array"))
+    throw Error(fmt::format("OpenGL extension GL_ARB_shader_viewport_layer_array is required; the driver ({}) lacks it",
+                            caps.renderer));
   require_limit("GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS", get_integer(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS), 256);
   require_limit("GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS", get_integer(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS), 16);
   gpu::install_debug_output();

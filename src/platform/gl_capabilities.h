@@ -11,7 +11,6 @@ struct GLCapabilities {
   bool is_llvmpipe = false;  // Mesa software rasterizer: slow; tests keep resolutions small
   bool is_nvidia = false;
   int max_array_texture_layers = 0;
-  int max_geometry_shader_invocations = 0;
   std::uint64_t device_memory_bytes = 0;  // NVIDIA: the GPU's memory (GL_NVX_gpu_memory_info); llvmpipe: the
                                           // machine's RAM; 0 when the driver does not say
 };

@@ -16,8 +16,7 @@ LightGBuffer::LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int si
       views_(build_light_views(scene, scene_gpu.translucent_bounds(), scene_gpu.scene_bounds(), size)),
       gbuffer_(size, size, std::max<int>(1, static_cast<int>(views_.views.size())), "light G-buffer"),
       layer_views_(views_.views, "light G-buffer views"),
-      program_(gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "gbuffer/layered_views.geom",
-                                            "gbuffer/gbuffer.frag")) {}
+      program_(gpu::layered_gbuffer_program()) {}
 
 void LightGBuffer::fill_frame(shader::FrameGPU& frame) const {
   frame.light_counts.x = light_count();
@@ -32,7 +31,7 @@ void LightGBuffer::render(const SceneGpu& scene_gpu, gpu::FrameProfiler& profile
   layer_views_.bind();
   gbuffer_.begin_pass();
   glUseProgram(program_.id());
-  if (!views_.views.empty()) scene_gpu.draw_all();
+  scene_gpu.draw_all(static_cast<int>(layer_views_.count()));
 }
 
 void LightGBuffer::bind_textures() const {

@@ -147,16 +147,19 @@ void SceneGpu::bind_buffers() const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_OBJECTS, object_buffer_);
 }
 
-void SceneGpu::draw_all() const {
+void SceneGpu::draw_all(int instances) const {
+  if (instances <= 0) return;
   glBindVertexArray(vao_);
-  if (index_count_ > 0) glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  for (const auto& blob : blobs_) blob->draw();
+  if (index_count_ > 0) glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, instances);
+  for (const auto& blob : blobs_) blob->draw(instances);
 }
 
-void SceneGpu::draw_translucent() const {
+void SceneGpu::draw_translucent(int instances) const {
+  if (instances <= 0) return;
   glBindVertexArray(vao_);
-  if (translucent_index_count_ > 0) glDrawElements(GL_TRIANGLES, translucent_index_count_, GL_UNSIGNED_INT, nullptr);
-  for (std::size_t b = 0; b < translucent_blob_count_; ++b) blobs_[b]->draw();
+  if (translucent_index_count_ > 0)
+    glDrawElementsInstanced(GL_TRIANGLES, translucent_index_count_, GL_UNSIGNED_INT, nullptr, instances);
+  for (std::size_t b = 0; b < translucent_blob_count_; ++b) blobs_[b]->draw(instances);
 }
 
 void SceneGpu::update(double seconds, gpu::FrameProfiler* profiler) {

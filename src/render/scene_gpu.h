@@ -31,8 +31,10 @@ class SceneGpu {
   SceneGpu& operator=(const SceneGpu&) = delete;
 
   void bind_buffers() const;        // materials and objects storage buffers
-  void draw_all() const;
-  void draw_translucent() const;
+  // Draw every object (or the translucent ones) `instances` times: layered passes draw one instance per view
+  // (shaders/gbuffer/gbuffer.vert sets gl_Layer = gl_InstanceID).
+  void draw_all(int instances = 1) const;
+  void draw_translucent(int instances = 1) const;
 
   // Animated scenes: deforming objects' vertices are recomputed and uploaded, blob surfaces re-extracted on the
   // GPU, for time t. Bounds are conservative over the whole animation, so views built from them stay valid.

@@ -8,7 +8,7 @@
 
 #define LUCENT_MAX_LIGHTS 16       // directional, point and spot lights together
 #define LUCENT_MAX_LIGHT_VIEWS 64  // light G-buffer layers (directional: 2, point and spot: 6 or 7)
-#define LUCENT_MAX_LAYERS 64       // views one layered G-buffer pass renders (shaders/gbuffer/layered_views.geom)
+#define LUCENT_MAX_LAYERS 64       // views one layered G-buffer pass renders (gpu/layer_views.h)
 
 // FrameGPU.environment.x bits.
 #define LUCENT_ENVIRONMENT_MAP 1         // an environment map is bound at LUCENT_TEX_ENVIRONMENT

@@ -69,8 +69,7 @@ class RadiosityMaps final : public Method {
         vpl_count_(params_.integer("vpls")),
         vpl_map_size_(params_.integer("vpl_map_size")),
         vpl_gbuffer_(vpl_count_ > 0 ? vpl_map_size_ : 1, vpl_count_ > 0 ? vpl_map_size_ : 1, 6, "VPL cube map"),
-        gbuffer_program_(gpu::ShaderProgram::graphics("gbuffer/gbuffer.vert", "gbuffer/layered_views.geom",
-                                                      "gbuffer/gbuffer.frag")),
+        gbuffer_program_(gpu::layered_gbuffer_program()),
         integrate_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/integrate.comp", render::light_sampling_defines(scene))),
         combine_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/combine.comp")),
         vpl_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/vpl.comp")),
@@ -287,7 +286,7 @@ class RadiosityMaps final : public Method {
     map_layers_->bind();
     map_gbuffer_.begin_pass();
     glUseProgram(gbuffer_program_.id());
-    context.scene_gpu.draw_translucent();
+    context.scene_gpu.draw_translucent(static_cast<int>(map_layers_->count()));
   }
 
   void integrate(const FrameContext& context) {
@@ -313,7 +312,7 @@ class RadiosityMaps final : public Method {
     vpl_layers_->bind();
     vpl_gbuffer_.begin_pass(/*farthest=*/true);
     glUseProgram(gbuffer_program_.id());
-    context.scene_gpu.draw_translucent();
+    context.scene_gpu.draw_translucent(static_cast<int>(vpl_layers_->count()));
     glDepthFunc(GL_LESS);
     vpl_gbuffer_.bind_textures(LUCENT_TEX_VPL_POSITION, LUCENT_TEX_VPL_NORMAL, LUCENT_TEX_VPL_DEPTH);
     bind_map_textures();
