@@ -1,9 +1,11 @@
 // heterogeneous_field.h: heterogeneous translucent media, shared by the voxel-paths method and the
 // volumetric path tracer: a density multiplier m(x) >= 0 of a material over its object, in world space over the
 // object's world-space bounds. The medium at x:
-//   sigma_t(x) = m sigma_t,   sigma_s(x) = min(m, 1) sigma_s
+//   sigma_t(x) = m sigma_t,   sigma_s(x) = min(m, 1) sigma_s,   so   sigma_a(x) = m sigma_a + max(m - 1, 0) sigma_s
 // so m < 1 thins the medium at constant albedo and m > 1 adds absorbing matter (the albedo falls as 1 / m where
-// the medium is denser: dark marble veins). Fields (deterministic, no state):
+// the medium is denser: dark marble veins). sigma_a(x) is evaluated in the last form, a sum of non-negative terms:
+// m sigma_t - min(m, 1) sigma_s cancels to a few digits for high-albedo media (marble: sigma_a / sigma_t ~ 1e-3),
+// so one rounding difference of a fused multiply-add between CPU and GPU would change it by ~1e-4. Fields (deterministic, no state):
 //   none    m = 1.
 //   marble  thin veins: a phase that advances one unit per `scale` along a fixed direction, warped by 4 octaves of
 //           value noise (own integer-hash lattice, smoothstep interpolation); vein(x) = 1 - smoothstep(0, w, d),
@@ -30,7 +32,7 @@ LUCENT_CONST float kMarbleVeinWidth = 0.1f;  // half-width of a vein's smoothste
 
 // One translucent object's material, bounds and field (std430, per label; label 0 unused).
 struct FieldMaterialGPU {
-  vec4 sigma_t;  // rgb extinction [1/scene unit]; w: 1 = edge cost is sigma_tr, 0 = sigma_t
+  vec4 sigma_a;  // rgb absorption [1/scene unit]; w: 1 = edge cost is sigma_tr, 0 = sigma_t
   vec4 sigma_s;  // rgb scattering (unreduced) [1/scene unit]
   vec4 g;        // rgb Henyey-Greenstein mean cosine
   vec4 lower;    // xyz: world-space bounds of the object [scene units]
@@ -115,17 +117,20 @@ LUCENT_INLINE vec3 volume_grid_coordinate(vec3 p, vec3 lower, vec3 upper, ivec3 
 LUCENT_INLINE ivec3 volume_corner(vec3 u, ivec3 size) { return max(min(ivec3(floor(u)), size - ivec3(2)), ivec3(0)); }
 
 // The medium at a point where the field is m (see the top of this file).
-LUCENT_INLINE vec3 field_sigma_t(FieldMaterialGPU material, float m) { return m * vec3(material.sigma_t); }
 LUCENT_INLINE vec3 field_sigma_s(FieldMaterialGPU material, float m) { return min(m, 1.0f) * vec3(material.sigma_s); }
+LUCENT_INLINE vec3 field_sigma_a(FieldMaterialGPU material, float m) {
+  return m * vec3(material.sigma_a) + max(m - 1.0f, 0.0f) * vec3(material.sigma_s);
+}
+LUCENT_INLINE vec3 field_sigma_t(FieldMaterialGPU material, float m) {
+  return m * (vec3(material.sigma_a) + vec3(material.sigma_s));
+}
 
 // The edge-cost coefficient of a voxel of `material` where the field is m: sigma_t(x), or with the material's
 // sigma_tr flag sqrt(3 sigma_a sigma_t') of the medium there.
 LUCENT_INLINE vec3 field_coefficient(FieldMaterialGPU material, float m) {
-  vec3 sigma_t = field_sigma_t(material, m);
-  if (material.sigma_t.w < 0.5f) return sigma_t;
-  vec3 sigma_s = field_sigma_s(material, m);
-  vec3 sigma_a = max(sigma_t - sigma_s, vec3(0.0f));
-  return sqrt(3.0f * sigma_a * (sigma_a + sigma_s * (1.0f - vec3(material.g))));
+  if (material.sigma_a.w < 0.5f) return field_sigma_t(material, m);
+  vec3 sigma_a = field_sigma_a(material, m);
+  return sqrt(3.0f * sigma_a * (sigma_a + field_sigma_s(material, m) * (1.0f - vec3(material.g))));
 }
 
 LUCENT_SHADER_END

@@ -252,15 +252,18 @@ TEST(VoxelPathsCpu, ObjectsShareOneVolumeFile) {
 TEST(VoxelPathsCpu, FieldMultiplierThinsOrAddsAbsorbingMatter) {
   using namespace lucent::shader;
   FieldMaterialGPU material{};
-  material.sigma_t = glm::vec4(2.0f, 4.0f, 8.0f, 1.0f);  // sigma_tr costs
+  material.sigma_a = glm::vec4(0.5f, 1.0f, 2.0f, 1.0f);  // sigma_tr costs; sigma_t = 2, 4, 8
   material.sigma_s = glm::vec4(1.5f, 3.0f, 6.0f, 0.0f);
+  const glm::vec3 material_sigma_t(2.0f, 4.0f, 8.0f);
   material.g = glm::vec4(0.5f);
   for (float m : {0.5f, 3.0f}) {
     const glm::vec3 sigma_t = field_sigma_t(material, m), sigma_s = field_sigma_s(material, m);
     const glm::vec3 expected_s = m < 1.0f ? m * glm::vec3(material.sigma_s) : glm::vec3(material.sigma_s);
     EXPECT_EQ(sigma_s, expected_s);
-    EXPECT_EQ(sigma_t, m * glm::vec3(material.sigma_t));
+    EXPECT_EQ(sigma_t, m * material_sigma_t);
     const glm::vec3 sigma_a = sigma_t - sigma_s;
+    for (int band = 0; band < 3; ++band)
+      EXPECT_NEAR(field_sigma_a(material, m)[band], sigma_a[band], 1e-6f * sigma_a[band]) << m;
     const glm::vec3 sigma_tr = glm::sqrt(3.0f * sigma_a * (sigma_a + 0.5f * sigma_s));
     const glm::vec3 c = field_coefficient(material, m);
     for (int band = 0; band < 3; ++band) EXPECT_NEAR(c[band], sigma_tr[band], 1e-5f * sigma_tr[band]) << m;

@@ -208,8 +208,12 @@ TEST(VoxelPaths, SideLitSphereIsBrightestOnTheLitSide) {
 }
 
 // Heterogeneous media: the GPU fills the per-voxel coefficients from the field (fill_coefficients.comp) as the
-// CPU evaluation of the same header does (relative 1e-4 on all but at most 0.1% of the voxel bands: float
-// rounding may move a voxel centre across a layer boundary or a noise cell), and the relaxation on those
+// CPU evaluation of the same header does (relative 1e-4 for sigma_t, 1e-3 for sigma_tr, on all but at most 0.1%
+// of the voxel bands: float rounding may move a voxel centre across a layer boundary or a noise cell). sigma_tr
+// gets the wider bound because it is ill-conditioned in m where m > 1: sigma_a = m sigma_a + (m - 1) sigma_s
+// grows by sigma_s / sigma_a (about 1000 for marble) times the relative change of m, so a rounding difference of
+// m of a few 1e-7 (GPU compilers contract to fused multiply-adds) changes sigma_tr by up to ~1e-3; measured worst
+// 3.4e-4 on llvmpipe, 7.5e-4 on an NVIDIA H100, against 3e-5 for sigma_t). And the relaxation on those
 // coefficients converges to the CPU Dijkstra on the same (read-back) coefficients within 1e-5 relative, as in
 // the homogeneous test. Marble veins, skin-like layers and a volume field (GPU trilinear by texelFetch against
 // MediumVolume::multiplier), sigma_t and sigma_tr costs, sphere R = 32.
@@ -250,14 +254,18 @@ TEST_P(Relaxation, HeterogeneousConvergesToDijkstra) {
     const std::vector<glm::vec4> gpu = field.read();
     const std::vector<glm::vec4> cpu = coefficient_field(grid, labels, triangles);
     std::size_t field_mismatches = 0, bands = 0;
-    float lowest = 1e30f, highest = 0.0f;
+    float lowest = 1e30f, highest = 0.0f, worst_field = 0.0f;
     for (std::size_t i = 0; i < labels.size(); ++i) {
       if (labels[i] == 0) {
         ASSERT_EQ(gpu[i], glm::vec4(0.0f));
         continue;
       }
       for (int band = 0; band < 3; ++band, ++bands)
-        field_mismatches += std::abs(gpu[i][band] - cpu[i][band]) > 1e-4f * cpu[i][band] ? 1 : 0;
+      {
+        const float difference = std::abs(gpu[i][band] - cpu[i][band]);
+        field_mismatches += difference > (c.effective ? 1e-3f : 1e-4f) * cpu[i][band] ? 1 : 0;
+        worst_field = std::max(worst_field, difference / cpu[i][band]);
+      }
       lowest = std::min(lowest, gpu[i].g), highest = std::max(highest, gpu[i].g);
     }
     EXPECT_LE(field_mismatches, bands / 1000) << c.name;
@@ -288,9 +296,9 @@ TEST_P(Relaxation, HeterogeneousConvergesToDijkstra) {
         worst_cpu_field = std::max(worst_cpu_field, std::abs(a - from_cpu_field[i][band]) / std::max(e, 1e-3f));
         if (error > 1e-5f) ++mismatches;
       }
-    fmt::print("{}: coefficient (green) {:.2f}..{:.2f} per unit, {} of {} bands off the CPU field by > 1e-4, "
-               "{} sweeps, worst relative difference to Dijkstra {:.2e} (on the CPU field {:.2e})\n",
-               c.name, lowest, highest, field_mismatches, bands, stats.iterations, worst, worst_cpu_field);
+    fmt::print("{}: coefficient (green) {:.2f}..{:.2f} per unit, {} of {} bands off the CPU field by more than the bound "
+               "(worst {:.2e}), {} sweeps, worst relative difference to Dijkstra {:.2e} (on the CPU field {:.2e})\n",
+               c.name, lowest, highest, field_mismatches, bands, worst_field, stats.iterations, worst, worst_cpu_field);
     EXPECT_EQ(mismatches, 0u) << c.name << ", worst " << worst;
     EXPECT_LT(worst_cpu_field, 1e-3f) << c.name;
   }

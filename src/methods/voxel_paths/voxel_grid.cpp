@@ -34,7 +34,7 @@ TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effec
     glm::vec3 sigma = effective_transport ? object.material->sigma_tr() : object.material->sigma_t();
     out.sigma_t[label] = glm::vec4(sigma * scene.scale_mm, 0.0f);
     shader::FieldMaterialGPU& field = out.materials[label];
-    field.sigma_t = glm::vec4(object.material->sigma_t() * scene.scale_mm, effective_transport ? 1.0f : 0.0f);
+    field.sigma_a = glm::vec4(object.material->sigma_a * scene.scale_mm, effective_transport ? 1.0f : 0.0f);
     field.sigma_s = glm::vec4(object.material->sigma_s * scene.scale_mm, 0.0f);
     field.g = glm::vec4(object.material->g, 0.0f);
     const MediumField& medium = object.material->field;
