@@ -12,6 +12,7 @@
 #include "image_compare.h"
 #include "lucent/lucent.h"
 #include "render/scene_gpu.h"
+#include "shared/shader_io.h"
 #include "texture_space/texture_gbuffer.h"
 
 namespace {
@@ -65,6 +66,7 @@ std::vector<SurfacePoint> random_points(const lucent::TriangleMesh& world, int s
 
 struct Rendered {
   std::vector<glm::vec4> position, normal_ratio;
+  std::vector<lucent::shader::VertexGPU> vertices;  // the scene's vertex buffer as drawn
 };
 
 // Checks every random point's texel, and that sum of max(w, 0) is the surface area; returns the largest error.
@@ -102,12 +104,19 @@ void expect_points_and_area(const lucent::Scene& prepared, const SceneAtlas& atl
   EXPECT_NEAR(texel_sum / area, 1.0, 0.01) << what;
 }
 
-Rendered render_gbuffer(const lucent::Scene& prepared, const SceneAtlas& atlas, double seconds = -1.0) {
+Rendered read_back(const lucent::render::SceneGpu& scene_gpu, const TextureGBuffer& gbuffer) {
+  GLint bytes = 0;
+  glGetNamedBufferParameteriv(scene_gpu.vertex_buffer(), GL_BUFFER_SIZE, &bytes);
+  std::vector<lucent::shader::VertexGPU> vertices(static_cast<std::size_t>(bytes) / sizeof(lucent::shader::VertexGPU));
+  glGetNamedBufferSubData(scene_gpu.vertex_buffer(), 0, bytes, vertices.data());
+  return {gbuffer.read_position(), gbuffer.read_normal_ratio(), std::move(vertices)};
+}
+
+Rendered render_gbuffer(const lucent::Scene& prepared, const SceneAtlas& atlas) {
   lucent::render::SceneGpu scene_gpu(prepared);
-  if (seconds >= 0.0) scene_gpu.update(seconds, nullptr);
   TextureGBuffer gbuffer(scene_gpu, atlas);
   gbuffer.render(scene_gpu);
-  return {gbuffer.read_position(), gbuffer.read_normal_ratio()};
+  return read_back(scene_gpu, gbuffer);
 }
 
 lucent::Scene mesh_scene(lucent::TriangleMesh mesh, const std::string& name) {
@@ -150,8 +159,12 @@ TEST(TextureGBuffer, TwoObjectsShareOneAtlas) {
   expect_points_and_area(prepared, atlas, render_gbuffer(prepared, atlas), "default scene, 512^2");
 }
 
-// A bending object: at time t the texels hold the deformed surface (the CPU's deformed_mesh of the same atlas
-// mesh), and they moved from the rest pose.
+// A bending object: after the scene's update to time t the re-rendered texels hold the deformed surface (the
+// CPU's deformed_mesh of the same atlas mesh), and they moved from the rest pose. One SceneGpu and one G-buffer
+// for both instants, as the renderer keeps them while the scene plays. (Creating a second SceneGpu and G-buffer
+// right after destroying the first read back the first one's texels on NVIDIA 580.159 at their first render,
+// although the vertex buffer held the deformed mesh; no GL error was raised. Not understood; the renderer does
+// not destroy and recreate them between frames.)
 TEST(TextureGBuffer, DeformingObjectTexelsFollowTheDeformation) {
   lucent::test::ensure_gl_context();
   lucent::Scene scene = lucent::parse_scene(R"({
@@ -160,9 +173,23 @@ TEST(TextureGBuffer, DeformingObjectTexelsFollowTheDeformation) {
   SceneAtlas atlas = build_scene_atlas(scene, {.size = 256});
   lucent::Scene prepared = with_atlas_meshes(scene, atlas);
   const double t = 0.5;
-  Rendered rest = render_gbuffer(prepared, atlas, 0.0), bent = render_gbuffer(prepared, atlas, t);
+  lucent::render::SceneGpu scene_gpu(prepared);
+  TextureGBuffer gbuffer(scene_gpu, atlas);
+  scene_gpu.update(0.0, nullptr);
+  gbuffer.render(scene_gpu);
+  const Rendered rest = read_back(scene_gpu, gbuffer);
+  scene_gpu.update(t, nullptr);
+  gbuffer.render(scene_gpu);
+  const Rendered bent = read_back(scene_gpu, gbuffer);
   lucent::Scene frozen = lucent::scene_at_time(prepared, t);
   frozen.objects[0].mesh.uvs = prepared.objects[0].mesh.uvs;
+  // The vertex buffer drawn holds the deformed positions (world space).
+  const lucent::TriangleMesh world = lucent::transformed(frozen.objects[0].mesh, frozen.objects[0].world_from_object);
+  ASSERT_GE(bent.vertices.size(), world.positions.size());
+  float vertex_error = 0.0f;
+  for (std::size_t v = 0; v < world.positions.size(); ++v)
+    vertex_error = std::max(vertex_error, glm::length(glm::vec3(bent.vertices[v].position) - world.positions[v]));
+  EXPECT_LT(vertex_error, 1e-4f) << "the vertex buffer does not hold the deformed mesh";
   expect_points_and_area(frozen, atlas, bent, "bending box at t = 0.5 s");
   int moved = 0;
   for (std::size_t i = 0; i < rest.position.size(); ++i)
