@@ -13,7 +13,7 @@ date -u +"date: %Y-%m-%d %H:%M UTC"
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "| scene | N | shade (stage 3) ms | frame ms | frames/s |"
 echo "|---|---|---|---|---|"
-for scene in scenes/bunny_texture_space_is.json sphere; do
+for scene in scenes/bunny_texture_space_is.json scenes/horse_texture_space_is.json sphere; do
   args=("$scene")
   name=$(basename "$scene" .json)
   if [[ $scene == sphere ]]; then
