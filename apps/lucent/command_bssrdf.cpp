@@ -1,5 +1,7 @@
 // command_bssrdf.cpp: `lucent bssrdf`: S_d of a model at one configuration, per colour band, evaluated by the
-// same header code the shaders compile. Units: mm and mm^-1; S_d in mm^-2.
+// same header code the shaders compile. Units: mm and mm^-1; S_d in mm^-2. With --total: the model's flat
+// half-space total diffuse reflectance per refracted power (materials/model_total_reflectance.h), the number to
+// hold against `lucent slab`.
 #include <array>
 #include <optional>
 
@@ -12,6 +14,7 @@
 #include "lucent/error.h"
 #include "lucent/material.h"
 #include "lucent/scene.h"
+#include "materials/model_total_reflectance.h"
 
 namespace lucent::cli {
 namespace {
@@ -23,6 +26,8 @@ struct BssrdfOptions {
   std::optional<float> eta;
   std::vector<float> xi{0, 0, 0}, ni{0, 0, 1}, wi{0, 0, 1}, xo{1, 0, 0}, no{0, 0, 1};
   bool json = false;
+  bool total = false;
+  double incidence_deg = 0.0;
 };
 
 glm::vec3 vec(const std::vector<float>& v, const char* name) {
@@ -62,8 +67,28 @@ Material material_of(const BssrdfOptions& o) {
   return m;
 }
 
+void run_total(const BssrdfOptions& o, const Material& m) {
+  const ModelTotalReflectance t = model_total_reflectance(m, o.incidence_deg);
+  if (o.json) {
+    nlohmann::json out = {{"model", to_string(m.model)},
+                          {"material", m.name},
+                          {"eta", m.eta},
+                          {"incidence_deg", o.incidence_deg},
+                          {"total", {t.total.x, t.total.y, t.total.z}},
+                          {"radiosity", {t.radiosity.x, t.radiosity.y, t.radiosity.z}},
+                          {"exit_transmittance", t.exit_transmittance}};
+    fmt::print("{}\n", out.dump(2));
+  } else {
+    fmt::print("model {}  material {}  eta {}  incidence {} degrees\n", to_string(m.model), m.name, m.eta, o.incidence_deg);
+    fmt::print("total diffuse reflectance per refracted power  R {:.5f}  G {:.5f}  B {:.5f}\n", t.total.x, t.total.y, t.total.z);
+    fmt::print("  scattered radiosity (pi x integral of S_d)   R {:.5f}  G {:.5f}  B {:.5f}\n", t.radiosity.x, t.radiosity.y, t.radiosity.z);
+    fmt::print("  exit transmittance (integral of T21 cos / pi) {:.5f}\n", t.exit_transmittance);
+  }
+}
+
 void run(const BssrdfOptions& o) {
   Material m = material_of(o);
+  if (o.total) return run_total(o, m);
   glm::vec3 x_i = vec(o.xi, "xi"), x_o = vec(o.xo, "xo");
   glm::vec3 n_i = unit_vec(o.ni, "ni"), w_i = unit_vec(o.wi, "wi"), n_o = unit_vec(o.no, "no");
   std::array<float, 3> S{};
@@ -110,6 +135,11 @@ void add_bssrdf_command(CLI::App& app) {
   cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
   cmd->add_option("--xo", options->xo, "exit point X,Y,Z [mm]")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm"))->capture_default_str();
   cmd->add_option("--no", options->no, "exit normal")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
+  cmd->add_flag("--total", options->total,
+                "print the model's flat half-space total diffuse reflectance per refracted power instead of S_d");
+  cmd->add_option("--incidence-deg", options->incidence_deg, "--total: angle of the incident light to the normal [degrees]")
+      ->check(number_in(0, 89.9, false, "degrees"))
+      ->needs("--total");
   cmd->add_flag("--json", options->json, "print JSON");
   cmd->callback([options] { run(*options); });
 }
