@@ -39,17 +39,17 @@ def exact(albedo, eta, angle):
 for eta in etas:
     print(f"\n### eta = {eta}\n")
     print("| a' | angle | exact (+- SE) | " + " | ".join(f"{m} (ratio)" for m in models) +
-          " | standard, radiosity only (ratio) |")
+          " | Jensen's S_d = R_d / pi (ratio) |")
     print("|---|---|---|" + "---|" * len(models) + "---|")
     for albedo in albedos:
         for angle in angles:
             e, se = exact(albedo, eta, angle)
             cells = []
-            standard_radiosity = None
+            jensen = None
             for m in models:
                 t, radiosity, exit_t = model_total(m, albedo, eta, angle)
                 cells.append(f"{t:.4f} ({t / e:.3f})")
-                if m == "standard":
-                    standard_radiosity = radiosity
+                if m == "standard":  # without the exit normalisation the exit transmittance applies once more
+                    jensen = t * exit_t
             print(f"| {albedo} | {angle} | {e:.4f} +- {se:.4f} | " + " | ".join(cells) +
-                  f" | {standard_radiosity:.4f} ({standard_radiosity / e:.3f}) |", flush=True)
+                  f" | {jensen:.4f} ({jensen / e:.3f}) |", flush=True)

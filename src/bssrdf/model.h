@@ -24,11 +24,11 @@ LUCENT_INLINE float bssrdf_Sd(int model, BandMedium m, float eta, vec3 x_i, vec3
 
 // Radially symmetric diffuse reflectance profile R_d(r) [1/length^2] of the selected model for one band:
 // pi S_d on a flat surface lit at normal incidence (x_i at the origin, w_i = n_i = n_o = +z, x_o at distance r
-// in the plane), so that S_d ~ R_d(|x_o - x_i|) / pi for every model. The standard dipole's R_d exactly; for the
-// directional dipole the dependence on the incident direction and the normals is dropped (texture-space methods,
-// which sample by irradiance only, Chang et al. 2008 Eq. 11).
+// in the plane), so that S_d ~ R_d(|x_o - x_i|) / pi for every model, exit normalisation included. The standard
+// dipole's R_d times its exit normalisation; for the directional dipole the dependence on the incident direction
+// and the normals is dropped (texture-space methods, which sample by irradiance only, Chang et al. 2008 Eq. 11).
 LUCENT_INLINE float bssrdf_radial_Rd(int model, BandMedium m, float eta, float r) {
-  if (model == LUCENT_MODEL_STANDARD_DIPOLE) return standard_dipole_Rd(m, eta, r);
+  if (model == LUCENT_MODEL_STANDARD_DIPOLE) return standard_dipole_Rd(m, eta, r) * standard_dipole_exit_normalization(eta);
   vec3 n = vec3(0.0f, 0.0f, 1.0f);
   return kPi * bssrdf_Sd(model, m, eta, vec3(0.0f), n, n, vec3(r, 0.0f, 0.0f), n);
 }

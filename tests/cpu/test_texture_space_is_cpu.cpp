@@ -43,7 +43,8 @@ TEST(TextureSpaceIsRd, StandardDipoleIsItsRdAndIntegratesToTheClosedFormTotal) {
     for (float eta : {1.0f, 1.3f}) {
       const BandMedium m = make_band_medium(1.0f - alpha, alpha, 0.0f);  // sigma_t' = 1
       for (float r : {0.0f, 0.01f, 0.3f, 2.0f, 10.0f})
-        EXPECT_EQ(bssrdf_radial_Rd(LUCENT_MODEL_STANDARD_DIPOLE, m, eta, r), standard_dipole_Rd(m, eta, r));
+        EXPECT_EQ(bssrdf_radial_Rd(LUCENT_MODEL_STANDARD_DIPOLE, m, eta, r),
+                  standard_dipole_Rd(m, eta, r) * standard_dipole_exit_normalization(eta));
       // 2 pi int r R_d(r) dr, midpoint rule in r over [0, 60 / sigma_tr].
       const double r_max = 60.0 / m.sigma_tr;
       const int n = 200000;
@@ -52,7 +53,7 @@ TEST(TextureSpaceIsRd, StandardDipoleIsItsRdAndIntegratesToTheClosedFormTotal) {
         const double r = (i + 0.5) * r_max / n;
         total += 2.0 * M_PI * r * bssrdf_radial_Rd(LUCENT_MODEL_STANDARD_DIPOLE, m, eta, static_cast<float>(r)) * r_max / n;
       }
-      const double closed = standard_dipole_total_Rd(m.alpha_prime, eta);
+      const double closed = standard_dipole_total_Rd(m.alpha_prime, eta) * standard_dipole_exit_normalization(eta);
       EXPECT_NEAR(total, closed, 2e-3 * closed) << "alpha " << alpha << " eta " << eta;
     }
 }

@@ -5,8 +5,10 @@
 // normal incidence, seen straight down at its centre. There the slab is a semi-infinite flat medium under uniform
 // irradiance E, so B(x_o) = integral of F_t(eta, 1) E R_d(|x_o - x_i|) dA = F_t(eta, 1) E R_total and
 //
-//   L = F_t(eta, 1) E R_total F_t(eta, n . w_o) / pi,
+//   L = F_t(eta, 1) E R_total F_t(eta, n . w_o) / (pi (1 - 2 C1(1/eta))),
 //
+// the last factor the standard dipole's exit normalisation (bssrdf/standard_dipole.h), so that the emergent flux is
+// R_total;
 // R_total = 2 pi integral of r R_d(r) dr = (a'/2) (1 + e^{-(4/3) A sqrt(3(1 - a'))}) e^{-sqrt(3(1 - a'))} (Jensen et
 // al. 2001; shared/spec/bssrdf-models.md Section 2). The expected value is computed here from that closed form and
 // the Fresnel equations, in double precision, and checked against a numerical integral of the profile the methods
@@ -72,7 +74,9 @@ std::array<double, 3> expected_radiance() {
   for (std::size_t b = 0; b < 3; ++b) {
     const double R_total = dipole_total_reflectance(kSigmaA[b], kSigmaS[b], kEta);
     EXPECT_NEAR(integrated_profile(kSigmaA[b], kSigmaS[b], kEta), R_total, 2e-3 * R_total) << "band " << b;
-    L[b] = F_t * kIrradiance[b] * R_total * F_t / M_PI;
+    // The standard dipole's exit normalisation 1 / (1 - 2 C1(1/eta)) (its S_d = R_d / (pi (1 - 2 C1(1/eta)))):
+    // 2 C1(1/1.3) = 0.061132 by integrating the Fresnel reflectance (the spec's C_phi(1/1.3) = 0.234717).
+    L[b] = F_t * kIrradiance[b] * R_total * F_t / (M_PI * 4.0 * 0.234717);
   }
   return L;
 }
