@@ -16,7 +16,7 @@ photons = int(sys.argv[2]) if len(sys.argv) > 2 else 100000
 albedos = [0.3, 0.5, 0.8, 0.9, 0.95, 0.99, 0.999]
 etas = [1.0, 1.3, 1.5]
 angles = [0, 45, 75]
-models = ["standard", "directional", "photon-beam"]
+models = ["standard", "directional", "photon-beam", "better-dipole"]
 
 
 def run(args):

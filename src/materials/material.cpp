@@ -15,6 +15,7 @@ std::string_view to_string(BssrdfModel model) {
     case BssrdfModel::StandardDipole: return "standard";
     case BssrdfModel::DirectionalDipole: return "directional";
     case BssrdfModel::PhotonBeamDiffusion: return "photon-beam";
+    case BssrdfModel::BetterDipole: return "better-dipole";
   }
   return "unknown";
 }
@@ -23,6 +24,7 @@ std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name) {
   if (name == "standard") return BssrdfModel::StandardDipole;
   if (name == "directional") return BssrdfModel::DirectionalDipole;
   if (name == "photon-beam") return BssrdfModel::PhotonBeamDiffusion;
+  if (name == "better-dipole") return BssrdfModel::BetterDipole;
   return std::nullopt;
 }
 

@@ -5,6 +5,9 @@
 // validated against Chandrasekhar's tables in test_slab.cpp) that docs/models/total-reflectance.md reports.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "bssrdf/fresnel.h"
 #include "bssrdf/standard_dipole.h"
 #include "lucent/material.h"
 #include "materials/model_total_reflectance.h"
@@ -33,6 +36,25 @@ TEST(ModelTotalReflectance, StandardDipoleEmergentTotalIsTheClosedFormTotal) {
       EXPECT_NEAR(t.radiosity.x, closed * lucent::shader::standard_dipole_exit_normalization(eta), 2e-4 * closed)
           << "albedo " << albedo << " eta " << eta;
       EXPECT_NEAR(t.total.x, closed, 2e-3 * closed) << "albedo " << albedo << " eta " << eta;
+    }
+}
+
+// The better dipole's plane integral in closed form: with e_r = exp(-sigma_tr z_r), e_v = exp(-sigma_tr z_v), the
+// fluence integrates to 2 pi e / sigma_tr and the flux z (1 + sigma_tr d) e^{-sigma_tr d} / d^3 to 2 pi e, so
+// R_total = rho'^2 (C_phi (e_r - e_v) / (2 D_G sigma_tr) + C_E (e_r + e_v) / 2). Improved-diffusion constants
+// recomputed here in double precision from their definitions.
+TEST(ModelTotalReflectance, BetterDipoleMatchesItsClosedFormTotal) {
+  for (float albedo : {0.5f, 0.9f, 0.999f})
+    for (float eta : {1.0f, 1.3f, 1.5f}) {
+      const auto t = lucent::model_total_reflectance(material(lucent::BssrdfModel::BetterDipole, albedo, eta), 0.0);
+      const double sigma_a = 1.0 - albedo, sigma_s = albedo, sigma_t = 1.0;
+      const double D = (2.0 * sigma_a + sigma_s) / (3.0 * sigma_t * sigma_t), sigma_tr = std::sqrt(sigma_a / D);
+      const double c_phi = lucent::shader::fresnel_c_phi(eta), c_e = lucent::shader::fresnel_c_e(eta);
+      const double z_r = 1.0 / sigma_t, z_v = z_r + 2.0 * 2.0 * D * (1.0 - c_e) / (2.0 * c_phi);
+      const double e_r = std::exp(-sigma_tr * z_r), e_v = std::exp(-sigma_tr * z_v);
+      const double closed = albedo * albedo * (c_phi * (e_r - e_v) / (2.0 * D * sigma_tr) + c_e * (e_r + e_v) / 2.0);
+      EXPECT_NEAR(t.radiosity.x * 4.0 * lucent::shader::fresnel_c_phi(1.0f / eta), closed, 2e-3 * closed)
+          << "albedo " << albedo << " eta " << eta;
     }
 }
 

@@ -29,7 +29,7 @@ std::vector<ParityCaseGPU> make_cases() {
   std::vector<ParityCaseGPU> cases;
   for (const char* name : {"Potato", "Marble", "Skimmilk", "Ketchup", "White Grapefruit Juice", "Skin1"}) {
     lucent::Material m = lucent::material_from_preset(*lucent::find_material_preset(name));
-    for (int model = LUCENT_MODEL_STANDARD_DIPOLE; model <= LUCENT_MODEL_PHOTON_BEAM_DIFFUSION; ++model)
+    for (int model = LUCENT_MODEL_STANDARD_DIPOLE; model <= LUCENT_MODEL_BETTER_DIPOLE; ++model)
       for (int k = 0; k < 40; ++k) {
         ParityCaseGPU c{};
         glm::vec3 n_i = k == 0 ? glm::vec3(0, 0, 1) : random_unit(rng);
