@@ -57,7 +57,7 @@ std::vector<std::byte> precompute(const PrecomputeInput& input, const std::funct
   return local_global::encode(local_global::compute(input.scene, *input.atlas, settings, progress));
 }
 
-constexpr PrecomputeDecl kPrecompute{"local-global", 1, precompute};
+constexpr PrecomputeDecl kPrecompute{"local-global", 2, precompute};
 
 }  // namespace
 

@@ -23,6 +23,11 @@ namespace {
 
 constexpr std::uint32_t kMagic = 0x4c474c31u;  // "LGL1"
 constexpr int kRadialSamples = 4096;
+// Tikhonov weight of the blending fit per ring texel: a basis function whose values on the ring sum (squared) to
+// less than about this per ring texel is left at weight 0. Without it, a ring that barely touches a hat (phi ~ 1e-3
+// on one texel) gave weights of 9 and more, whose kernel correction cancels only at texel centres: negative
+// radiance in spots. Plain least squares otherwise (the normal matrix of a ring inside the hats is ~0.1-1 per texel).
+constexpr double kRidge = 1e-3;
 
 // Runs body(i) for i in [0, n) on every hardware thread; the calling thread takes part and reports
 // progress(done / n) after each of its chunks. The first exception thrown by a body is rethrown.
@@ -463,8 +468,10 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
     // Least squares over the ring of the 9 x 9 kernel: w minimises sum (K9 - B^g' - phi . w)^2 per band.
     glm::dmat3 normal(0.0);
     std::array<glm::dvec3, 3> rhs{};
+    int ring = 0;
     for (const Neighbour& n : near) {
       if (std::max(std::abs(n.dx), std::abs(n.dy)) != kRingRadius) continue;
+      ++ring;
       const glm::dvec3 phi = hats(*n.t);
       const glm::dvec3 g = interpolated_global(*n.t);
       const double r = glm::length(q.x - n.t->x);
@@ -474,7 +481,7 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
     const double trace = normal[0][0] + normal[1][1] + normal[2][2];
     std::array<glm::dvec3, 3> w{};  // w[b][a]
     if (trace > 0.0) {
-      const glm::dmat3 regular = normal + glm::dmat3(1e-6 * trace);
+      const glm::dmat3 regular = normal + glm::dmat3(kRidge * ring);
       const glm::dmat3 inverse = glm::inverse(regular);
       for (std::size_t b = 0; b < 3; ++b) w[b] = inverse * rhs[b];
     }
