@@ -159,7 +159,7 @@ glm::dvec3 uniform_response(const lg::LocalGlobalData& data, int n, int x, int y
 // must reach the neighbouring vertices, or the hat functions spread the near field of F' too far. Measured (mean of
 // the three bands' ratio to R_total, this square, cutoff 1e-4): atlas 64 (62.5 um texels): 16 quads (4 texels per
 // edge) 1.043, 32 quads (2 texels) 1.005, 64 quads (1 texel) 1.007; atlas 128: 16 quads 1.38, 32 quads 1.081,
-// 64 quads 1.016; atlas 256: 16 quads 2.71, 32 quads 1.27, 64 quads 1.037.
+// 64 quads 1.016; atlas 256: 16 quads 2.69, 32 quads 1.27, 64 quads 1.037.
 TEST(LocalGlobalPrecompute, BlendedResponseToUniformIrradianceIsTheTotalReflectance) {
   // 4 mm square, 32 x 32 quads (125 um edges, 2 texels), atlas 64 (62.5 um texels).
   const int n = 32;
