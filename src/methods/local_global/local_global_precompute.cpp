@@ -95,6 +95,7 @@ struct Writer {
   template <typename T>
   void array(const std::vector<T>& v) {
     value(static_cast<std::uint64_t>(v.size()));
+    if (v.empty()) return;
     const auto* p = reinterpret_cast<const std::byte*>(v.data());
     bytes.insert(bytes.end(), p, p + v.size() * sizeof(T));
   }
@@ -119,7 +120,7 @@ struct Reader {
     const auto n = value<std::uint64_t>();
     if (n > (bytes.size() - at) / sizeof(T)) throw Error("local-global: precomputed data is truncated");
     std::vector<T> v(static_cast<std::size_t>(n));
-    std::memcpy(v.data(), bytes.data() + at, v.size() * sizeof(T));
+    if (!v.empty()) std::memcpy(v.data(), bytes.data() + at, v.size() * sizeof(T));
     at += v.size() * sizeof(T);
     return v;
   }
