@@ -166,13 +166,26 @@ class LocalGlobal final : public Method {
   }
 
   void render(const FrameContext& context) override {
+    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
+    // The radiosity depends on the lights, the meshes and the materials only: a frame in which only the camera
+    // moved redraws the atlas view and shades.
+    if (context.restart || !lit_) relight(context);
+    lit_ = true;
+    view_and_shade(context);
+  }
+
+ private:
+  static constexpr int kShadowTaps = 3;
+
+  void relight(const FrameContext& context) {
     const int size = texture_gbuffer_.size();
     const GLuint groups = static_cast<GLuint>((size + 7) / 8);
     const GLuint vertex_groups = static_cast<GLuint>((vertex_count_ + 63) / 64);
     light_gbuffer_.render(context.scene_gpu, context.profiler);
-    {
+    if (!texture_drawn_) {  // rigid objects: the texture G-buffer never changes
       auto pass = context.profiler.pass("texture_gbuffer");
       texture_gbuffer_.render(context.scene_gpu);
+      texture_drawn_ = true;
     }
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
     {
@@ -212,6 +225,9 @@ class LocalGlobal final : public Method {
       glDispatchCompute(groups, groups, 1);
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
+  }
+
+  void view_and_shade(const FrameContext& context) {
     const int width = context.camera_gbuffer.size_x(), height = context.camera_gbuffer.size_y();
     {
       auto pass = context.profiler.pass("atlas_view");
@@ -244,6 +260,7 @@ class LocalGlobal final : public Method {
     auto pass = context.profiler.pass("shade");
     light_gbuffer_.bind_textures();
     texture_gbuffer_.bind_textures();
+    glBindTextureUnit(LUCENT_TEX_LG_TEXEL_INDEX, texel_index_);
     glBindTextureUnit(LUCENT_TEX_LG_LOCAL, local_);
     glBindTextureUnit(LUCENT_TEX_LG_VIEW_ATLAS, view_atlas_);
     glBindTextureUnit(LUCENT_TEX_LG_VIEW_RADIOSITY, view_radiosity_);
@@ -253,6 +270,7 @@ class LocalGlobal final : public Method {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
+ public:
   int accumulated_frames() const override { return frames_; }
   void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
     (void)record;
@@ -272,8 +290,6 @@ class LocalGlobal final : public Method {
   }
 
  private:
-  static constexpr int kShadowTaps = 3;
-
   void ensure_view(int width, int height) {
     if (width == view_width_ && height == view_height_) return;
     GLuint textures[] = {view_atlas_, view_radiosity_, view_depth_};
@@ -311,6 +327,7 @@ class LocalGlobal final : public Method {
   double cutoff_mm_ = 0.0;
   shader::LocalGlobalGPU block_{};
   int frames_ = 0;
+  bool lit_ = false, texture_drawn_ = false;
 };
 
 }  // namespace
