@@ -206,7 +206,7 @@ TEST(HostileJson, HugeValuesAreExcerptedInMessages) {
   doc = minimal_scene();
   doc["method"] = {{"name", std::string(20000, 'x')}};
   EXPECT_EQ(scene_error(doc), "test.json: /method/name: unknown method '" + std::string(57, 'x') +
-                                  "...'; known: radiosity-maps, per-pixel, voxel-paths, texture-space-is, hybrid");
+                                  "...'; known: radiosity-maps, per-pixel, voxel-paths, texture-space-is, hybrid, local-global");
   doc = minimal_scene();
   doc[std::string(20000, 'k')] = 1;
   EXPECT_EQ(scene_error(doc).substr(0, 84), "test.json: /" + std::string(56, 'k') + "...: unknown key");

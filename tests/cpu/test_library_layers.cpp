@@ -1,7 +1,8 @@
 // test_library_layers.cpp: the three libraries stay apart: lucent_core (scenes, materials, method descriptions)
 // and lucent_reference (the CPU references) include no GL header and nothing of the GL library, lucent_core
 // nothing of Embree, oneTBB or the references. The sources of each library are read from CMakeLists.txt, so a file
-// added to a library is checked too, and the method descriptions (src/methods/*/*_info.cpp) with the core.
+// added to a library is checked too, and the method descriptions and precomputations (src/methods/*/*_info.cpp,
+// *_precompute.cpp) with the core.
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -55,7 +56,8 @@ TEST(LibraryLayers, CoreIncludesNoGlNoEmbreeNoReference) {
   for (const auto& entry : fs::directory_iterator(fs::path(LUCENT_SOURCE_DIR) / "src/methods"))
     if (entry.is_directory())
       for (const auto& file : fs::directory_iterator(entry.path()))
-        if (file.path().filename().string().ends_with("_info.cpp"))
+        if (file.path().filename().string().ends_with("_info.cpp") ||
+            file.path().filename().string().ends_with("_precompute.cpp"))
           core.push_back(fs::relative(file.path(), LUCENT_SOURCE_DIR).string());
   const std::regex forbidden(
       R"(epoxy|GLFW|EGL|embree|tbb|"render/|"platform/|"methods/method\.h"|"reference/|"gpu/(?!shader_sources\.h))");

@@ -408,7 +408,7 @@ TEST(SceneLoader, LightZeroDirection) {
 TEST(SceneLoader, UnknownMethod) {
   json doc = minimal_scene();
   doc["method"] = {{"name", "photon-beams"}};
-  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps, per-pixel, voxel-paths, texture-space-is, hybrid");
+  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps, per-pixel, voxel-paths, texture-space-is, hybrid, local-global");
 }
 
 TEST(SceneLoader, WrongType) {

@@ -290,7 +290,8 @@ TEST(Cli, MethodsListsEveryMethodWithParametersPassesAndStatistics) {
       EXPECT_TRUE(p.contains("type") && p.contains("default") && p.contains("unit")) << p.dump();
     }
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"radiosity-maps", "per-pixel", "voxel-paths", "texture-space-is", "hybrid"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"radiosity-maps", "per-pixel", "voxel-paths", "texture-space-is", "hybrid",
+                                             "local-global"}));
   const nlohmann::json& maps = methods[0];
   auto param = [&](const char* name) {
     for (const nlohmann::json& p : maps["params"])
