@@ -2,8 +2,8 @@
 // irradiance converges to the model's total diffuse reflectance with blending (Section 5.4), and without blending
 // double counts the near field (the paper's Fig. 6, "much too bright"); deforming objects are refused with one line.
 //
-// The slab is the one of test_flat_slab.cpp (same material, light and camera: L = F_t(eta, 1) E R_total F_t / pi at
-// its centre, R_total the standard dipole's closed form), but as a tessellated square of 4 x 4 mm: the global
+// The slab is the one of test_flat_slab.cpp (same material, light and camera: L = F_t(eta, 1) E R_total F_t /
+// (pi (1 - 2 C1(1/eta))) at its centre, R_total the standard dipole's closed form), but as a tessellated square of 4 x 4 mm: the global
 // response lives on mesh vertices, so the box shape's two triangles per face would carry none of it.
 #include <array>
 #include <cmath>
@@ -91,7 +91,9 @@ std::array<double, 3> slab_ratio(const std::string& method_keys, int quads) {
   std::array<double, 3> ratio{};
   const double F_t = fresnel_transmittance_normal(kEta);
   for (std::size_t b = 0; b < 3; ++b) {
-    const double expected = F_t * kIrradiance[b] * dipole_total_reflectance(kSigmaA[b], kSigmaS[b], kEta) * F_t / M_PI;
+    // The standard dipole's exit normalisation 1 / (4 C_phi(1/1.3)), the spec's exact moment (test_flat_slab.cpp).
+    const double expected =
+        F_t * kIrradiance[b] * dipole_total_reflectance(kSigmaA[b], kSigmaS[b], kEta) * F_t / (M_PI * 4.0 * 0.234717);
     ratio[b] = sum[b] / n / expected;
   }
   return ratio;
