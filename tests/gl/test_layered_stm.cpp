@@ -127,7 +127,7 @@ TEST(LayeredStm, OneLayerMatchesTheSlabsClosedFormSingleScattering) {
 // tau(z) the optical depth from the surface to z, evaluated here by a 200000-step midpoint rule. Isotropic layers.
 // Measured on llvmpipe (128 midpoint samples): ratios 0.9982, 0.9996, 1.0001 (the layer boundary costs the midpoint
 // rule its second order); a light path that ignored the upper layers
-// (Eq. 14 without the sum, the double counting the max() fix guards against) gives 0.45, 0.85, 0.84.
+// (Eq. 14 without the sum over the layers above) gives 0.45, 0.85, 0.84.
 TEST(LayeredStm, TwoFlatLayersMatchTheIntegralOverDepth) {
   lucent::test::ensure_gl_context();
   lucent::ImageRGBA8 map;
