@@ -68,6 +68,25 @@ float cellular(float u, float v, int cells, int salt, float* radius) {
   return best;
 }
 
+// Round blobs in 70% of the cells of a periodic jittered grid, radius 0.3-0.6 cells: the largest of their height
+// profiles sqrt(1 - (d / R)^2) (overlapping blobs merge instead of being cut along cell borders).
+float blobs(float u, float v, int cells, int salt) {
+  const float x = u * static_cast<float>(cells), y = v * static_cast<float>(cells);
+  const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
+  float height = 0.0f;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int cx = ix + dx, cy = iy + dy;
+      const float px = static_cast<float>(cx) + 0.15f + 0.7f * lattice(cx, cy, cells, salt);
+      const float py = static_cast<float>(cy) + 0.15f + 0.7f * lattice(cx, cy, cells, salt + 1);
+      if (lattice(cx, cy, cells, salt + 3) > 0.7f) continue;  // some cells have none
+      const float r = 0.3f + 0.3f * lattice(cx, cy, cells, salt + 2);
+      const float q = std::hypot(x - px, y - py) / r;
+      height = std::max(height, std::sqrt(std::max(0.0f, 1.0f - q * q)));
+    }
+  return height;
+}
+
 float smoothstep(float e0, float e1, float x) {
   const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
   return t * t * (3.0f - 2.0f * t);
@@ -88,13 +107,11 @@ ImageRGBA32F tissue_layer_maps(int size) {
       const float pore = cellular(u, v, 24, 11, &pore_radius);
       const float outer = 0.12f + 0.03f * (fbm(u, v, 8, 3) - 0.5f) - 0.07f * (1.0f - smoothstep(0.0f, 0.6f * pore_radius, pore));
       // Fat: blobs of random size, thickest at their centres.
-      float blob_radius = 0.0f;
-      const float blob = cellular(u + 0.05f * fbm(u, v, 4, 21), v, 6, 17, &blob_radius);
-      const float fat = 0.3f * std::sqrt(std::max(0.0f, 1.0f - (blob / (1.6f * blob_radius)) * (blob / (1.6f * blob_radius))));
+      const float fat = 0.3f * blobs(u + 0.05f * fbm(u, v, 4, 21), v, 6, 17);
       // Vessels: ridges of domain-warped noise.
       const float wu = u + 0.08f * (fbm(u, v, 4, 31) - 0.5f), wv = v + 0.08f * (fbm(u, v, 4, 37) - 0.5f);
-      const float ridge = 1.0f - std::fabs(2.0f * fbm(wu, wv, 3, 41) - 1.0f);
-      const float vessel = 0.12f * smoothstep(0.9f, 0.97f, ridge);
+      const float ridge = 1.0f - std::fabs(2.0f * fbm(wu, wv, 4, 41) - 1.0f);
+      const float vessel = 0.12f * smoothstep(0.95f, 0.985f, ridge);
       float* p = image.at(x, y);
       p[0] = std::max(outer, 0.02f);
       p[1] = fat;
@@ -130,6 +147,50 @@ ImageRGBA32F read_layer_maps(const std::string& path) {
       throw Error(fmt::format("{}: texel {} channel {}: thickness {} is negative or not finite", path, i / 4, i % 4,
                               image.pixels[i]));
   return image;
+}
+
+}  // namespace lucent::media
+
+namespace lucent::media {
+
+TissueSurfaceTextures tissue_surface_textures(int size) {
+  const ImageRGBA32F stack = tissue_layer_maps(size);
+  TissueSurfaceTextures t;
+  for (ImageRGBA32F* image : {&t.outer_base, &t.outer_normal, &t.inner_base}) {
+    image->width = image->height = size;
+    image->pixels.assign(stack.pixels.size(), 1.0f);
+  }
+  // Relief of the outer surface: the outer layer's thickness plus a little of the fat beneath.
+  auto height = [&](int x, int y) {
+    const float* p = stack.at(((x % size) + size) % size, ((y % size) + size) % size);
+    return p[0] + 0.3f * p[1];
+  };
+  const float texel = 1.0f / static_cast<float>(size), relief = 0.02f;  // relief height in texture units
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const float* p = stack.at(x, y);
+      const float outer = p[0], fat = p[1], vessel = p[2];
+      const float fat_weight = std::min(1.0f, fat / 0.15f), vessel_weight = std::min(1.0f, vessel / 0.06f);
+      float* base = t.outer_base.at(x, y);
+      const float pore = std::clamp((outer - 0.05f) / 0.07f, 0.0f, 1.0f);  // 0 in a pore
+      const float skin = 1.0f - 0.15f * (1.0f - pore);  // pores darker
+      base[0] = skin * (0.80f + 0.12f * fat_weight);
+      base[1] = skin * (0.62f + 0.12f * fat_weight);
+      base[2] = skin * (0.55f - 0.15f * fat_weight);
+      base[3] = std::clamp(0.85f * pore * (1.0f - 0.5f * fat_weight), 0.0f, 1.0f);
+      // Normal from central differences of the relief (texture units): n = (-dh/du, -dh/dv, 1) normalised.
+      const float du = (height(x + 1, y) - height(x - 1, y)) * relief / (2.0f * texel);
+      // Image rows run top to bottom, v bottom to top.
+      const float dv = (height(x, y - 1) - height(x, y + 1)) * relief / (2.0f * texel);
+      const float length = std::sqrt(du * du + dv * dv + 1.0f);
+      float* n = t.outer_normal.at(x, y);
+      n[0] = -du / length, n[1] = -dv / length, n[2] = 1.0f / length;
+      float* inner = t.inner_base.at(x, y);
+      inner[0] = 0.75f * (1.0f - 0.55f * vessel_weight) + 0.1f * fat_weight;
+      inner[1] = 0.22f * (1.0f - 0.7f * vessel_weight) + 0.15f * fat_weight;
+      inner[2] = 0.2f * (1.0f - 0.4f * vessel_weight) + 0.05f * fat_weight;
+    }
+  return t;
 }
 
 }  // namespace lucent::media

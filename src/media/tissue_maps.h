@@ -24,3 +24,20 @@ ImageRGBA32F uniform_layer_maps(float t0, float t1, float t2, float t3);
 ImageRGBA32F read_layer_maps(const std::string& path);
 
 }  // namespace lucent::media
+
+namespace lucent::media {
+
+// Surface textures of a two-layer tissue for multi-layer parallax shading (Oat 2006), derived from the same
+// procedural stack, `size` x `size`, periodic:
+//   outer_base   rgb: the outer layer's base colour (pale, yellow over fat); a: how much the outer layer lets the
+//                inner one show (high between pores and fat, low over them)
+//   outer_normal rgb: the outer layer's tangent-space unit normal (x along u, y along v, z out of the surface;
+//                images top row first, v = 0 at the bottom row),
+//                from the pores' and blobs' relief; a: 1
+//   inner_base   rgb: the inner layer's base colour (red tissue, dark vessels); a: 1
+struct TissueSurfaceTextures {
+  ImageRGBA32F outer_base, outer_normal, inner_base;
+};
+TissueSurfaceTextures tissue_surface_textures(int size);
+
+}  // namespace lucent::media
