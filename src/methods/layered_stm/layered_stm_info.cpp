@@ -1,10 +1,13 @@
 // layered_stm_info.cpp: subsurface texture mapping (layered-stm) as data: parameters, passes, statistics (no GL).
 #include "methods/method_info.h"
+#include "texture_space/atlas.h"
 
 namespace lucent::methods {
 namespace {
 
 constexpr ParamDecl kParams[] = {
+    {"atlas_size", ParamType::Int, "1024", "texels", 16, 4096, "",
+     "texture atlas for meshes without usable texture coordinates (a mesh's own are kept; see docs/texture-space.md)"},
     {"samples", ParamType::Int, "25", "samples", 1, 1024, "", "ray-march samples along the refracted view ray per pixel per frame", kLive},
     {"jitter", ParamType::Bool, "true", "", 0, 1, "",
      "offset the samples by one random fraction of a step per pixel and frame (accumulated over frames); false: midpoints", kLive},
@@ -40,6 +43,12 @@ constexpr StatDecl kStats[] = {
     {"march_samples_per_second", "1/s", "march_samples over the march pass's GPU time"},
 };
 
+texture_space::AtlasOptions atlas_options(const ParamValues& params) {
+  texture_space::AtlasOptions options;
+  options.size = params.integer("atlas_size");
+  return options;
+}
+
 }  // namespace
 
 extern const MethodInfo layered_stm_info;
@@ -49,13 +58,14 @@ const MethodInfo layered_stm_info{
     kParams,
     kPasses,
     kStats,
-    R"({"samples": 16, "maps": "uniform", "light_map_size": 128, "specular": false})",
+    R"({"atlas_size": 256, "samples": 16, "maps": "uniform", "light_map_size": 128, "specular": false})",
     // Single scattering only, against a multiple-scattering (diffusion) reference: the conformance sphere's milk-like
     // medium (albedo 0.95-0.98) scatters most of its light more than once, so the method sees a small part of it.
     // Measured on llvmpipe: relative error 0.865 (single scattering 0.0118 against 0.0877). Agreement in order of
     // magnitude only; the physics of the method is checked against single scattering (tests/gl/test_layered_stm.cpp).
     0.95,
-    false,
+    true,  // texture coordinates: the mesh's own where usable, an atlas otherwise
+    atlas_options,
 };
 
 }  // namespace lucent::methods
