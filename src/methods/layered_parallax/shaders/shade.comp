@@ -11,6 +11,7 @@
 #include "common/frame.glsl"
 #include "common/lights.glsl"
 #include "shared/random.h"
+#include "media/layer_parallax.h"
 #include "methods/layered_parallax/layered_parallax_io.h"
 #include "methods/layered_parallax/shaders/poisson_disc.glsl"
 #include "common/camera_pixel.glsl"
@@ -47,10 +48,9 @@ vec3 shade(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o, vec2 uv_mesh
     if (cos_l > 0.0f && dot(n, w_l) > 0.0f) E_outer += incident * cos_l * light_visibility(l, x, n);
   }
   // Inner layer: transmission vector and parallax offset (Eqs. 15-18).
-  vec3 R = -view_t - 2.0f * dot(-view_t, normal_t) * normal_t;
-  vec3 T = vec3(R.x, R.y, -R.z);
-  float s = method.layers.x / max(abs(T.z), 0.05f);
-  vec2 uv_inner = uv + s * vec2(T.x * tiling * length(gu), T.y * tiling * length(gv));
+  vec3 offset = parallax_offset(parallax_transmission(view_t, normal_t), method.layers.x, 0.05f);
+  float s = offset.z;
+  vec2 uv_inner = uv + vec2(offset.x * tiling * length(gu), offset.y * tiling * length(gv));
   float radius = method.layers.w * s;
   float angle = 6.2831853f * next_float(seed);
   mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
@@ -62,7 +62,7 @@ vec3 shade(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o, vec2 uv_mesh
   // Blend (Eq. 19 and Section 2.2.3).
   vec3 x_outer = outer.rgb * E_outer * kInvPi;
   vec3 y_inner = inner * E_inner * kInvPi;
-  float w = outer.a * clamp(dot(normal_w, w_o), 0.0f, 1.0f);
+  float w = parallax_inner_weight(outer.a, normal_w, w_o);
   return mix(x_outer, y_inner, w);
 }
 
