@@ -14,12 +14,14 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
+#include "../cli_runner.h"
 #include "image_compare.h"
 #include "lucent/lucent.h"
 
@@ -235,6 +237,23 @@ TEST(LayeredStm, ABadLayerIsOneClearErrorNamingIt) {
     message = e.what();
   }
   EXPECT_EQ(message, "layered slab scene: /method/sigma_t: 1 layers, but sigma_s has 2; give both for every layer");
+  message.clear();
+  try {
+    render_slab(R"("maps": "no_such_maps.png")", 1);
+  } catch (const lucent::Error& e) {
+    message = e.what();
+  }
+  // Relative paths resolve against the scene file's folder (this scene has none).
+  EXPECT_EQ(message, "layered slab scene: /method/maps: no_such_maps.png: cannot read PNG: No such file or directory");
+  // From the command line: "lucent: <scene>: <where>: <problem>" on one line, exit status 1.
+  const std::string scene = lucent::test::output_path("layered_bad_layer.json");
+  std::ofstream(scene) << R"({"lights": [{"direction": [0, -1, 0], "radiance": [1, 1, 1]}],
+    "objects": [{"shape": "sphere", "material": "Marble"}],
+    "method": {"name": "layered-stm", "sigma_s": [[1, 1, 1], [4, 1, 1]], "sigma_t": [[2, 2, 2], [3, 2, 2]]}})";
+  const lucent::test::CliResult r = lucent::test::run_cli("render -q -o " + lucent::test::output_path("bad.png") + " " + scene);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output, "lucent: " + scene + ": /method/sigma_t/1: layer 1: sigma_t[0] = 3 mm^-1 is below sigma_s[0] = 4 "
+                      "mm^-1; extinction includes scattering (sigma_t = sigma_a + sigma_s)\n");
 }
 
 }  // namespace
