@@ -149,10 +149,6 @@ ImageRGBA32F read_layer_maps(const std::string& path) {
   return image;
 }
 
-}  // namespace lucent::media
-
-namespace lucent::media {
-
 TissueSurfaceTextures tissue_surface_textures(int size) {
   const ImageRGBA32F stack = tissue_layer_maps(size);
   TissueSurfaceTextures t;

@@ -23,10 +23,6 @@ ImageRGBA32F uniform_layer_maps(float t0, float t1, float t2, float t3);
 // file when it cannot be read, is not .png/.exr, or holds a negative or non-finite value.
 ImageRGBA32F read_layer_maps(const std::string& path);
 
-}  // namespace lucent::media
-
-namespace lucent::media {
-
 // Surface textures of a two-layer tissue for multi-layer parallax shading (Oat 2006), derived from the same
 // procedural stack, `size` x `size`, periodic:
 //   outer_base   rgb: the outer layer's base colour (pale, yellow over fat); a: how much the outer layer lets the
