@@ -33,6 +33,7 @@ void check_resumable(const nlohmann::json& meta, const ReferenceOptions& o, cons
   const std::pair<const char*, nlohmann::json> keys[] = {{"integrator", o.integrator},
                                                          {"seed", o.settings.seed},
                                                          {"jitter", o.settings.jitter},
+                                                         {"max_scatter", o.settings.max_scatter},
                                                          {"width", scene.render.width},
                                                          {"height", scene.render.height}};
   for (const auto& [key, now] : keys)
@@ -50,6 +51,8 @@ void run(ReferenceOptions o) {
   if (o.integrator != "volpath" && o.integrator != "bssrdf")
     throw Error(fmt::format("--integrator: '{}' is not one of volpath, bssrdf", o.integrator));
   o.settings.integrator = o.integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
+  if (o.settings.max_scatter > 0 && o.settings.integrator != reference::Integrator::Volpath)
+    throw Error("--max-scatter: only the volpath integrator counts scattering events");
   if (o.output.empty()) throw Error("--output: empty path; give the reference's EXR, e.g. out/ref.exr");
   Scene scene = load_scene(o.scene_path, o.sets);
   // The three files are checked before the first sample: a reference can take hours.
@@ -75,6 +78,7 @@ void run(ReferenceOptions o) {
                              {"integrator", o.integrator},
                              {"seed", o.settings.seed},
                              {"jitter", o.settings.jitter},
+                             {"max_scatter", o.settings.max_scatter},
                              {"width", scene.render.width},
                              {"height", scene.render.height},
                              {"camera_paths_per_second", paths / image.seconds},
@@ -102,6 +106,10 @@ void add_reference_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", o->settings.seed, "random seed")->check(whole_number_in(0, 1.8e19))->capture_default_str();
   cmd->add_flag("--jitter", o->settings.jitter, "jitter rays inside pixels (default: pixel centres, as rasterized)");
+  cmd->add_option("--max-scatter", o->settings.max_scatter,
+                  "volpath: end paths after this many scattering events (1: single scattering; 0: no limit)")
+      ->check(whole_number_in(0, 1e9))
+      ->capture_default_str();
   cmd->add_flag("--resume", o->resume, "add samples to the existing output (same scene and seed)");
   cmd->add_option("--set", o->sets, "override a scene value, e.g. --set render.width=160");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");

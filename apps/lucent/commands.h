@@ -18,6 +18,7 @@ void add_envmap_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
 void add_atlas_command(CLI::App& app);
+void add_tissue_maps_command(CLI::App& app);
 
 // --no-cache, on the commands that may precompute: the precompute cache is neither read nor written.
 inline void add_no_cache_flag(CLI::App* cmd) {

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   lucent::cli::add_view_command(app);
   lucent::cli::add_methods_command(app);
   lucent::cli::add_atlas_command(app);
+  lucent::cli::add_tissue_maps_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -39,6 +39,7 @@ namespace lucent::reference {
 struct ReferenceScene {
   const Scene& scene;
   const EmbreeScene& rt;
+  int max_scatter = 0;  // volpath: scattering events per path at most (0: unlimited; ReferenceSettings)
 };
 
 // `first_hit`, when given, is the hit of the ray (origin, direction) already traced: a pixel's camera rays through

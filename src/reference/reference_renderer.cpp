@@ -65,7 +65,8 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
                             previous->mean.width, previous->mean.height, width, height));
   auto start = std::chrono::steady_clock::now();
   EmbreeScene rt(scene);
-  ReferenceScene rs{scene, rt};
+  if (settings.max_scatter < 0) throw Error("--max-scatter must be 0 (no limit) or more");
+  ReferenceScene rs{scene, rt, settings.max_scatter};
   std::size_t pixels = static_cast<std::size_t>(width) * height;
   PixelSums sums = previous ? sums_from(*previous) : PixelSums{std::vector<glm::dvec3>(pixels), std::vector<glm::dvec3>(pixels)};
   int first_sample = previous ? previous->samples_per_pixel : 0;

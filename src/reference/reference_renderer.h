@@ -20,6 +20,10 @@ struct ReferenceSettings {
   int threads = 0;      // 0 = all cores
   bool jitter = false;  // false: rays through pixel centres, as the rasterizer samples
   double time_seconds = 0.0;  // animated scenes: the instant rendered
+  // Volpath: paths end after this many scattering events in media (their last one's next-event estimate counted);
+  // 0 = no limit. 1 restricts the image to single scattering (through refractive boundaries, internal Fresnel
+  // reflections included), the physics of single-scattering methods.
+  int max_scatter = 0;
   std::function<void(double done_fraction)> progress;
 };
 

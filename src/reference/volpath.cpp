@@ -167,6 +167,7 @@ struct PathState {
   int hero = 0;
   int medium = -1;  // object whose interior the path is in
   int events = 0;
+  int scatterings = 0;  // medium scattering events so far
   glm::dvec3 weight() const { return throughput / mean(r_u); }
   void add(const glm::dvec3& incoming) { radiance += weight() * incoming; }
 };
@@ -206,6 +207,7 @@ bool leave_or_reflect(const ReferenceScene& s, PathState& p, Rng& rng, const Sur
 bool scatter(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) {
   const ObjectData& o = s.rt.object(p.medium);
   p.add(medium_next_event(s, p.medium, x, p.direction, rng));
+  if (s.max_scatter > 0 && ++p.scatterings >= s.max_scatter) return false;
   glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[p.hero]);
   glm::dvec3 phase = hg_pdf_bands(glm::dot(next, p.direction), o.g);
   p.throughput *= phase / phase[p.hero];

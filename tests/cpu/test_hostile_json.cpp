@@ -18,6 +18,7 @@
 #include "lucent/error.h"
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
+#include "methods/method_info.h"
 #include "params/param_json.h"
 
 namespace lucent {
@@ -205,8 +206,10 @@ TEST(HostileJson, HugeValuesAreExcerptedInMessages) {
             "test.json: /render/width: expected a number, got [" + repeat("7,", 28) + "...");
   doc = minimal_scene();
   doc["method"] = {{"name", std::string(20000, 'x')}};
-  EXPECT_EQ(scene_error(doc), "test.json: /method/name: unknown method '" + std::string(57, 'x') +
-                                  "...'; known: radiosity-maps, per-pixel, voxel-paths, texture-space-is, hybrid, local-global");
+  std::string known;  // every registered method, in registry order
+  for (const lucent::methods::MethodInfo* m : lucent::methods::method_registry())
+    known += (known.empty() ? "" : ", ") + std::string(m->name);
+  EXPECT_EQ(scene_error(doc), "test.json: /method/name: unknown method '" + std::string(57, 'x') + "...'; known: " + known);
   doc = minimal_scene();
   doc[std::string(20000, 'k')] = 1;
   EXPECT_EQ(scene_error(doc).substr(0, 84), "test.json: /" + std::string(56, 'k') + "...: unknown key");

@@ -13,6 +13,7 @@
 #include "../test_support.h"
 #include "lucent/environment.h"
 #include "lucent/scene.h"
+#include "methods/method_info.h"
 #include "render/light_views.h"
 
 namespace lucent {
@@ -408,7 +409,11 @@ TEST(SceneLoader, LightZeroDirection) {
 TEST(SceneLoader, UnknownMethod) {
   json doc = minimal_scene();
   doc["method"] = {{"name", "photon-beams"}};
-  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: radiosity-maps, per-pixel, voxel-paths, texture-space-is, hybrid, local-global");
+  std::string known;  // every registered method, in registry order
+  for (const lucent::methods::MethodInfo* m : lucent::methods::method_registry())
+    known += (known.empty() ? "" : ", ") + std::string(m->name);
+  EXPECT_EQ(known.rfind("radiosity-maps, per-pixel, voxel-paths, texture-space-is, hybrid", 0), 0u) << known;
+  EXPECT_EQ(parse_error(doc), "test.json: /method/name: unknown method 'photon-beams'; known: " + known);
 }
 
 TEST(SceneLoader, WrongType) {

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Builds the volpath ground truth of a layered-stm tissue slab: from layer maps (`lucent tissue-maps -o maps.png`,
+linear 8-bit RGBA: channel j = thickness of layer j as a fraction of the stack depth) it writes into OUT_DIR
+  volume.json + volume.raw  a float32 density-multiplier grid over the slab's bounds (lucent/medium_volume.h):
+                            m = multipliers[j] in layer j, 0 below the stack (the stack is the whole medium);
+  scene.json                the slab (a box 60 x 4 x 60 mm, its top face the stack, depth 4 mm) with that field
+                            for volpath and the same stack for layered-stm (sigma_t,j = m_j sigma_t,
+                            sigma_s,j = min(m_j, 1) sigma_s), maps read from the same PNG.
+The box's top face carries texture coordinates u = 2/3 + (z + 3) / 18, v = (x + 3) / 12 (make_box: +y is the third
+cell of the lower row of a 3 x 2 grid, u along z, v along x), times `tiling`; texture row 0 is the image's last
+row, and the maps are read bilinearly at texel centres, as the GPU does. Only the standard library.
+Usage: make_tissue_volume.py MAPS.png OUT_DIR [--grid NX NY NZ]"""
+import json, os, struct, sys, zlib
+
+SIGMA_A, SIGMA_S, ETA = [0.05, 0.2, 0.3], [1.2, 1.0, 0.9], 1.4  # [mm^-1]
+MULTIPLIERS = [1.0, 0.5, 4.0, 1.5]  # outer, fat (thinner), vessels (absorbing), deep tissue
+BOX, SCALE_MM, DEPTH_MM, TILING = (6.0, 0.4, 6.0), 10.0, 4.0, 2.0
+
+
+def read_png_rgba(path):
+    data = open(path, "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    pos, idat, width = 8, b"", 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            assert depth == 8 and colour == 6 and interlace == 0, "needs 8-bit RGBA, not interlaced"
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw, stride, rows, prev = zlib.decompress(idat), 4 * width, [], bytearray(4 * width)
+    for y in range(height):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 4] if i >= 4 else 0
+            b, c = prev[i], prev[i - 4] if i >= 4 else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line)
+        prev = line
+    return width, height, rows
+
+
+def main():
+    maps, out = sys.argv[1], sys.argv[2]
+    nx, ny, nz = (int(v) for v in sys.argv[sys.argv.index("--grid") + 1:][:3]) if "--grid" in sys.argv else (240, 64, 240)
+    width, height, rows = read_png_rgba(maps)
+
+    def texel(ix, iy):  # texture row iy counts from the bottom; wraps
+        row = rows[height - 1 - iy % height]
+        return [row[4 * (ix % width) + c] / 255.0 for c in range(4)]
+
+    def thickness(u, v):  # bilinear at texel centres, repeating
+        x, y = u * width - 0.5, v * height - 0.5
+        x0, y0 = int(x // 1), int(y // 1)
+        fx, fy = x - x0, y - y0
+        t00, t10, t01, t11 = texel(x0, y0), texel(x0 + 1, y0), texel(x0, y0 + 1), texel(x0 + 1, y0 + 1)
+        return [(t00[c] * (1 - fx) + t10[c] * fx) * (1 - fy) + (t01[c] * (1 - fx) + t11[c] * fx) * fy for c in range(4)]
+
+    os.makedirs(out, exist_ok=True)
+    hx, hy, hz = (0.5 * b for b in BOX)
+    depth_units = DEPTH_MM / SCALE_MM
+    columns = {}
+    for iz in range(nz):
+        for ix in range(nx):
+            x, z = -hx + (ix + 0.5) * BOX[0] / nx, -hz + (iz + 0.5) * BOX[2] / nz
+            u, v = (2.0 / 3.0 + (z + hz) / (2 * hz) / 3.0) * TILING, ((x + hx) / (2 * hx) * 0.5) * TILING
+            bottoms, total = [], 0.0
+            for t in thickness(u % 1.0, v % 1.0):
+                total += t * depth_units
+                bottoms.append(total)
+            columns[ix, iz] = bottoms
+    values = bytearray()
+    for iz in range(nz):
+        for iy in range(ny):
+            d = hy - (-hy + (iy + 0.5) * BOX[1] / ny)  # depth below the top face [scene units]
+            for ix in range(nx):
+                bottoms = columns[ix, iz]
+                layer = next((j for j in range(4) if d < bottoms[j]), 4)
+                values += struct.pack("<f", MULTIPLIERS[layer] if layer < 4 else 0.0)
+    open(os.path.join(out, "volume.raw"), "wb").write(values)
+    json.dump({"size": [nx, ny, nz], "format": "float32", "data": "volume.raw"}, open(os.path.join(out, "volume.json"), "w"))
+    sigma_t = [a + s for a, s in zip(SIGMA_A, SIGMA_S)]
+    scene = {
+        "comment": "Generated by scripts/make_tissue_volume.py: a slab of procedural tissue layers as a layered-stm stack and as a volpath density field.",
+        "scale_mm": SCALE_MM,
+        "camera": {"eye": [0.0, 3.2, 2.6], "target": [0.0, 0.0, 0.0], "fov_y_deg": 40},
+        "lights": [{"direction": [0.5, -0.8, -0.3], "radiance": [3.0, 3.0, 3.0]}],
+        "objects": [{"name": "slab", "shape": "box", "size": list(BOX),
+                     "material": {"sigma_a": SIGMA_A, "sigma_s": SIGMA_S, "g": 0, "eta": ETA,
+                                  "field": {"type": "volume", "file": "volume.json"}}}],
+        "method": {"name": "layered-stm", "samples": 50, "depth": DEPTH_MM, "maps": os.path.abspath(maps),
+                   "tiling": TILING, "light_map_size": 512, "specular": False,
+                   "sigma_s": [[min(m, 1.0) * s for s in SIGMA_S] for m in MULTIPLIERS],
+                   "sigma_t": [[m * t for t in sigma_t] for m in MULTIPLIERS]},
+        "render": {"width": 160, "height": 120, "frames": 8, "background": [0.0, 0.0, 0.0]},
+    }
+    json.dump(scene, open(os.path.join(out, "scene.json"), "w"), indent=2)
+    print(f"{out}: volume {nx}x{ny}x{nz}, scene.json")
+
+
+main()
