@@ -114,6 +114,22 @@ TEST_F(LocalGlobal, FlatSlabConvergesToTheTotalDiffuseReflectance) {
   for (std::size_t b = 0; b < 3; ++b) EXPECT_NEAR(ratio[b], 1.0, 0.02) << "band " << b;
 }
 
+// `show` (the paper's Fig. 8): the local and the global responses each reach the image alone, and they add up to
+// the combined image (on the flat slab both parts are positive, so the final clamp does not act).
+TEST_F(LocalGlobal, ShowLocalAndGlobalAddUpToTheCombinedResponse) {
+  const std::string keys = R"("atlas_size": 64, "cutoff": 1e-4)";
+  const auto combined = slab_ratio(keys, 32);
+  const auto local = slab_ratio(keys + R"(, "show": "local")", 32);
+  const auto global = slab_ratio(keys + R"(, "show": "global")", 32);
+  std::printf("local-global parts on the flat slab: local %.4f global %.4f combined %.4f (green)\n", local[1], global[1],
+              combined[1]);
+  for (std::size_t b = 0; b < 3; ++b) {
+    EXPECT_GT(local[b], 0.05) << "band " << b;
+    EXPECT_GT(global[b], 0.05) << "band " << b;
+    EXPECT_NEAR(local[b] + global[b], combined[b], 1e-4) << "band " << b;
+  }
+}
+
 TEST_F(LocalGlobal, WithoutBlendingTheNearFieldIsCountedTwice) {
   const auto ratio = slab_ratio(R"("atlas_size": 64, "cutoff": 1e-4, "blend": false)", 32);
   std::printf("local-global without blending on the flat slab: radiance / expected = %.4f %.4f %.4f\n", ratio[0],

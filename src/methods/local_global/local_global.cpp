@@ -7,6 +7,7 @@
 #include "methods/method.h"
 
 #include <algorithm>
+#include <string>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -160,8 +161,11 @@ class LocalGlobal final : public Method {
     frame.light_counts.w = kShadowTaps;
     frame.seeds.z = restart ? 1u : 0u;
     frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
+    const std::string show = params_.text("show");
+    const int show_id = show == "local" ? LUCENT_LG_SHOW_LOCAL : show == "global" ? LUCENT_LG_SHOW_GLOBAL : LUCENT_LG_SHOW_COMBINED;
     block_ = shader::LocalGlobalGPU{glm::ivec4(texture_gbuffer_.size(), static_cast<int>(vertex_count_),
-                                               static_cast<int>(texel_count_), 0)};
+                                               static_cast<int>(texel_count_), 0),
+                                    glm::ivec4(show_id, 0, 0, 0)};
     glNamedBufferSubData(block_buffer_, 0, sizeof(block_), &block_);
   }
 

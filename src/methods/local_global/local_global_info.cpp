@@ -23,6 +23,9 @@ constexpr ParamDecl kParams[] = {
     {"max_form_factors", ParamType::Float, "5e7", "entries", 1, 1e10, "",
      "largest number of nonzero global form factors accepted (16 bytes each, on the CPU and the GPU)"},
     {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer (shadows)"},
+    {"show", ParamType::Enum, "\"combined\"", "", 0, 0, "combined|local|global",
+     "which response reaches the image (the paper's Fig. 8): combined B_l + B^d + B^g', local B_l only, or the "
+     "vertex radiosity B^d + B^g' only", kLive},
     {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights", kLive},
     {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection", kLive},
 };

@@ -25,14 +25,19 @@
 
 LUCENT_SHADER_BEGIN
 
+#define LUCENT_LG_SHOW_COMBINED 0
+#define LUCENT_LG_SHOW_LOCAL 1
+#define LUCENT_LG_SHOW_GLOBAL 2
+
 struct LocalGlobalGPU {
-  ivec4 counts;  // x: atlas size; y: vertices; z: texels; w: first corner of the mesh being drawn (atlas_view)
+  ivec4 counts;   // x: atlas size; y: vertices; z: texels; w: first corner of the mesh being drawn (atlas_view)
+  ivec4 options;  // x: LUCENT_LG_SHOW_* (the `show` parameter)
 };
 
 LUCENT_SHADER_END
 
 #if defined(__cplusplus)
-static_assert(sizeof(lucent::shader::LocalGlobalGPU) == 16);
+static_assert(sizeof(lucent::shader::LocalGlobalGPU) == 32);
 static_assert(LUCENT_IMAGE_LG_ILLUMINATION >= LUCENT_METHOD_IMAGE_FIRST && LUCENT_IMAGE_LG_LOCAL <= LUCENT_METHOD_IMAGE_LAST);
 static_assert(LUCENT_TEX_LG_ILLUMINATION >= LUCENT_METHOD_TEX_FIRST && LUCENT_TEX_LG_VIEW_RADIOSITY <= LUCENT_METHOD_TEX_LAST);
 static_assert(LUCENT_BINDING_LG_KERNELS >= LUCENT_METHOD_STORAGE_FIRST &&

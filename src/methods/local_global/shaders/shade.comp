@@ -55,7 +55,8 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   if (int(view.z + 0.5f) - 1 != object_index) return vec4(0.0f);
   vec3 B = texelFetch(view_radiosity, pixel, 0).rgb;
   vec4 local = local_at(view.xy, object_index);
-  B += local.rgb;
+  if (method.options.x == LUCENT_LG_SHOW_LOCAL) B = local.rgb;
+  else if (method.options.x != LUCENT_LG_SHOW_GLOBAL) B += local.rgb;
   float eta = material.sigma_a.w;
   return vec4(fresnel_transmittance(eta, dot(n, w_o)) * kInvPi * max(B, vec3(0.0f)), 1.0f);
 }
