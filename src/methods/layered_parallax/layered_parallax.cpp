@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
+#include "gpu/screen_targets.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
 #include "media/tissue_maps.h"
@@ -147,11 +148,9 @@ class LayeredParallax final : public Method {
   }
   ~LayeredParallax() override {
     glDeleteBuffers(1, &block_buffer_);
-    GLuint textures[] = {outer_base_, outer_normal_, inner_base_, light_maps_[0], light_maps_[1],
-                         surface_[0], surface_[1], surface_[2], depth_};
-    glDeleteTextures(9, textures);
-    GLuint framebuffers[] = {map_framebuffer_, framebuffer_};
-    glDeleteFramebuffers(2, framebuffers);
+    GLuint textures[] = {outer_base_, outer_normal_, inner_base_, light_maps_[0], light_maps_[1]};
+    glDeleteTextures(5, textures);
+    glDeleteFramebuffers(1, &map_framebuffer_);
   }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
@@ -204,15 +203,8 @@ class LayeredParallax final : public Method {
     }
     {
       auto pass = context.profiler.pass("surface");
-      resize(accumulated_.width(), accumulated_.height());
-      glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-      glViewport(0, 0, width_, height_);
-      const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-      for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(framebuffer_, GL_COLOR, i, zero);
-      const float one = 1.0f;
-      glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
+      surface_.resize(accumulated_.width(), accumulated_.height());
+      surface_.begin_pass();
       glUseProgram(surface_program_.id());
       context.scene_gpu.draw_all();
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -223,7 +215,7 @@ class LayeredParallax final : public Method {
     glBindTextureUnit(LUCENT_TEX_LPAR_OUTER_NORMAL, outer_normal_);
     glBindTextureUnit(LUCENT_TEX_LPAR_INNER_BASE, inner_base_);
     glBindTextureUnit(LUCENT_TEX_LPAR_LIGHT_MAP, light_maps_[current]);
-    for (int i = 0; i < 3; ++i) glBindTextureUnit(static_cast<GLuint>(LUCENT_TEX_LPAR_SURFACE + i), surface_[i]);
+    surface_.bind_textures(LUCENT_TEX_LPAR_SURFACE);
     accumulated_.bind(LUCENT_IMAGE_LPAR_SUM);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(shade_program_.id());
@@ -247,35 +239,10 @@ class LayeredParallax final : public Method {
     return light_gbuffer_.gpu_memory_bytes() + accumulated_.gpu_memory_bytes() + texture_bytes_ +
            2 * static_cast<std::size_t>(map_size_) * static_cast<std::size_t>(map_size_) *
                static_cast<std::size_t>(map_layers_) * 16 +
-           static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * (3 * 16 + 4);
+           surface_.gpu_memory_bytes();
   }
 
  private:
-  void resize(int width, int height) {
-    if (width == width_ && height == height_) return;
-    GLuint textures[] = {surface_[0], surface_[1], surface_[2], depth_};
-    glDeleteTextures(4, textures);
-    glDeleteFramebuffers(1, &framebuffer_);
-    glCreateFramebuffers(1, &framebuffer_);
-    GLenum draw_buffers[3];
-    for (int i = 0; i < 3; ++i) {
-      glCreateTextures(GL_TEXTURE_2D, 1, &surface_[i]);
-      glTextureStorage2D(surface_[i], 1, GL_RGBA32F, width, height);
-      glTextureParameteri(surface_[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(surface_[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glNamedFramebufferTexture(framebuffer_, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), surface_[i], 0);
-      draw_buffers[i] = static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i);
-    }
-    glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
-    glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, width, height);
-    glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
-    glNamedFramebufferDrawBuffers(framebuffer_, 3, draw_buffers);
-    gpu::label_object(GL_FRAMEBUFFER, framebuffer_, "layered-parallax surface");
-    if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error(fmt::format("layered-parallax: the {}x{} surface framebuffer is incomplete", width, height));
-    width_ = width, height_ = height;
-  }
-
   const ParamValues& params_;
   float scale_mm_;
   render::LightGBuffer light_gbuffer_;
@@ -284,9 +251,9 @@ class LayeredParallax final : public Method {
   shader::LayeredParallaxGPU block_{};
   GLuint block_buffer_ = 0, outer_base_ = 0, outer_normal_ = 0, inner_base_ = 0;
   GLuint light_maps_[2] = {0, 0};
-  GLuint map_framebuffer_ = 0, framebuffer_ = 0, depth_ = 0;
-  GLuint surface_[3] = {0, 0, 0};
-  int map_size_ = 0, map_layers_ = 0, width_ = 0, height_ = 0;
+  GLuint map_framebuffer_ = 0;
+  gpu::ScreenTargets surface_{3, "layered-parallax surface"};
+  int map_size_ = 0, map_layers_ = 0;
   std::size_t texture_bytes_ = 0;
   double blurred_texels_ = 0.0;
 };

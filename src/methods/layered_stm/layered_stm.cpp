@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
+#include "gpu/screen_targets.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
 #include "media/layer_stack.h"
@@ -107,9 +108,7 @@ class LayeredStm final : public Method {
   ~LayeredStm() override {
     GLuint buffers[] = {block_buffer_, fit_buffer_, neighbour_buffer_, plane_buffer_};
     glDeleteBuffers(4, buffers);
-    GLuint textures[] = {maps_, surface_[0], surface_[1], surface_[2], surface_[3], surface_[4], depth_};
-    glDeleteTextures(7, textures);
-    glDeleteFramebuffers(1, &framebuffer_);
+    glDeleteTextures(1, &maps_);
   }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
@@ -150,15 +149,8 @@ class LayeredStm final : public Method {
     }
     {
       auto pass = context.profiler.pass("surface");
-      resize(accumulated_.width(), accumulated_.height());
-      glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-      glViewport(0, 0, width_, height_);
-      const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-      for (int i = 0; i < 5; ++i) glClearNamedFramebufferfv(framebuffer_, GL_COLOR, i, zero);
-      const float one = 1.0f;
-      glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
+      surface_.resize(accumulated_.width(), accumulated_.height());
+      surface_.begin_pass();
       glDisable(GL_CULL_FACE);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LSTM_PLANES, plane_buffer_);
       glUseProgram(surface_program_.id());
@@ -168,7 +160,7 @@ class LayeredStm final : public Method {
     auto pass = context.profiler.pass("march");
     light_gbuffer_.bind_textures();
     glBindTextureUnit(LUCENT_TEX_LSTM_MAPS, maps_);
-    for (int i = 0; i < 5; ++i) glBindTextureUnit(static_cast<GLuint>(LUCENT_TEX_LSTM_SURFACE + i), surface_[i]);
+    surface_.bind_textures(LUCENT_TEX_LSTM_SURFACE);
     accumulated_.bind(LUCENT_IMAGE_LSTM_SUM);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(march_program_.id());
@@ -197,7 +189,7 @@ class LayeredStm final : public Method {
   }
   std::size_t gpu_memory_bytes() const override {
     return light_gbuffer_.gpu_memory_bytes() + accumulated_.gpu_memory_bytes() + maps_bytes_ + neighbour_bytes_ +
-           static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * (5 * 16 + 4);
+           surface_.gpu_memory_bytes();
   }
 
  private:
@@ -297,31 +289,6 @@ class LayeredStm final : public Method {
                        zero_planes.size() * sizeof(shader::LstmPlaneGPU);
   }
 
-  void resize(int width, int height) {
-    if (width == width_ && height == height_) return;
-    GLuint textures[] = {surface_[0], surface_[1], surface_[2], surface_[3], surface_[4], depth_};
-    glDeleteTextures(6, textures);
-    glDeleteFramebuffers(1, &framebuffer_);
-    glCreateFramebuffers(1, &framebuffer_);
-    GLenum draw_buffers[5];
-    for (int i = 0; i < 5; ++i) {
-      glCreateTextures(GL_TEXTURE_2D, 1, &surface_[i]);
-      glTextureStorage2D(surface_[i], 1, GL_RGBA32F, width, height);
-      glTextureParameteri(surface_[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(surface_[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glNamedFramebufferTexture(framebuffer_, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), surface_[i], 0);
-      draw_buffers[i] = static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i);
-    }
-    glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
-    glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, width, height);
-    glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
-    glNamedFramebufferDrawBuffers(framebuffer_, 5, draw_buffers);
-    gpu::label_object(GL_FRAMEBUFFER, framebuffer_, "layered-stm surface");
-    if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error(fmt::format("layered-stm: the {}x{} surface framebuffer is incomplete", width, height));
-    width_ = width, height_ = height;
-  }
-
   const ParamValues& params_;
   LayerCoefficients layers_;
   float scale_mm_;
@@ -329,9 +296,9 @@ class LayeredStm final : public Method {
   gpu::ShaderProgram plane_program_, surface_program_, march_program_;
   render::ViewAccumulator accumulated_{"layered-stm accumulated radiance"};
   GLuint block_buffer_ = 0, fit_buffer_ = 0, neighbour_buffer_ = 0, plane_buffer_ = 0;
-  GLuint maps_ = 0, framebuffer_ = 0, depth_ = 0;
-  GLuint surface_[5] = {0, 0, 0, 0, 0};
-  int width_ = 0, height_ = 0, fitted_vertices_ = 0;
+  GLuint maps_ = 0;
+  gpu::ScreenTargets surface_{5, "layered-stm surface"};
+  int fitted_vertices_ = 0;
   std::size_t maps_bytes_ = 0, neighbour_bytes_ = 0;
 };
 
