@@ -22,36 +22,16 @@
 #include <gtest/gtest.h>
 
 #include "bssrdf/standard_dipole.h"
+#include "../flat_slab_expectation.h"
 #include "image_compare.h"
 #include "lucent/lucent.h"
 
 namespace {
 
-// Material [mm^-1] per band (g = 0): sigma_t' = 10 mm^-1 in every band, albedo 0.6, 0.75, 0.9. Diffusion lengths
-// 1 / sigma_tr = 0.09, 0.12, 0.18 mm, z_r = 0.1 mm. The slab is 4 x 4 mm and 2 mm thick; the camera sees its central
-// 1 x 1 mm, every pixel at least 1.5 mm (8 diffusion lengths of the longest band) from the edges, and the share of
-// R_total beyond 1.5 mm is below 1.1e-4. A larger slab would only add noise: the global samples spread over its area.
-constexpr std::array<double, 3> kSigmaA = {4.0, 2.5, 1.0}, kSigmaS = {6.0, 7.5, 9.0};
-constexpr double kEta = 1.3;
-// Coloured irradiance on a surface facing the light: the sampled density is the mean of the bands, the weights
-// per band (texture_space/irradiance_sample.comp), so a mix-up of bands shows.
-constexpr std::array<double, 3> kIrradiance = {1.5, 2.0, 2.5};
-constexpr int kSize = 16;
-
-// F_t = 1 - F_r of the unpolarised Fresnel equations at normal incidence.
-double fresnel_transmittance_normal(double eta) {
-  const double r = (eta - 1.0) / (eta + 1.0);
-  return 1.0 - r * r;
-}
-
-// The standard dipole's closed-form total diffuse reflectance, A from the Groenhuis F_dr (the spec's Section 2).
-double dipole_total_reflectance(double sigma_a, double sigma_s, double eta) {
-  const double alpha = sigma_s / (sigma_a + sigma_s);
-  const double f_dr = -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
-  const double A = (1.0 + f_dr) / (1.0 - f_dr);
-  const double s = std::sqrt(3.0 * (1.0 - alpha));
-  return 0.5 * alpha * (1.0 + std::exp(-(4.0 / 3.0) * A * s)) * std::exp(-s);
-}
+// The slab is 4 x 4 mm and 2 mm thick; the camera sees its central 1 x 1 mm, every pixel at least 1.5 mm (8
+// diffusion lengths of the longest band) from the edges, and the share of R_total beyond 1.5 mm is below 1.1e-4. A
+// larger slab would only add noise: the global samples spread over its area.
+using namespace lucent::test::flat_slab;
 
 // 2 pi integral of r R_d(r) dr of the profile the methods evaluate, midpoint rule over [0, 60 / sigma_tr].
 double integrated_profile(double sigma_a, double sigma_s, double eta) {
@@ -67,16 +47,14 @@ double integrated_profile(double sigma_a, double sigma_s, double eta) {
   return total;
 }
 
-// Expected radiance per band at the slab's centre, seen along the normal.
-std::array<double, 3> expected_radiance() {
+// Expected radiance per band at the slab's centre, seen along the normal; the closed-form R_total checked against
+// the profile the methods evaluate.
+std::array<double, 3> expected_radiances() {
   std::array<double, 3> L{};
-  const double F_t = fresnel_transmittance_normal(kEta);
   for (std::size_t b = 0; b < 3; ++b) {
     const double R_total = dipole_total_reflectance(kSigmaA[b], kSigmaS[b], kEta);
     EXPECT_NEAR(integrated_profile(kSigmaA[b], kSigmaS[b], kEta), R_total, 2e-3 * R_total) << "band " << b;
-    // The standard dipole's exit normalisation 1 / (1 - 2 C1(1/eta)) (its S_d = R_d / (pi (1 - 2 C1(1/eta)))):
-    // 2 C1(1/1.3) = 0.061132 by integrating the Fresnel reflectance (the spec's C_phi(1/1.3) = 0.234717).
-    L[b] = F_t * kIrradiance[b] * R_total * F_t / (M_PI * 4.0 * 0.234717);
+    L[b] = lucent::test::flat_slab::expected_radiance(b);
   }
   return L;
 }
@@ -106,7 +84,7 @@ lucent::ImageRGBA32F render_slab(const std::string& method_keys, int frames, int
 
 // Mean radiance per band over the image (every pixel shows the slab's top face) divided by the expected value.
 std::array<double, 3> ratio_to_expected(const lucent::ImageRGBA32F& image) {
-  const std::array<double, 3> expected = expected_radiance();
+  const std::array<double, 3> expected = expected_radiances();
   std::array<double, 3> sum{};
   int n = 0;
   for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
