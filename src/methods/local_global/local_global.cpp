@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
+#include "gpu/screen_targets.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
 #include "methods/local_global/local_global_io.h"
@@ -146,12 +147,11 @@ class LocalGlobal final : public Method {
   }
 
   ~LocalGlobal() override {
-    GLuint textures[] = {illumination_, local_, texel_index_, view_atlas_, view_radiosity_, view_depth_};
-    glDeleteTextures(6, textures);
+    GLuint textures[] = {illumination_, local_, texel_index_};
+    glDeleteTextures(3, textures);
     GLuint buffers[] = {kernels_, vertex_offsets_, vertex_texels_, row_offsets_, form_factors_,
                         vertex_irradiance_, vertex_radiosity_, corners_, block_buffer_};
     glDeleteBuffers(9, buffers);
-    glDeleteFramebuffers(1, &view_framebuffer_);
     glDeleteVertexArrays(1, &vao_);
   }
 
@@ -235,15 +235,8 @@ class LocalGlobal final : public Method {
     const int width = context.camera_gbuffer.size_x(), height = context.camera_gbuffer.size_y();
     {
       auto pass = context.profiler.pass("atlas_view");
-      ensure_view(width, height);
-      glBindFramebuffer(GL_FRAMEBUFFER, view_framebuffer_);
-      glViewport(0, 0, width, height);
-      const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far = 1.0f;
-      glClearNamedFramebufferfv(view_framebuffer_, GL_COLOR, 0, zero);
-      glClearNamedFramebufferfv(view_framebuffer_, GL_COLOR, 1, zero);
-      glClearNamedFramebufferfv(view_framebuffer_, GL_DEPTH, 0, &far);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
+      view_.resize(width, height);  // atlas coordinates (target 0) and vertex radiosity (target 1)
+      view_.begin_pass();
       glDisable(GL_CULL_FACE);
       glDisable(GL_BLEND);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_SCENE_VERTICES, context.scene_gpu.vertex_buffer());
@@ -266,8 +259,8 @@ class LocalGlobal final : public Method {
     texture_gbuffer_.bind_textures();
     glBindTextureUnit(LUCENT_TEX_LG_TEXEL_INDEX, texel_index_);
     glBindTextureUnit(LUCENT_TEX_LG_LOCAL, local_);
-    glBindTextureUnit(LUCENT_TEX_LG_VIEW_ATLAS, view_atlas_);
-    glBindTextureUnit(LUCENT_TEX_LG_VIEW_RADIOSITY, view_radiosity_);
+    static_assert(LUCENT_TEX_LG_VIEW_RADIOSITY == LUCENT_TEX_LG_VIEW_ATLAS + 1);
+    view_.bind_textures(LUCENT_TEX_LG_VIEW_ATLAS);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(shade_program_.id());
     glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
@@ -290,32 +283,10 @@ class LocalGlobal final : public Method {
   }
   std::size_t gpu_memory_bytes() const override {
     const std::size_t atlas = static_cast<std::size_t>(texture_gbuffer_.size()) * static_cast<std::size_t>(texture_gbuffer_.size());
-    return light_gbuffer_.gpu_memory_bytes() + atlas * 36 + memory_ + view_bytes_;
+    return light_gbuffer_.gpu_memory_bytes() + atlas * 36 + memory_ + view_.gpu_memory_bytes();
   }
 
  private:
-  void ensure_view(int width, int height) {
-    if (width == view_width_ && height == view_height_) return;
-    GLuint textures[] = {view_atlas_, view_radiosity_, view_depth_};
-    glDeleteTextures(3, textures);
-    glDeleteFramebuffers(1, &view_framebuffer_);
-    view_atlas_ = make_texture(width, height, GL_RGBA32F, "local-global view atlas coordinates");
-    view_radiosity_ = make_texture(width, height, GL_RGBA32F, "local-global view radiosity");
-    view_depth_ = make_texture(width, height, GL_DEPTH_COMPONENT32F, "local-global view depth");
-    glCreateFramebuffers(1, &view_framebuffer_);
-    glNamedFramebufferTexture(view_framebuffer_, GL_COLOR_ATTACHMENT0, view_atlas_, 0);
-    glNamedFramebufferTexture(view_framebuffer_, GL_COLOR_ATTACHMENT1, view_radiosity_, 0);
-    glNamedFramebufferTexture(view_framebuffer_, GL_DEPTH_ATTACHMENT, view_depth_, 0);
-    const GLenum draw_buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(view_framebuffer_, 2, draw_buffers);
-    gpu::label_object(GL_FRAMEBUFFER, view_framebuffer_, "local-global atlas view");
-    if (glCheckNamedFramebufferStatus(view_framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error(fmt::format("local-global: atlas view framebuffer of {}x{} pixels incomplete", width, height));
-    view_width_ = width;
-    view_height_ = height;
-    view_bytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 36;
-  }
-
   const ParamValues& params_;
   lg::LocalGlobalData data_;
   render::LightGBuffer light_gbuffer_;
@@ -324,9 +295,8 @@ class LocalGlobal final : public Method {
   GLuint illumination_ = 0, local_ = 0, texel_index_ = 0;
   GLuint kernels_ = 0, vertex_offsets_ = 0, vertex_texels_ = 0, row_offsets_ = 0, form_factors_ = 0;
   GLuint vertex_irradiance_ = 0, vertex_radiosity_ = 0, corners_ = 0, block_buffer_ = 0, vao_ = 0;
-  GLuint view_framebuffer_ = 0, view_atlas_ = 0, view_radiosity_ = 0, view_depth_ = 0;
-  int view_width_ = 0, view_height_ = 0;
-  std::size_t view_bytes_ = 0, memory_ = 0;
+  gpu::ScreenTargets view_{2, "local-global atlas view"};
+  std::size_t memory_ = 0;
   std::size_t form_factor_count_ = 0, texel_count_ = 0, vertex_count_ = 0;
   double cutoff_mm_ = 0.0;
   shader::LocalGlobalGPU block_{};
