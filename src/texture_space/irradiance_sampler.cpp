@@ -5,8 +5,11 @@
 
 #include <fmt/format.h>
 
+#include "gpu/frame_profiler.h"
 #include "gpu/gl_debug.h"
 #include "lucent/error.h"
+#include "render/light_gbuffer.h"
+#include "texture_space/texture_gbuffer.h"
 
 namespace lucent::texture_space {
 namespace {
@@ -104,6 +107,28 @@ void IrradianceSampler::sample(int n, int order, std::uint32_t seed, std::uint32
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(slots_.row_cdf_buffer), row_cdf_buffer_);
   glDispatchCompute(groups(n, 64), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void IrradianceSampler::run_stages(const render::LightGBuffer& lights, TextureGBuffer& texture,
+                                   const render::SceneGpu& scene_gpu, gpu::FrameProfiler& profiler, int n, int order,
+                                   std::uint32_t seed, std::uint32_t frame) {
+  lights.render(scene_gpu, profiler);
+  {
+    auto pass = profiler.pass("texture_gbuffer");
+    texture.render(scene_gpu);
+  }
+  {
+    auto pass = profiler.pass("irradiance");
+    lights.bind_textures();
+    texture.bind_textures();
+    irradiance(texture.size());
+  }
+  {
+    auto pass = profiler.pass("mipmaps");
+    build(order);
+  }
+  auto pass = profiler.pass("sampling");
+  sample(n, order, seed, frame, true);
 }
 
 void IrradianceSampler::bind_samples() const {

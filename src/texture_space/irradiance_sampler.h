@@ -8,6 +8,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -15,7 +16,17 @@
 #include "gpu/shader_program.h"
 #include "shared/tsis_samples.h"
 
+namespace lucent::gpu { class FrameProfiler; }
+namespace lucent::render { class LightGBuffer; class SceneGpu; }
+
 namespace lucent::texture_space {
+
+class TextureGBuffer;
+
+// The inverse-CDF order named by a method's `order` parameter: "row-major" (Fig. 2a), else mipmap (Fig. 2b).
+inline int sampling_order(std::string_view name) {
+  return name == "row-major" ? LUCENT_TSIS_ORDER_ROW_MAJOR : LUCENT_TSIS_ORDER_MIPMAP;
+}
 
 // The slots the sampler's passes bind, inside the using method's ranges of shared/bindings.h.
 struct SamplerSlots {
@@ -50,6 +61,11 @@ class IrradianceSampler {
   // Draws `n` (1..kMaxSamples) samples with seeds (seed, frame); `write_counters`: the total also goes to the
   // frame's counters (method_counts[1], float bits).
   void sample(int n, int order, std::uint32_t seed, std::uint32_t frame, bool write_counters);
+  // A frame's stages 1-2 as the methods run them, each timed as a pass: the light G-buffer ("light_gbuffer"), the
+  // texture G-buffer redrawn ("texture_gbuffer", so deforming meshes follow), irradiance(), build() ("mipmaps")
+  // and sample() with the counters ("sampling").
+  void run_stages(const render::LightGBuffer& lights, TextureGBuffer& texture, const render::SceneGpu& scene_gpu,
+                  gpu::FrameProfiler& profiler, int n, int order, std::uint32_t seed, std::uint32_t frame);
   void bind_samples() const;
   // Tests and tools: the samples of the last sample() and the total (E'_total per band, a the sampled total).
   std::vector<shader::TsisSampleGPU> read_samples(int n, glm::vec4* total = nullptr) const;

@@ -37,9 +37,7 @@ std::string shade_defines(const Scene& scene) {
   return render::light_sampling_defines(scene) + fmt::format("#define HYBRID_TEX_POSITION {}\n", texture_space::kTexturePosition);
 }
 
-int order_of(const ParamValues& params) {
-  return params.text("order") == "row-major" ? LUCENT_TSIS_ORDER_ROW_MAJOR : LUCENT_TSIS_ORDER_MIPMAP;
-}
+int order_of(const ParamValues& params) { return texture_space::sampling_order(params.text("order")); }
 
 // R_p [scene units] of a material: the largest over the bands (Section 4.1).
 float split_radius(const Material& material, float scale_mm, float c) {
@@ -87,26 +85,8 @@ class Hybrid final : public Method {
   }
 
   void render(const FrameContext& context) override {
-    light_gbuffer_.render(context.scene_gpu, context.profiler);
-    {
-      auto pass = context.profiler.pass("texture_gbuffer");
-      texture_gbuffer_.render(context.scene_gpu);
-    }
-    {
-      auto pass = context.profiler.pass("irradiance");
-      light_gbuffer_.bind_textures();
-      texture_gbuffer_.bind_textures();
-      sampler_.irradiance(texture_gbuffer_.size());
-    }
-    const int order = order_of(params_);
-    {
-      auto pass = context.profiler.pass("mipmaps");
-      sampler_.build(order);
-    }
-    {
-      auto pass = context.profiler.pass("sampling");
-      sampler_.sample(params_.integer("N"), order, seed_, frame_index_, true);
-    }
+    sampler_.run_stages(light_gbuffer_, texture_gbuffer_, context.scene_gpu, context.profiler, params_.integer("N"),
+                        order_of(params_), seed_, frame_index_);
     auto pass = context.profiler.pass("shade");
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
     light_gbuffer_.bind_textures();

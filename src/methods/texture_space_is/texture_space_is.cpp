@@ -29,9 +29,7 @@ std::string defines(const Scene& scene) {
 constexpr texture_space::SamplerSlots kSamplerSlots{LUCENT_IMAGE_TSIS_SOURCE, LUCENT_IMAGE_TSIS_TARGET, LUCENT_TEX_TSIS_PYRAMID,
                                                  LUCENT_BINDING_TSIS_SAMPLES, LUCENT_BINDING_TSIS_ROW_CDF};
 
-int order_of(const ParamValues& params) {
-  return params.text("order") == "row-major" ? LUCENT_TSIS_ORDER_ROW_MAJOR : LUCENT_TSIS_ORDER_MIPMAP;
-}
+int order_of(const ParamValues& params) { return texture_space::sampling_order(params.text("order")); }
 
 class TextureSpaceIs final : public Method {
  public:
@@ -64,27 +62,8 @@ class TextureSpaceIs final : public Method {
   }
 
   void render(const FrameContext& context) override {
-    light_gbuffer_.render(context.scene_gpu, context.profiler);
-    {
-      auto pass = context.profiler.pass("texture_gbuffer");
-      texture_gbuffer_.render(context.scene_gpu);
-    }
-    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
-    {
-      auto pass = context.profiler.pass("irradiance");
-      light_gbuffer_.bind_textures();
-      texture_gbuffer_.bind_textures();
-      sampler_.irradiance(texture_gbuffer_.size());
-    }
-    const int order = order_of(params_);
-    {
-      auto pass = context.profiler.pass("mipmaps");
-      sampler_.build(order);
-    }
-    {
-      auto pass = context.profiler.pass("sampling");
-      sampler_.sample(params_.integer("N"), order, seed_, frame_index_, true);
-    }
+    sampler_.run_stages(light_gbuffer_, texture_gbuffer_, context.scene_gpu, context.profiler, params_.integer("N"),
+                        order_of(params_), seed_, frame_index_);
     auto pass = context.profiler.pass("shade");
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
     light_gbuffer_.bind_textures();
