@@ -144,21 +144,31 @@ std::int64_t big_endian_32(const unsigned char* bytes) {
          std::int64_t{bytes[3]};
 }
 
-// True when the first IDAT chunk is empty. stb_image then copies zero bytes to a null pointer (undefined
-// behaviour, reported by UBSan). Walks the chunk headers up to the first IDAT, IEND or the end of the file.
-bool first_idat_is_empty(std::ifstream& file) {
+// "" when the chunks after the signature are sound up to IEND; else the problem. Every chunk must fit in the file
+// (stb_image grows its IDAT buffer from the declared length before reading it, so a 300-byte file declaring a 1 GiB
+// chunk would allocate 2 GiB) and the first IDAT must hold data (stb_image copies zero bytes to a null pointer,
+// undefined behaviour).
+std::string png_chunk_problem(std::ifstream& file, std::int64_t file_size) {
   unsigned char chunk[8];
+  bool seen_idat = false;
   for (std::int64_t offset = 8; file.seekg(offset) && file.read(reinterpret_cast<char*>(chunk), 8);) {
     const std::int64_t length = big_endian_32(chunk);
-    if (std::memcmp(chunk + 4, "IDAT", 4) == 0) return length == 0;
-    if (std::memcmp(chunk + 4, "IEND", 4) == 0) return false;
-    offset += 12 + length;  // length, type, data, CRC
+    const std::string type(reinterpret_cast<const char*>(chunk + 4), 4);
+    if (length > file_size - offset - 12)  // length, type, data, CRC
+      return fmt::format("the chunk at byte {} declares {} bytes, past the end of the file", offset, length);
+    if (type == "IDAT" && !seen_idat) {
+      if (length == 0) return "the first IDAT chunk is empty";
+      seen_idat = true;
+    }
+    if (type == "IEND") return "";
+    offset += 12 + length;
   }
-  return false;
+  return "";  // no IEND: stb_image names the problem
 }
 
 // "" when the file starts with the PNG signature, its IHDR chunk declares an image within kMaxImagePixels and its
-// first IDAT chunk holds data; else the problem. Checked before stb_image, which would also decode other formats.
+// chunks are sound (png_chunk_problem); else the problem. Checked before stb_image, which would also decode
+// other formats.
 std::string png_header_problem(const std::string& path) {
   static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   std::ifstream file(path, std::ios::binary);
@@ -170,7 +180,9 @@ std::string png_header_problem(const std::string& path) {
   if (std::string problem = image_size_problem(big_endian_32(start + 16), big_endian_32(start + 20)); !problem.empty())
     return problem;
   file.clear();
-  return first_idat_is_empty(file) ? "the first IDAT chunk is empty" : "";
+  file.seekg(0, std::ios::end);
+  const std::int64_t file_size = file.tellg();
+  return png_chunk_problem(file, file_size);
 }
 
 }  // namespace

@@ -182,7 +182,22 @@ TEST(HostilePng, TruncatedFileIsAnError) {
   write_png(file.path(), image);
   const std::string whole = read_bytes(file.path());
   write_bytes(file.path(), whole.substr(0, whole.size() / 2));
-  EXPECT_EQ(error_message([&] { read_png(file.path()); }), file.path() + ": cannot read PNG: outofdata");
+  const std::uint32_t idat_length = static_cast<std::uint32_t>(static_cast<unsigned char>(whole[33])) << 24 |
+                                    static_cast<std::uint32_t>(static_cast<unsigned char>(whole[34])) << 16 |
+                                    static_cast<std::uint32_t>(static_cast<unsigned char>(whole[35])) << 8 |
+                                    static_cast<unsigned char>(whole[36]);
+  EXPECT_EQ(error_message([&] { read_png(file.path()); }),
+            file.path() + ": cannot read PNG: the chunk at byte 33 declares " + std::to_string(idat_length) +
+                " bytes, past the end of the file");
+}
+
+// Found by fuzz_image: a 301-byte file whose second IDAT chunk declared about 1 GiB made stb_image grow its data
+// buffer to 2 GiB before reading (out of memory under libFuzzer). Chunk lengths are checked against the file size.
+TEST(HostilePng, ChunkLongerThanTheFileIsRefused) {
+  const TempFile file(".png");
+  write_bytes(file.path(), png_header(8, 4) + big_endian32(1u << 30) + "IDATx^c`");
+  EXPECT_EQ(error_message([&] { read_png(file.path()); }),
+            file.path() + ": cannot read PNG: the chunk at byte 33 declares 1073741824 bytes, past the end of the file");
 }
 
 // Found by fuzz_image: an empty first IDAT chunk made stb_image copy zero bytes to a null pointer (undefined
