@@ -61,7 +61,7 @@ Material material_of(const BssrdfOptions& o) {
   if (o.eta) m.eta = *o.eta;
   auto model = parse_bssrdf_model(o.model);
   if (!model)
-    throw Error(fmt::format("--model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole", o.model));
+    throw Error(fmt::format("--model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, tabulated", o.model));
   m.model = *model;
   validate_material(m, "bssrdf");
   return m;
@@ -122,7 +122,7 @@ std::string doc(std::string_view name) {
 void add_bssrdf_command(CLI::App& app) {
   auto options = std::make_shared<BssrdfOptions>();
   CLI::App* cmd = app.add_subcommand("bssrdf", "evaluate S_d of a diffusion model at one point (mm, mm^-1)");
-  cmd->add_option("--model", options->model, doc("model") + ": directional | standard | photon-beam | better-dipole")
+  cmd->add_option("--model", options->model, doc("model") + ": directional | standard | photon-beam | better-dipole | tabulated")
       ->capture_default_str();
   cmd->add_option("--material", options->material, doc("preset"));
   cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm^-1"));

@@ -12,9 +12,15 @@
 namespace lucent {
 
 // Diffusion model used as S_d (shared C++/GLSL code in src/bssrdf/).
-enum class BssrdfModel { StandardDipole = 0, DirectionalDipole = 1, PhotonBeamDiffusion = 2, BetterDipole = 3 };
+enum class BssrdfModel {
+  StandardDipole = 0,
+  DirectionalDipole = 1,
+  PhotonBeamDiffusion = 2,
+  BetterDipole = 3,
+  Tabulated = 4,  // the medium's own half-space profile by photon transport (src/bssrdf/tabulated.h)
+};
 std::string_view to_string(BssrdfModel model);
-std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam", "better-dipole"
+std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam", "better-dipole", "tabulated"
 
 // A grid of density multipliers m >= 0 loaded from a file (a heterogeneous medium; lucent/medium_volume.h reads
 // it). Values at voxel centres, x fastest, then y, then z; the grid spans the object's world-space bounds.

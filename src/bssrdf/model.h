@@ -8,11 +8,13 @@
 #include "bssrdf/directional_dipole.h"
 #include "bssrdf/photon_beam_diffusion.h"
 #include "bssrdf/standard_dipole.h"
+#include "bssrdf/tabulated.h"
 
 #define LUCENT_MODEL_STANDARD_DIPOLE 0
 #define LUCENT_MODEL_DIRECTIONAL_DIPOLE 1
 #define LUCENT_MODEL_PHOTON_BEAM_DIFFUSION 2
 #define LUCENT_MODEL_BETTER_DIPOLE 3
+#define LUCENT_MODEL_TABULATED 4
 
 LUCENT_SHADER_BEGIN
 
@@ -22,6 +24,7 @@ LUCENT_INLINE float bssrdf_Sd(int model, BandMedium m, float eta, vec3 x_i, vec3
   if (model == LUCENT_MODEL_STANDARD_DIPOLE) return standard_dipole_Sd(m, eta, x_i, x_o);
   if (model == LUCENT_MODEL_PHOTON_BEAM_DIFFUSION) return photon_beam_diffusion_Sd(m, eta, x_i, x_o);
   if (model == LUCENT_MODEL_BETTER_DIPOLE) return better_dipole_Sd(m, eta, x_i, x_o);
+  if (model == LUCENT_MODEL_TABULATED) return tabulated_Sd(m, eta, x_i, w_i, n_i, x_o);
   return directional_dipole_Sd(m, eta, x_i, w_i, n_i, x_o, n_o);
 }
 

@@ -16,6 +16,7 @@ std::string_view to_string(BssrdfModel model) {
     case BssrdfModel::DirectionalDipole: return "directional";
     case BssrdfModel::PhotonBeamDiffusion: return "photon-beam";
     case BssrdfModel::BetterDipole: return "better-dipole";
+    case BssrdfModel::Tabulated: return "tabulated";
   }
   return "unknown";
 }
@@ -25,6 +26,7 @@ std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name) {
   if (name == "directional") return BssrdfModel::DirectionalDipole;
   if (name == "photon-beam") return BssrdfModel::PhotonBeamDiffusion;
   if (name == "better-dipole") return BssrdfModel::BetterDipole;
+  if (name == "tabulated") return BssrdfModel::Tabulated;
   return std::nullopt;
 }
 

@@ -38,7 +38,7 @@ void check(bool ok, const std::string& what) {
 }
 
 // One photon: z is depth (0 at the lit surface, growing into the medium), sigma_t = 1.
-PhotonTally trace_photon(const SlabConfig& c, Rng& rng) {
+PhotonTally trace_photon(const SlabConfig& c, Rng& rng, const SurfaceExitSink& exits, std::size_t block) {
   PhotonTally t;
   double cos_i = c.incidence == Incidence::Normal ? std::cos(c.incidence_deg * M_PI / 180.0)
                                                  : std::sqrt(rng.uniform());  // diffuse: cosine-weighted
@@ -48,7 +48,7 @@ PhotonTally trace_photon(const SlabConfig& c, Rng& rng) {
   t.refracted = weight;
   double sin_t = std::sqrt(1.0 - cos_i * cos_i) / c.eta;
   glm::dvec3 dir(sin_t, 0.0, std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t)));
-  double z = 0.0;
+  double x = 0.0, y = 0.0, z = 0.0;
   bool scattered = false;
   while (weight > 0.0) {
     double s = sample_free_flight(rng, 1.0);
@@ -56,15 +56,18 @@ PhotonTally trace_photon(const SlabConfig& c, Rng& rng) {
     bool leaves_top = dir.z < 0.0 && z + s * dir.z <= 0.0;
     if (leaves_bottom || leaves_top) {
       // Boundary: the escaping part leaves, the Fresnel-reflected part continues mirrored.
+      const double to_boundary = ((leaves_bottom ? c.thickness : 0.0) - z) / dir.z;
+      x += to_boundary * dir.x, y += to_boundary * dir.y;
       z = leaves_bottom ? c.thickness : 0.0;
       double R = shader::fresnel_reflectance(static_cast<float>(1.0 / c.eta), static_cast<float>(std::abs(dir.z)));
       double escaping = weight * (1.0 - R);
       if (leaves_top) t.reflected += escaping;
+      if (leaves_top && exits) exits(block, SurfaceExit{x, y, escaping});
       if (leaves_bottom) t.transmitted += escaping, t.unscattered += scattered ? 0.0 : escaping;
       weight *= R;
       dir.z = -dir.z;
     } else {
-      z += s * dir.z;
+      x += s * dir.x, y += s * dir.y, z += s * dir.z;
       weight *= c.albedo;
       dir = sample_henyey_greenstein(rng, dir, c.g);
       scattered = true;
@@ -76,7 +79,7 @@ PhotonTally trace_photon(const SlabConfig& c, Rng& rng) {
 
 }  // namespace
 
-SlabResult simulate_slab(const SlabConfig& c) {
+SlabResult simulate_slab(const SlabConfig& c, const SurfaceExitSink& exits) {
   check(c.albedo >= 0.0 && c.albedo <= 1.0, fmt::format("--albedo {} is out of range; allowed range [0, 1]", c.albedo));
   check(c.g > -1.0 && c.g < 1.0, fmt::format("--g {} is out of range; allowed range (-1, 1)", c.g));
   check(c.eta >= 1.0 && c.eta <= 3.0, fmt::format("--eta {} is out of range; allowed range [1, 3]", c.eta));
@@ -86,8 +89,8 @@ SlabResult simulate_slab(const SlabConfig& c) {
         fmt::format("--incidence-deg {} is out of range; allowed range [0, 90)", c.incidence_deg));
   auto start = std::chrono::steady_clock::now();
   // Fixed blocks, each with its own random streams, summed in order: identical results for any thread count.
-  const std::uint64_t block_size = 4096;
-  std::size_t blocks = static_cast<std::size_t>((c.photons + block_size - 1) / block_size);
+  const std::uint64_t block_size = kSlabBlockPhotons;
+  std::size_t blocks = slab_block_count(c);
   std::vector<BlockTally> tallies(blocks);
   std::unique_ptr<tbb::global_control> limit;
   if (c.threads > 0)
@@ -96,7 +99,7 @@ SlabResult simulate_slab(const SlabConfig& c) {
     std::uint64_t first = b * block_size, last = std::min(c.photons, first + block_size);
     for (std::uint64_t i = first; i < last; ++i) {
       Rng rng(c.seed, i);
-      tallies[b].add(trace_photon(c, rng));
+      tallies[b].add(trace_photon(c, rng, exits, b));
     }
   });
   BlockTally total;

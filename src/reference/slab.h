@@ -5,7 +5,9 @@
 // Photons carry weights: boundary events split the weight into the escaping part (1 - F) and the reflected part F;
 // absorption scales it by a per scattering; Russian roulette ends light photons without bias.
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 
 #include "reference/estimate.h"
@@ -37,7 +39,25 @@ struct SlabResult {
   double seconds = 0.0;
 };
 
-// Throws lucent::Error naming the parameter when a value is out of range.
-SlabResult simulate_slab(const SlabConfig& config);
+// Where refracted power leaves the lit surface: one escaping weight at lateral position (x, y) in units of
+// 1 / sigma_t, the beam entering at the origin and travelling toward +x (its refracted direction lies in the x-z
+// plane). Weights are per incident power, like SlabResult's: divide by 1 - specular for per refracted power.
+struct SurfaceExit {
+  double x = 0.0, y = 0.0, weight = 0.0;
+};
+
+// Photons run in fixed blocks of this many, each block on one thread; a sink sees the exits of one block in order.
+inline constexpr std::uint64_t kSlabBlockPhotons = 4096;
+inline std::size_t slab_block_count(const SlabConfig& config) {
+  return static_cast<std::size_t>((config.photons + kSlabBlockPhotons - 1) / kSlabBlockPhotons);
+}
+
+// Receives the top-surface exits of block `block` (0 .. slab_block_count() - 1). Called concurrently for
+// different blocks, never for one block from two threads: per-block tallies need no locks.
+using SurfaceExitSink = std::function<void(std::size_t block, const SurfaceExit& exit)>;
+
+// Throws lucent::Error naming the parameter when a value is out of range. `exits`, when given, sees every
+// escape through the lit surface (the spatial profile that diffusion models approximate).
+SlabResult simulate_slab(const SlabConfig& config, const SurfaceExitSink& exits = {});
 
 }  // namespace lucent::reference

@@ -11,6 +11,7 @@
 #include "gpu/frame_profiler.h"
 #include "gpu/vertex_layout.h"
 #include "lucent/error.h"
+#include "materials/tabulated_bssrdf.h"
 #include "shared/shader_io.h"
 
 namespace lucent::render {
@@ -130,6 +131,9 @@ SceneGpu::SceneGpu(const Scene& scene) {
   material_buffer_ = make_buffer(materials, "materials", GL_DYNAMIC_STORAGE_BIT);
   object_buffer_ = make_buffer(objects, "objects", GL_DYNAMIC_STORAGE_BIT);
   material_count_ = materials.size();
+  for (const SceneObject& object : scene.objects)
+    if (object.translucent()) prepare_bssrdf_tables(*object.material);
+  upload_bssrdf_tables();
   glCreateVertexArrays(1, &vao_);
   gpu::set_vertex_gpu_layout(vao_, vertex_buffer_);
   glVertexArrayElementBuffer(vao_, index_buffer_);
@@ -137,12 +141,21 @@ SceneGpu::SceneGpu(const Scene& scene) {
 }
 
 SceneGpu::~SceneGpu() {
-  GLuint buffers[] = {vertex_buffer_, index_buffer_, material_buffer_, object_buffer_};
-  glDeleteBuffers(4, buffers);
+  GLuint buffers[] = {vertex_buffer_, index_buffer_, material_buffer_, object_buffer_, bssrdf_table_buffer_};
+  glDeleteBuffers(5, buffers);
   glDeleteVertexArrays(1, &vao_);
 }
 
+void SceneGpu::upload_bssrdf_tables() {
+  if (bssrdf_table_buffer_ != 0 && bssrdf_table_generation_ == bssrdf_table_generation()) return;
+  bssrdf_table_generation_ = bssrdf_table_generation();
+  const std::span<const float> tables = bssrdf_table_array();
+  if (bssrdf_table_buffer_ != 0) glDeleteBuffers(1, &bssrdf_table_buffer_);
+  bssrdf_table_buffer_ = make_buffer(std::vector<float>(tables.begin(), tables.end()), "bssrdf tables");
+}
+
 void SceneGpu::bind_buffers() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_BSSRDF_TABLES, bssrdf_table_buffer_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_MATERIALS, material_buffer_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_OBJECTS, object_buffer_);
 }
@@ -187,6 +200,9 @@ void SceneGpu::update_materials(const Scene& scene) {
     }
   if (materials.size() != material_count_)
     throw Error("SceneGpu::update_materials: the translucent objects changed; rebuild the scene instead");
+  for (const SceneObject& object : scene.objects)
+    if (object.translucent()) prepare_bssrdf_tables(*object.material);
+  upload_bssrdf_tables();  // callers bind the buffers again before drawing
   if (!materials.empty())
     glNamedBufferSubData(material_buffer_, 0, static_cast<GLsizeiptr>(materials.size() * sizeof(MaterialGPU)),
                          materials.data());

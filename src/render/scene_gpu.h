@@ -30,7 +30,7 @@ class SceneGpu {
   SceneGpu(const SceneGpu&) = delete;
   SceneGpu& operator=(const SceneGpu&) = delete;
 
-  void bind_buffers() const;        // materials and objects storage buffers
+  void bind_buffers() const;        // materials, objects and the tabulated model's tables (storage buffers)
   // Draw every object (or the translucent ones) `instances` times: layered passes draw one instance per view
   // (shaders/gbuffer/gbuffer.vert sets gl_Layer = gl_InstanceID).
   void draw_all(int instances = 1) const;
@@ -75,6 +75,10 @@ class SceneGpu {
   std::size_t translucent_blob_count_ = 0;
   std::size_t vertex_bytes_ = 0;
   std::size_t material_count_ = 0;
+  // The tabulated model's table array (materials/tabulated_bssrdf.h) as uploaded, and its generation then.
+  void upload_bssrdf_tables();
+  GLuint bssrdf_table_buffer_ = 0;
+  std::uint64_t bssrdf_table_generation_ = 0;
 
   GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0, material_buffer_ = 0, object_buffer_ = 0;
   GLsizei translucent_index_count_ = 0, index_count_ = 0;

@@ -21,7 +21,7 @@
 #define LUCENT_BINDING_COUNTERS 3   // CountersGPU of the frame (std430), zeroed by the renderer each frame
 #define LUCENT_BINDING_LAYER_VIEWS 4  // ViewGPU[] of the layered G-buffer pass being drawn (std430): each such pass
                                       // binds its own views (light layers, a method's maps) before drawing
-// 0: reserved for frame data
+#define LUCENT_BINDING_BSSRDF_TABLES 0  // float[]: the tabulated model's directory and tables (bssrdf/tabulated.h)
 
 // ---- texture units (samplers) -----------------------------------------------------------------------------
 #define LUCENT_TEX_CAMERA_POSITION 0
@@ -83,7 +83,8 @@ inline constexpr SlotRange kSlotTable[] = {
     {"LUCENT_BINDING_OBJECTS", SlotKind::Storage, LUCENT_BINDING_OBJECTS, LUCENT_BINDING_OBJECTS, true},
     {"LUCENT_BINDING_COUNTERS", SlotKind::Storage, LUCENT_BINDING_COUNTERS, LUCENT_BINDING_COUNTERS, true},
     {"LUCENT_BINDING_LAYER_VIEWS", SlotKind::Storage, LUCENT_BINDING_LAYER_VIEWS, LUCENT_BINDING_LAYER_VIEWS, true},
-    {"frame storage (reserved)", SlotKind::Storage, 0, 0, true},
+    {"LUCENT_BINDING_BSSRDF_TABLES", SlotKind::Storage, LUCENT_BINDING_BSSRDF_TABLES, LUCENT_BINDING_BSSRDF_TABLES,
+     true},
     {"LUCENT_TEX_CAMERA_POSITION", SlotKind::Texture, LUCENT_TEX_CAMERA_POSITION, LUCENT_TEX_CAMERA_POSITION, true},
     {"LUCENT_TEX_CAMERA_NORMAL", SlotKind::Texture, LUCENT_TEX_CAMERA_NORMAL, LUCENT_TEX_CAMERA_NORMAL, true},
     {"LUCENT_TEX_CAMERA_DEPTH", SlotKind::Texture, LUCENT_TEX_CAMERA_DEPTH, LUCENT_TEX_CAMERA_DEPTH, true},
