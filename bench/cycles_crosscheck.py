@@ -3,7 +3,7 @@
 # cross-check tool, not a lucent dependency (Debian: apt-get install blender python3-numpy).
 #
 #   blender -b --python bench/cycles_crosscheck.py -- render SCENE.json OUT.exr [--spp N] [--seed S] [--threads T]
-#           [--bounces B] [--width W --height H]
+#           [--bounces B] [--terminator-offset F] [--width W --height H]
 #   blender -b --python bench/cycles_crosscheck.py -- compare LUCENT.exr CYCLES_SEED1.exr CYCLES_SEED2.exr
 #           [--png SIDE_BY_SIDE.png [--zoom Z]] [--json OUT.json]
 #
@@ -23,9 +23,10 @@
 #
 # compare: lucent's mean image and its standard-error image (<stem>.stderr.exr) against the mean of two Cycles
 # renders with different seeds; the Cycles noise of that mean is estimated from their difference
-# (var(mean of 2) = (C1 - C2)^2 / 4 per pixel, averaged over pixels). Prints the mean ratio lucent / Cycles with
-# its standard error, the RMSE, the combined noise sqrt(<SE_l^2> + <(C1 - C2)^2 / 4>) and RMSE / noise (1 when
-# the two agree within their noise).
+# (var(mean of 2) = (C1 - C2)^2 / 4 per pixel, averaged over pixels). On the mean of the RGB channels, prints the
+# mean ratio lucent / Cycles with its standard error, the RMSE, the combined noise sqrt(<SE_l^2> +
+# <(C1 - C2)^2 / 4>) and RMSE / noise (1 when the two agree within their noise), and each renderer's efficiency
+# 1 / (variance x seconds) from the renders' metadata (<stem>.meta.json).
 import json
 import math
 import os
@@ -166,7 +167,7 @@ def medium_material(name, sigma_a, sigma_s, g):
     return mat
 
 
-def build_scene(scene_path, width, height):
+def build_scene(scene_path, width, height, terminator_offset):
     with open(scene_path) as f:
         desc = json.load(f)
     base = os.path.dirname(os.path.abspath(scene_path))
@@ -243,6 +244,10 @@ def build_scene(scene_path, width, height):
             mesh.use_auto_smooth = True
             mesh.normals_split_custom_set_from_vertices(normals.tolist())
         obj = bpy.data.objects.new(mesh.name, mesh)
+        # Cycles' default moves shadow rays off smooth-shaded low-poly surfaces (geometry offset 0.1): lucent
+        # starts them at the hit point.
+        obj.cycles.shadow_terminator_geometry_offset = terminator_offset
+        obj.cycles.shadow_terminator_offset = 0.0
         scene.collection.objects.link(obj)
         if "material" in o:
             mat_desc = o["material"]
@@ -306,17 +311,19 @@ def command_render(args):
     bounces = option(args, "--bounces", 1024, int)
     width = option(args, "--width", 0, int)
     height = option(args, "--height", 0, int)
+    terminator_offset = option(args, "--terminator-offset", 0.0, float)
     if len(args) != 2:
-        die("render SCENE.json OUT.exr [--spp N] [--seed S] [--threads T] [--bounces B] [--width W --height H]")
+        die("render SCENE.json OUT.exr [--spp N] [--seed S] [--threads T] [--bounces B] [--terminator-offset F] "
+            "[--width W --height H]")
     scene_path, out = args
-    scene = build_scene(scene_path, width, height)
+    scene = build_scene(scene_path, width, height, terminator_offset)
     configure_cycles(scene, spp, seed, threads, bounces)
     scene.render.filepath = os.path.abspath(out)
     start = time.time()
     bpy.ops.render.render(write_still=True)
     seconds = time.time() - start
     meta = {"renderer": "cycles", "blender": bpy.app.version_string, "samples": spp, "seed": seed,
-            "threads": threads, "bounces": bounces, "seconds": seconds,
+            "threads": threads, "bounces": bounces, "terminator_offset": terminator_offset, "seconds": seconds,
             "width": scene.render.resolution_x, "height": scene.render.resolution_y}
     with open(os.path.splitext(out)[0] + ".meta.json", "w") as f:
         json.dump(meta, f, indent=1)
@@ -362,19 +369,39 @@ def command_compare(args):
     if not (L.shape == SE.shape == C1.shape == C2.shape):
         die(f"image sizes differ: {L.shape} {SE.shape} {C1.shape} {C2.shape}")
     C = 0.5 * (C1 + C2)
-    var_c = 0.25 * (C1 - C2) ** 2  # per pixel, an estimate of the variance of C (one degree of freedom)
-    var_l = SE ** 2
-    n = L.size
-    sum_l, sum_c = L.sum(), C.sum()
+    # The statistics on the mean of the three channels: lucent's bands share their paths (hero band), so in a
+    # grey scene the channels are one number three times, not three independent estimates.
+    grey = lambda x: x.mean(axis=2)
+    l, c, c1, c2, se = grey(L), grey(C), grey(C1), grey(C2), grey(SE)
+    vl, vc = se ** 2, 0.25 * (c1 - c2) ** 2
+    sum_l, sum_c = l.sum(), c.sum()
     ratio = sum_l / sum_c
-    se_ratio = ratio * math.sqrt(var_l.sum() / sum_l ** 2 + var_c.sum() / sum_c ** 2)
-    rmse = math.sqrt(((L - C) ** 2).mean())
-    noise = math.sqrt(var_l.mean() + var_c.mean())
-    result = {"lucent": lucent_path, "cycles": [c1_path, c2_path], "pixels": L.shape[0] * L.shape[1],
-              "mean_lucent": sum_l / n, "mean_cycles": sum_c / n, "ratio": ratio, "ratio_se": se_ratio,
-              "rmse": rmse, "noise_lucent": math.sqrt(var_l.mean()), "noise_cycles": math.sqrt(var_c.mean()),
+    se_ratio = ratio * math.sqrt(vl.sum() / sum_l ** 2 + vc.sum() / sum_c ** 2)
+    rmse = math.sqrt(((l - c) ** 2).mean())
+    noise = math.sqrt(vl.mean() + vc.mean())
+    result = {"lucent": lucent_path, "cycles": [c1_path, c2_path], "pixels": l.size,
+              "mean_lucent": sum_l / l.size, "mean_cycles": sum_c / l.size, "ratio": ratio, "ratio_se": se_ratio,
+              "rmse": rmse, "noise_lucent": math.sqrt(vl.mean()), "noise_cycles": math.sqrt(vc.mean()),
               "noise_combined": noise, "rmse_over_noise": rmse / noise,
-              "cycles_seed_ratio": C1.sum() / C2.sum()}
+              "cycles_seed_ratio": c1.sum() / c2.sum()}
+    # Efficiency 1 / (variance x time): the pixel-mean variance of one render and its seconds (lucent's from its
+    # metadata; Cycles' from the two renders' metadata, the variance of one render = <(C1 - C2)^2> / 2).
+    try:
+        with open(os.path.splitext(lucent_path)[0] + ".meta.json") as f:
+            meta_l = json.load(f)
+        metas_c = []
+        for path in (c1_path, c2_path):
+            with open(os.path.splitext(path)[0] + ".meta.json") as f:
+                metas_c.append(json.load(f))
+        t_l, t_c = meta_l["seconds"], 0.5 * (metas_c[0]["seconds"] + metas_c[1]["seconds"])
+        eff_l, eff_c = 1.0 / (vl.mean() * t_l), 1.0 / (0.5 * ((c1 - c2) ** 2).mean() * t_c)
+        result.update({"lucent_seconds": t_l, "lucent_spp": meta_l["samples_per_pixel"],
+                       "cycles_seconds": t_c, "cycles_spp": metas_c[0]["samples"],
+                       "cycles_threads": metas_c[0]["threads"], "cycles_bounces": metas_c[0]["bounces"],
+                       "efficiency_lucent": eff_l, "efficiency_cycles": eff_c,
+                       "efficiency_ratio_lucent_over_cycles": eff_l / eff_c})
+    except (OSError, KeyError) as e:
+        print(f"cycles_crosscheck: no efficiency ({e})")
     print(json.dumps(result, indent=1))
     if json_out:
         with open(json_out, "w") as f:
@@ -387,8 +414,8 @@ def command_compare(args):
         def blur(x):
             p = np.pad(x, 1, mode="edge")
             return sum(p[dy:dy + x.shape[0], dx:dx + x.shape[1]] for dy in range(3) for dx in range(3)) / 9.0
-        d = blur((L - C).mean(axis=2))
-        s = np.sqrt(blur((var_l + var_c).mean(axis=2)) / 9.0)
+        d = blur(l - c)
+        s = np.sqrt(blur(vl + vc) / 9.0)
         z = np.where(s > 0, d / np.maximum(s, 1e-30), 0.0) / 3.0
         diff = np.stack([np.clip(z, 0, 1), np.zeros_like(z), np.clip(-z, 0, 1)], axis=2)
         gap = np.ones((L.shape[0], 2, 3))

@@ -18,7 +18,7 @@ mkdir -p "$out"
 for case in ${CASES:-medium diffuse}; do
   scene=bench/cycles/bunny_$case.json
   nice "$lucent" reference "$scene" --integrator volpath --jitter --spp "$lucent_spp" --threads "$threads" \
-    -o "$out/${case}_lucent.exr"
+    -o "$out/${case}_lucent.exr" 2>&1 | tr '\r' '\n' | tail -1
   for seed in 1 2; do
     nice "$blender" -b --python bench/cycles_crosscheck.py -- render "$scene" "$out/${case}_cycles$seed.exr" \
       --spp "$cycles_spp" --seed "$seed" --threads "$threads" ${BOUNCES:+--bounces $BOUNCES} | grep '^cycles_crosscheck'
