@@ -52,7 +52,17 @@ glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec
 // A point or spot light's intensity toward `direction` (unit, from the light), in scene units (E = I / d^2).
 glm::dvec3 point_light_intensity(const ReferenceScene& s, const PointLight& light, glm::dvec3 direction);
 
-// Direct light on an opaque Lambertian surface point (shadow rays to every light).
-glm::dvec3 direct_light_lambertian(const ReferenceScene& s, const SurfaceHit& hit, glm::dvec3 normal);
+// Direct light on an opaque Lambertian surface point (shadow rays to every light). With `rng` (volpath),
+// index-matched media on a shadow ray attenuate it (shadow_transmittance); without (bssrdf, which models
+// translucent objects by their surface, as the real-time methods do), every surface blocks it.
+glm::dvec3 direct_light_lambertian(const ReferenceScene& s, const SurfaceHit& hit, glm::dvec3 normal,
+                                   Rng* rng = nullptr);
+
+// volpath: the transmittance of the straight shadow ray from `origin` (outside every medium) along `direction`
+// up to t_max. Opaque surfaces and refracting (eta != 1) boundaries block it; an index-matched medium (eta = 1:
+// the ray goes straight through its boundary) attenuates it by its transmittance between the points where the
+// ray enters and leaves it (exact when homogeneous, ratio tracking when heterogeneous).
+glm::dvec3 shadow_transmittance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, double t_max,
+                                Rng& rng);
 
 }  // namespace lucent::reference
