@@ -87,7 +87,7 @@ constexpr ParamDecl kMaterialParams[] = {
     {"sigma_s_prime", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "reduced scattering (instead of sigma_s, g)"},
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
-    {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard|photon-beam|better-dipole", "diffusion model S_d"},
+    {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard|photon-beam|better-dipole|tabulated", "diffusion model S_d"},
 };
 constexpr ParamDecl kFieldParams[] = {
     {"type", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered|volume",
