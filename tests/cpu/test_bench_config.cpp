@@ -118,6 +118,20 @@ TEST(BenchConfig, MissingScenesAndDuplicateNames) {
             "");
 }
 
+// A run's "regions" (measured on their own, e.g. the candle's table) name image files and table rows.
+TEST(BenchConfig, RegionsHaveUniqueSafeNamesAndAnObject) {
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "table", "object": "table", "radius": 5}]})")),
+            "");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "table"}]})")),
+            "b.json: /runs/0/regions/0/object: missing; the name of a scene object, e.g. \"table\"");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "t", "object": "a"}, {"name": "t", "object": "b"}]})")),
+            "b.json: /runs/0/regions/1/name: also the name of region 0");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "../t", "object": "a"}]})")),
+            "b.json: /runs/0/regions/0/name: region name '../t' names image files: use letters, digits, '_', '-' and '.' "
+            "(not first), at most 100");
+  EXPECT_NE(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "t", "object": "a", "radius": -1}]})")), "");
+}
+
 TEST(BenchConfig, ReadLikeEveryJsonInput) {
   EXPECT_EQ(problem("{\"runs\": [\n  {\"scene\": \"s.json\",\n   \"scene\": \"t.json\"}]}"),
             "b.json: /runs/0/scene: duplicate key (each key may appear once in an object)");
