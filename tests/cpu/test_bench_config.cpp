@@ -58,7 +58,7 @@ TEST(BenchConfig, UnknownKeysAreNamedWithTheKnownOnes) {
   EXPECT_EQ(problem(R"({"run": []})"),
             "b.json: /run: unknown key; known keys: description, set, references, runs, plots");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "varients": []})")),
-            "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants");
+            "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants, regions");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frame": 4}]})")),
             "b.json: /runs/0/variants/0/frame: unknown key; known keys: name, id, frames, equal_time, "
             "restart_every_frame, set");
