@@ -41,6 +41,13 @@ constexpr ParamDecl kVariantParams[] = {
     {"equal_time", ParamType::Bool, "false", "", 0, 1, "", "also measure a bssrdf reference given the same time"},
     {"restart_every_frame", ParamType::Bool, "false", "", 0, 1, "", "recompute cached state every frame"},
 };
+constexpr ParamDecl kRegionParams[] = {
+    {"name", ParamType::String, "", "", 0, 0, "", "region name in the tables (required)"},
+    {"object", ParamType::String, "", "", 0, 0, "", "the scene object whose pixels form the region (required)"},
+    {"center", ParamType::Vec3, "[0, 0, 0]", "units", -1e9, 1e9, "", "centre of the region's ball"},
+    {"radius", ParamType::Float, "1e30", "units", 0, 1e30, "", "pixels whose first hit lies within this distance"},
+    {"min_radius", ParamType::Float, "0", "units", 0, 1e30, "", "and at least this far from the centre"},
+};
 constexpr ParamDecl kPlotParams[] = {
     {"output", ParamType::String, "", "", 0, 0, "", "PNG written into the output folder (required)"},
     {"script", ParamType::String, "", "", 0, 0, "", "gnuplot script (required)"},
@@ -97,13 +104,26 @@ void validate_bench_config(const json& config, const std::string& path) {
   for (std::size_t i = 0; i < config["runs"].size(); ++i) {
     const json& run = config["runs"][i];
     const JsonLocation at = root.child("runs").child(i);
-    read_params(run, {"run", kRunParams}, at, {"set", "variants"});
+    read_params(run, {"run", kRunParams}, at, {"set", "variants", "regions"});
     require_key(run, "scene", at, "the scene file of this run");
     check_overrides(run, at);
     const std::string name = run_name(run);
     require_file_name_part(name, run.contains("name") ? at.child("name") : at.child("scene"), "run name");
     if (auto [other, inserted] = runs.emplace(name, i); !inserted)
       fail(at, fmt::format("run name '{}' is also the name of /runs/{}", text_excerpt(name), other->second));
+    if (run.contains("regions")) {
+      require_array(run["regions"], at.child("regions"), "regions");
+      std::map<std::string, std::size_t> regions;
+      for (std::size_t k = 0; k < run["regions"].size(); ++k) {
+        const JsonLocation rat = at.child("regions").child(k);
+        read_params(run["regions"][k], {"region", kRegionParams}, rat);
+        require_key(run["regions"][k], "name", rat, "the region's name in the tables");
+        require_key(run["regions"][k], "object", rat, "the name of a scene object, e.g. \"table\"");
+        require_file_name_part(run["regions"][k]["name"].get<std::string>(), rat.child("name"), "region name");
+        if (auto [other, inserted] = regions.emplace(run["regions"][k]["name"].get<std::string>(), k); !inserted)
+          fail(rat.child("name"), fmt::format("also the name of region {}", other->second));
+      }
+    }
     if (!run.contains("variants")) continue;
     require_array(run["variants"], at.child("variants"), "variants");
     std::map<std::string, std::size_t> ids;

@@ -11,7 +11,8 @@ namespace lucent::cli {
 
 // Checks the configuration's structure, keys, types and ranges (see the declarations in bench_config.cpp):
 // "runs" an array of objects with a "scene" each, unique run names and, within a run, unique variant ids;
-// "references" only "bssrdf" and "volpath", max_spp >= spp, "only_runs" naming runs of the file; "set" lists of
+// "references" only "bssrdf" and "volpath", max_spp >= spp, "only_runs" naming runs of the file; a run's
+// "regions" each with a unique "name" and an "object"; "set" lists of
 // "key=value" strings; "plots" with an "output" and an existing "script". Throws lucent::Error naming the file and
 // the JSON path.
 void validate_bench_config(const nlohmann::json& config, const std::string& path);

@@ -25,6 +25,7 @@
 #include "lucent/lucent.h"
 #include "params/param_json.h"
 #include "progress_bar.h"
+#include "reference/image_region.h"
 #include "reference/reference_cache.h"
 #include "stats/frame_summary.h"
 
@@ -49,9 +50,32 @@ std::vector<std::string> variant_overrides(const json& config, const json& run, 
   return sets;
 }
 
+// A run's "regions" (reference/image_region.h): parts of the image measured on their own.
+std::vector<reference::ImageRegion> run_regions(const json& run) {
+  std::vector<reference::ImageRegion> regions;
+  for (const json& r : run.value("regions", json::array())) {
+    reference::ImageRegion region;
+    region.name = r.at("name").get<std::string>();
+    region.object = r.at("object").get<std::string>();
+    if (r.contains("center"))
+      for (int c = 0; c < 3; ++c) region.center[c] = r["center"][static_cast<std::size_t>(c)].get<double>();
+    region.radius = r.value("radius", 1e30);
+    region.min_radius = r.value("min_radius", 0.0);
+    regions.push_back(std::move(region));
+  }
+  return regions;
+}
+
+json region_json(const reference::RegionMean& m) {
+  return {{"mean", {m.mean.x, m.mean.y, m.mean.z}},
+          {"standard_error", {m.standard_error.x, m.standard_error.y, m.standard_error.z}},
+          {"display", m.display}};
+}
+
 // One rendered variant, waiting for its comparison with the references.
 struct Rendered {
   json result;
+  std::vector<std::pair<std::string, std::vector<std::uint8_t>>> region_masks;  // name, mask
   ImageRGBA32F image;
   Scene scene;
   std::string scene_path, stem;
@@ -145,6 +169,16 @@ struct Bench {
       result["params"][key] = json::parse(s.substr(s.find('=') + 1), nullptr, false);
     }
     if (variant.value("equal_time", false)) result["equal_time_request"] = true;
+    for (const reference::ImageRegion& region : run_regions(run)) {
+      r.region_masks.emplace_back(region.name, reference::region_mask(scene, region));
+      // The region drawn over the variant's image (green), to see which pixels it holds.
+      ImageRGBA8 shown = to_display(r.image, scene.render.exposure);
+      for (std::size_t i = 0; i < r.region_masks.back().second.size(); ++i)
+        if (r.region_masks.back().second[i]) shown.pixels[4 * i + 1] = 255;
+      write_png((out / "images" / fmt::format("{}_region_{}.png", run_name, region.name)).string(), shown);
+      const reference::RegionMean m = reference::region_mean(r.image, r.region_masks.back().second, scene.render.exposure);
+      result["regions"][region.name] = {{"pixels", m.pixels}, {"method", region_json(m)}};
+    }
     return r;
   }
 
@@ -205,6 +239,9 @@ struct Bench {
                                      {"reference_noise_rms", e.reference_noise_rms},
                                      {"reference_spp", ref.samples_per_pixel}, {"reference_seconds", ref.seconds},
                                      {"reference_image", ref_png}};
+    for (const auto& [name, mask] : r.region_masks)
+      r.result["regions"][name][integrator] =
+          region_json(reference::region_mean(ref.mean, mask, scene.render.exposure, &ref.standard_error));
     if (integrator == "bssrdf" && r.result.value("equal_time_request", false)) {
       reference::ReferenceImage quick = equal_time_reference(scene, r.wall_seconds);
       ImageError eq = image_error(quick.mean, ref.mean, &ref.standard_error);
@@ -272,6 +309,31 @@ std::string markdown(const json& results) {
                           ? fmt::format("{:.4f} ({} spp)", r["equal_time_bssrdf"]["rmse_rgb"].get<double>(),
                                         r["equal_time_bssrdf"]["spp"].get<int>())
                           : "-");
+  }
+  // The regions: mean linear radiance (R, G, B) and the mean tone-mapped 8-bit value, method and references.
+  bool any_region = false;
+  for (const json& r : results) any_region = any_region || r.contains("regions");
+  if (!any_region) return md;
+  md += "\n| run | variant | region (pixels) | method: mean R, G, B (8-bit) | bssrdf reference | volpath reference |\n"
+        "|---|---|---|---|---|---|\n";
+  auto mean = [](const json& region, const char* who) {
+    if (!region.contains(who)) return std::string("-");
+    const json& m = region[who];
+    const json& se = m["standard_error"];
+    const bool noisy = se[0].get<double>() + se[1].get<double>() + se[2].get<double>() > 0.0;
+    return fmt::format("{:.5f}, {:.5f}, {:.5f}{} ({:.1f}/255)", m["mean"][0].get<double>(), m["mean"][1].get<double>(),
+                       m["mean"][2].get<double>(),
+                       noisy ? fmt::format(" +- {:.5f}", std::max({se[0].get<double>(), se[1].get<double>(),
+                                                                  se[2].get<double>()}))
+                             : "",
+                       m["display"].get<double>());
+  };
+  for (const json& r : results) {
+    if (!r.contains("regions")) continue;
+    for (const auto& [name, region] : r["regions"].items())
+      md += fmt::format("| {} | {} | {} ({}) | {} | {} | {} |\n", r["run"].get<std::string>(),
+                        r["variant"].get<std::string>(), name, region["pixels"].get<int>(), mean(region, "method"),
+                        mean(region, "bssrdf"), mean(region, "volpath"));
   }
   return md;
 }

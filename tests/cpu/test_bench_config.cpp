@@ -58,7 +58,7 @@ TEST(BenchConfig, UnknownKeysAreNamedWithTheKnownOnes) {
   EXPECT_EQ(problem(R"({"run": []})"),
             "b.json: /run: unknown key; known keys: description, set, references, runs, plots");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "varients": []})")),
-            "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants");
+            "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants, regions");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frame": 4}]})")),
             "b.json: /runs/0/variants/0/frame: unknown key; known keys: name, id, frames, equal_time, "
             "restart_every_frame, set");
@@ -116,6 +116,20 @@ TEST(BenchConfig, MissingScenesAndDuplicateNames) {
             "b.json: /plots/0/output: missing; the PNG to write, e.g. \"fig13.png\"");
   EXPECT_EQ(problem(R"({"runs": [)" + std::string(kRun) + R"(], "references": {"bssrdf": {"only_runs": ["marble"]}}})"),
             "");
+}
+
+// A run's "regions" (measured on their own, e.g. the candle's table) name image files and table rows.
+TEST(BenchConfig, RegionsHaveUniqueSafeNamesAndAnObject) {
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "table", "object": "table", "radius": 5}]})")),
+            "");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "table"}]})")),
+            "b.json: /runs/0/regions/0/object: missing; the name of a scene object, e.g. \"table\"");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "t", "object": "a"}, {"name": "t", "object": "b"}]})")),
+            "b.json: /runs/0/regions/1/name: also the name of region 0");
+  EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "../t", "object": "a"}]})")),
+            "b.json: /runs/0/regions/0/name: region name '../t' names image files: use letters, digits, '_', '-' and '.' "
+            "(not first), at most 100");
+  EXPECT_NE(problem(with_run(R"({"scene": "s.json", "regions": [{"name": "t", "object": "a", "radius": -1}]})")), "");
 }
 
 TEST(BenchConfig, ReadLikeEveryJsonInput) {
