@@ -10,7 +10,7 @@
 #include "commands.h"
 #include "option_checks.h"
 #include "lucent/error.h"
-#include "reference/slab.h"
+#include "transport/slab.h"
 
 namespace lucent::cli {
 namespace {

@@ -10,13 +10,12 @@
 #include <mutex>
 
 #include <fmt/format.h>
-#include <tbb/task_arena.h>
 
 #include "bssrdf/fresnel.h"
 #include "bssrdf/tabulated.h"
 #include "cache/precompute_cache.h"
 #include "lucent/error.h"
-#include "reference/slab.h"
+#include "transport/slab.h"
 
 namespace lucent {
 namespace {
@@ -32,7 +31,8 @@ using shader::kBssrdfTableTheta;
 using shader::kBssrdfTableThetaMaxDeg;
 
 // Bumped whenever the tables' content changes for the same medium (part of the cache key).
-constexpr std::uint32_t kTableFormatVersion = 2;
+constexpr std::uint32_t kTableFormatVersion = 3;
+constexpr double kPooledAzimuthFrom = 8.0;  // reduced mean free paths
 
 // Outer edge of radial bin k (k = 0 .. kBssrdfTableR - 1); the inner edge of bin k is edge(k - 1), 0 for bin 0.
 double radial_edge(int k, double r_max) {
@@ -109,8 +109,7 @@ class TableStore {
       return table;
     }
     std::vector<float> table;
-    // Isolated: a caller inside a parallel loop must not pick up its own loop's tasks while it holds the lock.
-    tbb::this_task_arena::isolate([&] { table = build_bssrdf_table(albedo, g, eta, photons, &stats); });
+    table = build_bssrdf_table(albedo, g, eta, photons, &stats);  // its own threads; other callers wait on the lock
     std::fprintf(stderr,
                  "lucent: tabulated the half-space BSSRDF of albedo %.6g, g %.4g, eta %.4g in %.1f s (reflectance "
                  "%.4f at normal incidence, %.2g of it beyond the table)\n",
@@ -213,9 +212,16 @@ std::vector<float> build_bssrdf_table(float albedo, float g, float eta, std::uin
         table[static_cast<std::size_t>(kBssrdfTableHeader + (t * kBssrdfTablePhi + p) * kBssrdfTableR + k)] =
             static_cast<float>(w / area);
       }
-    if (t == 0) {  // normal incidence: symmetric about the normal, so every azimuth row is the same profile
-      float* node = &table[static_cast<std::size_t>(kBssrdfTableHeader)];
+    // Azimuth pooling. Normal incidence is symmetric about the normal: every azimuth row is the same profile.
+    // Beyond kPooledAzimuthFrom reduced mean free paths the diffuse field depends on the incident direction only
+    // through a source displaced by about a mean free path (a few percent of azimuthal variation, by diffusion
+    // theory), while few photons reach each bin: pooling the 12 azimuth bins divides the bins' variance by 12
+    // where the profile is weakest. Without it, the far bins' noise made a 1 m
+    // marble bunny grainy (noise-corrected RMSE 0.060 against volpath, against 0.039 for the standard dipole).
+    {
+      float* node = &table[static_cast<std::size_t>(kBssrdfTableHeader + t * kBssrdfTablePhi * kBssrdfTableR)];
       for (int k = 0; k < kBssrdfTableR; ++k) {
+        if (t > 0 && (k == 0 || radial_edge(k - 1, r_max) < kPooledAzimuthFrom)) continue;
         double mean = 0.0;
         for (int p = 0; p < kBssrdfTablePhi; ++p) mean += node[p * kBssrdfTableR + k];
         for (int p = 0; p < kBssrdfTablePhi; ++p) node[p * kBssrdfTableR + k] = static_cast<float>(mean / kBssrdfTablePhi);

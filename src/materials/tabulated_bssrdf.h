@@ -2,7 +2,7 @@
 //
 // A table is the exitance profile of a half-space of one band medium (albedo a = sigma_s / sigma_t, HG g, eta)
 // over reduced distance, azimuth and incidence, computed by the photon transport of `lucent slab`
-// (reference/slab.h: smooth Fresnel boundary with total internal reflection, the true phase function, all orders
+// (transport/slab.h: smooth Fresnel boundary with total internal reflection, the true phase function, all orders
 // of scattering). Tables are dimensionless (reduced mean free paths), so a medium's table serves every scale.
 //
 // The process keeps one array of tables (directory + tables, the layout the shaders read): a table is built on

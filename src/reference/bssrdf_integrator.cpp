@@ -15,7 +15,7 @@
 
 #include "bssrdf/model.h"
 #include "reference/integrators.h"
-#include "reference/random_walk.h"
+#include "transport/random_walk.h"
 
 namespace lucent::reference {
 namespace {

@@ -32,7 +32,7 @@
 
 #include "lucent/scene.h"
 #include "reference/embree_scene.h"
-#include "reference/rng.h"
+#include "transport/rng.h"
 
 namespace lucent::reference {
 

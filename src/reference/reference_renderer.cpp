@@ -13,7 +13,7 @@
 #include "lucent/error.h"
 #include "reference/embree_scene.h"
 #include "reference/integrators.h"
-#include "reference/rng.h"
+#include "transport/rng.h"
 
 namespace lucent::reference {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "reference/integrators.h"
-#include "reference/random_walk.h"
+#include "transport/random_walk.h"
 
 namespace lucent::reference {
 namespace {

@@ -8,7 +8,13 @@
 namespace lucent::render {
 
 std::string light_sampling_defines(const Scene& scene) {
-  return scene.point_lights.empty() ? "#define LUCENT_DIRECTIONAL_LIGHTS_ONLY 1\n" : "";
+  std::string defines = scene.point_lights.empty() ? "#define LUCENT_DIRECTIONAL_LIGHTS_ONLY 1\n" : "";
+  for (const SceneObject& object : scene.objects)
+    if (object.translucent() && object.material->model == BssrdfModel::Tabulated) {
+      defines += "#define LUCENT_TABULATED_MODEL 1\n";  // bssrdf/model.h
+      break;
+    }
+  return defines;
 }
 
 LightGBuffer::LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int size)

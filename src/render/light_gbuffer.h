@@ -11,8 +11,8 @@
 
 namespace lucent::render {
 
-// Preprocessor defines for shaders that include common/light_sampling.glsl: the point-light path is compiled
-// only when the scene has point or spot lights.
+// Preprocessor defines for shaders that include common/light_sampling.glsl or bssrdf/model.h: the point-light path
+// is compiled only when the scene has point or spot lights, the tabulated model only when a material uses it.
 std::string light_sampling_defines(const Scene& scene);
 
 class LightGBuffer {

@@ -8,7 +8,7 @@
 #include "lucent/scene.h"
 #include "reference/alias_table.h"
 #include "reference/embree_scene.h"
-#include "reference/rng.h"
+#include "transport/rng.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "reference/embree_scene.h"
 #include "reference/integrators.h"
 #include "reference/reference_renderer.h"
-#include "reference/rng.h"
+#include "transport/rng.h"
 
 namespace {
 

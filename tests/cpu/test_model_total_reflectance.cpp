@@ -11,7 +11,7 @@
 #include "bssrdf/standard_dipole.h"
 #include "lucent/material.h"
 #include "materials/model_total_reflectance.h"
-#include "reference/slab.h"
+#include "transport/slab.h"
 
 namespace {
 

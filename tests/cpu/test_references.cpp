@@ -13,10 +13,10 @@
 #include "bssrdf/model.h"
 #include "lucent/scene.h"
 #include "reference/embree_scene.h"
-#include "reference/estimate.h"
+#include "transport/estimate.h"
 #include "reference/integrators.h"
-#include "reference/random_walk.h"
-#include "reference/slab.h"
+#include "transport/random_walk.h"
+#include "transport/slab.h"
 
 namespace {
 
@@ -186,7 +186,7 @@ namespace {
 
 // The irradiance a point light delivers through a flat boundary (volpath's next-event estimation for point
 // lights), against brute force: a bundle of rays from the light in a small cone, refracted by Snell's law
-// (reference/random_walk.h), counted where they cross the receiver's plane at depth d.
+// (transport/random_walk.h), counted where they cross the receiver's plane at depth d.
 double bundle_irradiance(double D, double d, double theta_i, double eta, std::uint64_t seed) {
   const double alpha = 0.02;  // cone half-angle [rad]
   const int rays = 1000000;

@@ -3,7 +3,7 @@
 // (plus the table's rounding) of the exact value. Deterministic seeds: a pass is reproducible.
 #include <gtest/gtest.h>
 
-#include "reference/slab.h"
+#include "transport/slab.h"
 
 namespace {
 

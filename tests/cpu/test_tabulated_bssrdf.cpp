@@ -11,7 +11,7 @@
 #include "lucent/material.h"
 #include "materials/model_total_reflectance.h"
 #include "materials/tabulated_bssrdf.h"
-#include "reference/slab.h"
+#include "transport/slab.h"
 
 namespace {
 

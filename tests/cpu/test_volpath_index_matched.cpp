@@ -20,7 +20,7 @@
 
 #include "lucent/scene.h"
 #include "reference/embree_scene.h"
-#include "reference/estimate.h"
+#include "transport/estimate.h"
 #include "reference/integrators.h"
 
 namespace {

@@ -77,7 +77,7 @@ TEST(GpuParity, BssrdfComputeShaderMatchesCpp) {
   glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(cases.size() * sizeof(ParityResultGPU)), nullptr, 0);
   const std::span<const float> tables = lucent::bssrdf_table_array();
   glNamedBufferStorage(buffers[2], static_cast<GLsizeiptr>(tables.size_bytes()), tables.data(), 0);
-  auto program = lucent::gpu::ShaderProgram::compute("tests/bssrdf_parity.comp");
+  auto program = lucent::gpu::ShaderProgram::compute("tests/bssrdf_parity.comp", "#define LUCENT_TABULATED_MODEL 1\n");
   glUseProgram(program.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_PARITY, buffers[0]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_PARITY + 1, buffers[1]);

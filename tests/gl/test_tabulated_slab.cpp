@@ -23,7 +23,7 @@
 #include "image_compare.h"
 #include "lucent/lucent.h"
 #include "materials/tabulated_bssrdf.h"
-#include "reference/slab.h"
+#include "transport/slab.h"
 
 namespace {
 

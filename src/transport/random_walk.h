@@ -1,11 +1,11 @@
-// random_walk.h: the physics of the CPU references inside a homogeneous medium and at its smooth dielectric
+// random_walk.h (photon transport, in lucent_core): the physics of the CPU references inside a homogeneous medium and at its smooth dielectric
 // boundary: free-flight distances, Henyey-Greenstein scattering, Fresnel reflection and refraction with total
 // internal reflection, and the Russian roulette that keeps weights unbiased. Shared by `lucent slab` and the
 // volumetric path tracer. Fresnel comes from the same header the shaders use (bssrdf/fresnel.h).
 #pragma once
 #include <glm/glm.hpp>
 
-#include "reference/rng.h"
+#include "transport/rng.h"
 
 namespace lucent::reference {
 

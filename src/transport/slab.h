@@ -10,7 +10,7 @@
 #include <functional>
 #include <limits>
 
-#include "reference/estimate.h"
+#include "transport/estimate.h"
 
 namespace lucent::reference {
 

@@ -1,17 +1,19 @@
 // slab.cpp: see slab.h.
-#include "reference/slab.h"
+#include "transport/slab.h"
 
 #include <chrono>
 #include <cmath>
 #include <vector>
 
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
 #include <fmt/format.h>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "bssrdf/fresnel.h"
 #include "lucent/error.h"
-#include "reference/random_walk.h"
+#include "transport/random_walk.h"
 
 namespace lucent::reference {
 namespace {
@@ -92,16 +94,22 @@ SlabResult simulate_slab(const SlabConfig& c, const SurfaceExitSink& exits) {
   const std::uint64_t block_size = kSlabBlockPhotons;
   std::size_t blocks = slab_block_count(c);
   std::vector<BlockTally> tallies(blocks);
-  std::unique_ptr<tbb::global_control> limit;
-  if (c.threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, c.threads);
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    std::uint64_t first = b * block_size, last = std::min(c.photons, first + block_size);
-    for (std::uint64_t i = first; i < last; ++i) {
-      Rng rng(c.seed, i);
-      tallies[b].add(trace_photon(c, rng, exits, b));
+  // Worker threads take blocks in turn (std::thread: this physics lives in lucent_core, which uses no task library).
+  const unsigned threads = c.threads > 0 ? static_cast<unsigned>(c.threads) : std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t b; (b = next.fetch_add(1)) < blocks;) {
+      std::uint64_t first = b * block_size, last = std::min(c.photons, first + block_size);
+      for (std::uint64_t i = first; i < last; ++i) {
+        Rng rng(c.seed, i);
+        tallies[b].add(trace_photon(c, rng, exits, b));
+      }
     }
-  });
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min<std::size_t>(threads, blocks); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
   BlockTally total;
   for (const BlockTally& t : tallies) total.merge(t);
   SlabResult r;

@@ -1,5 +1,5 @@
 // random_walk.cpp: see random_walk.h.
-#include "reference/random_walk.h"
+#include "transport/random_walk.h"
 
 #include <cmath>
 
