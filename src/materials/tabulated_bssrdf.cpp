@@ -31,8 +31,7 @@ using shader::kBssrdfTableTheta;
 using shader::kBssrdfTableThetaMaxDeg;
 
 // Bumped whenever the tables' content changes for the same medium (part of the cache key).
-constexpr std::uint32_t kTableFormatVersion = 3;
-constexpr double kPooledAzimuthFrom = 8.0;  // reduced mean free paths
+constexpr std::uint32_t kTableFormatVersion = 4;
 
 // Outer edge of radial bin k (k = 0 .. kBssrdfTableR - 1); the inner edge of bin k is edge(k - 1), 0 for bin 0.
 double radial_edge(int k, double r_max) {
@@ -212,16 +211,12 @@ std::vector<float> build_bssrdf_table(float albedo, float g, float eta, std::uin
         table[static_cast<std::size_t>(kBssrdfTableHeader + (t * kBssrdfTablePhi + p) * kBssrdfTableR + k)] =
             static_cast<float>(w / area);
       }
-    // Azimuth pooling. Normal incidence is symmetric about the normal: every azimuth row is the same profile.
-    // Beyond kPooledAzimuthFrom reduced mean free paths the diffuse field depends on the incident direction only
-    // through a source displaced by about a mean free path (a few percent of azimuthal variation, by diffusion
-    // theory), while few photons reach each bin: pooling the 12 azimuth bins divides the bins' variance by 12
-    // where the profile is weakest. Without it, the far bins' noise made a 1 m
-    // marble bunny grainy (noise-corrected RMSE 0.060 against volpath, against 0.039 for the standard dipole).
-    {
+    // Normal incidence is symmetric about the normal: every azimuth row is the same profile (pooling the rows
+    // divides their variance by kBssrdfTablePhi; a single noisy row read at the one azimuth a flat plane gives made
+    // the flat total 1.5% short).
+    if (t == 0) {
       float* node = &table[static_cast<std::size_t>(kBssrdfTableHeader + t * kBssrdfTablePhi * kBssrdfTableR)];
       for (int k = 0; k < kBssrdfTableR; ++k) {
-        if (t > 0 && (k == 0 || radial_edge(k - 1, r_max) < kPooledAzimuthFrom)) continue;
         double mean = 0.0;
         for (int p = 0; p < kBssrdfTablePhi; ++p) mean += node[p * kBssrdfTableR + k];
         for (int p = 0; p < kBssrdfTablePhi; ++p) node[p * kBssrdfTableR + k] = static_cast<float>(mean / kBssrdfTablePhi);
