@@ -255,3 +255,32 @@ TEST(ReferenceMerge, RefusesAMissingFileOrCompanion) {
 }
 
 }  // namespace
+
+namespace {
+
+// Metadata written before the scene digest and the time were recorded: the scene is compared by its path, the time
+// taken as 0.
+TEST(ReferenceMerge, OlderMetadataComparesTheScenePath) {
+  const std::string scene = write_scene("old.json"), copy = path("old_copy.json");
+  fs::copy_file(scene, copy, fs::copy_options::overwrite_existing);
+  const std::string a = path("old_a.exr"), b = path("old_b.exr"), c = path("old_c.exr"), out = path("old_out.exr");
+  render(scene, a, "--spp 2 --seed 1");
+  render(scene, b, "--spp 2 --seed 2");
+  render(copy, c, "--spp 2 --seed 3");
+  for (const std::string& exr : {a, b, c}) {
+    json meta = metadata(exr);
+    meta.erase("scene_hash");
+    meta.erase("time_seconds");
+    std::ofstream(lucent::reference::reference_files(exr).metadata) << meta.dump(2);
+  }
+  fs::remove(out);
+  const CliResult ok = run_cli("reference merge " + a + " " + b + " -q -o " + out);
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_EQ(metadata(out)["samples_per_pixel"], 4);
+  const CliResult other = run_cli("reference merge " + a + " " + c + " -o " + out);
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_EQ(other.output, "lucent: " + c + ": cannot merge: another scene (scene \"" + copy + "\" differs from \"" +
+                              scene + "\" in " + a + ")\n");
+}
+
+}  // namespace
