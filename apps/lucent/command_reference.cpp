@@ -1,5 +1,7 @@
 // command_reference.cpp: `lucent reference SCENE`: CPU ground truth (volumetric path tracing, or Monte Carlo
-// integration of the BSSRDF model), with a progress bar, the time left, a standard-error image, and resuming.
+// integration of the BSSRDF model), with a progress bar, the time left, a standard-error image, and resuming;
+// `lucent reference merge A.exr B.exr ... -o ref.exr`: batches rendered with distinct seeds, combined exactly.
+#include <algorithm>
 #include <limits>
 
 #include <fmt/format.h>
@@ -12,6 +14,7 @@
 #include "lucent/scene.h"
 #include "progress_bar.h"
 #include "reference/reference_files.h"
+#include "reference/reference_merge.h"
 
 namespace lucent::cli {
 namespace {
@@ -61,6 +64,7 @@ void run(ReferenceOptions o) {
                  {files.standard_error, "--output (standard error)", {".exr"}},
                  {files.metadata, "--output (metadata)", {".json"}}},
                 scene_input_files(scene));
+  const std::string scene_hash = reference::scene_content_hash(scene);
   std::optional<reference::StoredReference> previous;
   if (o.resume) {
     previous = reference::load_reference(files);
@@ -73,20 +77,57 @@ void run(ReferenceOptions o) {
   progress.finish();
   if (previous) image.seconds += previous->image.seconds;
   double paths = static_cast<double>(scene.render.width) * scene.render.height * image.samples_per_pixel;
-  reference::save_reference(files, image,
-                            {{"scene", o.scene_path},
+  nlohmann::json metadata = {{"scene", o.scene_path},
+                             {"scene_hash", scene_hash},
                              {"integrator", o.integrator},
                              {"seed", o.settings.seed},
                              {"jitter", o.settings.jitter},
                              {"max_scatter", o.settings.max_scatter},
+                             {"time_seconds", o.settings.time_seconds},
                              {"width", scene.render.width},
                              {"height", scene.render.height},
                              {"camera_paths_per_second", paths / image.seconds},
-                             {"overrides", o.sets}});
+                             {"overrides", o.sets}};
+  // A merged reference resumed: its samples are those of its seeds and now this one's too (what a later merge
+  // checks), and it keeps the list of its inputs.
+  if (previous && previous->metadata.contains("seeds")) {
+    std::vector<std::uint64_t> seeds = reference::reference_seeds(previous->metadata, files.metadata);
+    if (std::find(seeds.begin(), seeds.end(), o.settings.seed) == seeds.end()) seeds.push_back(o.settings.seed);
+    metadata["seeds"] = seeds;
+    if (previous->metadata.contains("inputs")) metadata["inputs"] = previous->metadata["inputs"];
+  }
+  reference::save_reference(files, image, std::move(metadata));
   if (!o.quiet)
     fmt::print("{}: {} {}x{}, {} spp in {:.1f} s ({:.3g} camera paths/s) -> {} (+ {}, {})\n", o.scene_path,
                o.integrator, scene.render.width, scene.render.height, image.samples_per_pixel, image.seconds,
                paths / image.seconds, files.mean, files.standard_error, files.metadata);
+}
+
+struct MergeOptions {
+  std::vector<std::string> inputs;
+  std::string output;
+  bool quiet = false;
+};
+
+void merge(const MergeOptions& o) {
+  if (o.inputs.size() < 2) throw Error("reference merge: give two or more references to merge");
+  if (o.output.empty()) throw Error("--output: empty path; give the merged reference's EXR, e.g. out/ref.exr");
+  // No output may be an input or one of its companions: the inputs stay as they are.
+  std::vector<std::string> inputs;
+  for (const std::string& input : o.inputs) {
+    const reference::ReferenceFiles f = reference::reference_files(input);
+    inputs.insert(inputs.end(), {f.mean, f.standard_error, f.metadata});
+  }
+  const reference::ReferenceFiles files = reference::reference_files(o.output);
+  check_outputs({{files.mean, "--output", {".exr"}},
+                 {files.standard_error, "--output (standard error)", {".exr"}},
+                 {files.metadata, "--output (metadata)", {".json"}}},
+                inputs);
+  reference::StoredReference merged = reference::merge_references(o.inputs);
+  reference::save_reference(files, merged.image, merged.metadata);
+  if (!o.quiet)
+    fmt::print("{} references, {} spp, {:.1f} s of rendering -> {} (+ {}, {})\n", o.inputs.size(),
+               merged.image.samples_per_pixel, merged.image.seconds, files.mean, files.standard_error, files.metadata);
 }
 
 }  // namespace
@@ -94,7 +135,21 @@ void run(ReferenceOptions o) {
 void add_reference_command(CLI::App& app) {
   auto o = std::make_shared<ReferenceOptions>();
   CLI::App* cmd = app.add_subcommand("reference", "render CPU ground truth: volumetric path tracing or the BSSRDF model");
-  cmd->add_option("scene", o->scene_path, "scene file (JSON)")->required();
+  cmd->require_subcommand(0, 1);
+  auto m = std::make_shared<MergeOptions>();
+  CLI::App* merge_cmd = cmd->add_subcommand(
+      "merge",
+      "combine references rendered with distinct seeds (the same scene and settings, e.g. on several machines) into "
+      "the reference of all their samples");
+  merge_cmd->add_option("inputs", m->inputs, "the batches' mean EXRs (each with its .stderr.exr and .meta.json)")
+      ->required();
+  merge_cmd->add_option("-o,--output", m->output,
+                        "merged mean EXR; also writes <stem>.stderr.exr and <stem>.meta.json (never an input)")
+      ->required();
+  merge_cmd->add_flag("-q,--quiet", m->quiet, "print nothing but errors");
+  merge_cmd->callback([m] { merge(*m); });
+  // The scene is required unless `merge` is given (checked in the callback: a required option would refuse it).
+  cmd->add_option("scene", o->scene_path, "scene file (JSON); or `merge`, see lucent reference merge --help");
   cmd->add_option("--integrator", o->integrator, "volpath (the physics) | bssrdf (the model)")->capture_default_str();
   cmd->add_option("--spp", o->settings.samples_per_pixel, "samples per pixel to add")
       ->check(whole_number_in(1, 1e9))
@@ -104,7 +159,7 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--threads", o->settings.threads, "threads (0 = all cores)")
       ->check(whole_number_in(0, 4096))
       ->capture_default_str();
-  cmd->add_option("--seed", o->settings.seed, "random seed")->check(whole_number_in(0, 1.8e19))->capture_default_str();
+  cmd->add_option("--seed", o->settings.seed, "random seed (batches to be merged need distinct seeds)")->check(whole_number_in(0, 1.8e19))->capture_default_str();
   cmd->add_flag("--jitter", o->settings.jitter, "jitter rays inside pixels (default: pixel centres, as rasterized)");
   cmd->add_option("--max-scatter", o->settings.max_scatter,
                   "volpath: end paths after this many scattering events (1: single scattering; 0: no limit)")
@@ -113,7 +168,11 @@ void add_reference_command(CLI::App& app) {
   cmd->add_flag("--resume", o->resume, "add samples to the existing output (same scene and seed)");
   cmd->add_option("--set", o->sets, "override a scene value, e.g. --set render.width=160");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, merge_cmd] {
+    if (merge_cmd->parsed()) return;
+    if (o->scene_path.empty()) throw CLI::RequiredError("scene");
+    run(*o);
+  });
 }
 
 }  // namespace lucent::cli
