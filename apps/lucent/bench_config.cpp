@@ -21,6 +21,8 @@ constexpr double kMaxSpp = 1 << 30;
 
 constexpr ParamDecl kBenchParams[] = {
     {"description", ParamType::String, "\"\"", "", 0, 0, "", "what the matrix measures, free text"},
+    {"record_refusals", ParamType::Bool, "false", "", 0, 1, "",
+     "a variant whose method refuses its scene is recorded with the method's message instead of stopping the bench"},
 };
 constexpr ParamDecl kReferenceParams[] = {
     {"spp", ParamType::Int, "256", "samples/pixel", 1, kMaxSpp, "", "samples per pixel of the first reference"},
@@ -74,16 +76,9 @@ void check_overrides(const json& object, const JsonLocation& where) {
   }
 }
 
-}  // namespace
-
-std::string run_name(const json& run) {
-  if (run.contains("name")) return run["name"].get<std::string>();
-  return std::filesystem::path(run.at("scene").get<std::string>()).stem().string();
-}
-
 // Run names and variant ids name the bench's image files: letters, digits, '_', '-', '.', not starting with '.', so
 // that no name writes outside the output folder or over a hidden file.
-static void require_file_name_part(const std::string& name, const JsonLocation& where, const char* what) {
+void require_file_name_part(const std::string& name, const JsonLocation& where, const char* what) {
   const bool safe = !name.empty() && name.size() <= 100 && name[0] != '.' &&
                     std::all_of(name.begin(), name.end(), [](unsigned char c) {
                       return std::isalnum(c) || c == '_' || c == '-' || c == '.';
@@ -93,9 +88,40 @@ static void require_file_name_part(const std::string& name, const JsonLocation& 
                             what, text_excerpt(name)));
 }
 
+// A list of variants (a run's, or the configuration's shared by the runs without their own): keys, overrides and
+// ids unique within the list, since ids name image files.
+void check_variants(const json& variants, const JsonLocation& at) {
+  require_array(variants, at, "variants");
+  std::map<std::string, std::size_t> ids;
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const json& variant = variants[v];
+    const JsonLocation vat = at.child(v);
+    read_params(variant, {"variant", kVariantParams}, vat, {"set"});
+    check_overrides(variant, vat);
+    const std::string id = variant.value("id", variant.value("name", std::string("default")));
+    require_file_name_part(id, vat, "variant id");
+    if (auto [other, inserted] = ids.emplace(id, v); !inserted)
+      fail(vat, fmt::format("variant id '{}' is also the id of variant {} (their images would overwrite each other)",
+                            text_excerpt(id), other->second));
+  }
+}
+
+}  // namespace
+
+json run_variants(const json& config, const json& run) {
+  if (run.contains("variants")) return run["variants"];
+  if (config.contains("variants")) return config["variants"];
+  return json::array({json::object()});
+}
+
+std::string run_name(const json& run) {
+  if (run.contains("name")) return run["name"].get<std::string>();
+  return std::filesystem::path(run.at("scene").get<std::string>()).stem().string();
+}
+
 void validate_bench_config(const json& config, const std::string& path) {
   const JsonLocation root{path, ""};
-  read_params(config, {"bench", kBenchParams}, root, {"set", "references", "runs", "plots"});
+  read_params(config, {"bench", kBenchParams}, root, {"set", "references", "runs", "plots", "variants"});
   check_overrides(config, root);
   require_key(config, "runs", root, "an array of runs, each {\"scene\": ..., \"variants\": [...]}");
   if (!config["runs"].is_array()) throw Error(fmt::format("{}: \"runs\" must be an array of runs", path));
@@ -124,21 +150,9 @@ void validate_bench_config(const json& config, const std::string& path) {
           fail(rat.child("name"), fmt::format("also the name of region {}", other->second));
       }
     }
-    if (!run.contains("variants")) continue;
-    require_array(run["variants"], at.child("variants"), "variants");
-    std::map<std::string, std::size_t> ids;
-    for (std::size_t v = 0; v < run["variants"].size(); ++v) {
-      const json& variant = run["variants"][v];
-      const JsonLocation vat = at.child("variants").child(v);
-      read_params(variant, {"variant", kVariantParams}, vat, {"set"});
-      check_overrides(variant, vat);
-      const std::string id = variant.value("id", variant.value("name", std::string("default")));
-      require_file_name_part(id, vat, "variant id");
-      if (auto [other, inserted] = ids.emplace(id, v); !inserted)
-        fail(vat, fmt::format("variant id '{}' is also the id of variant {} (their images would overwrite each other)",
-                              text_excerpt(id), other->second));
-    }
+    if (run.contains("variants")) check_variants(run["variants"], at.child("variants"));
   }
+  if (config.contains("variants")) check_variants(config["variants"], root.child("variants"));
 
   if (config.contains("references")) {
     const JsonLocation at = root.child("references");

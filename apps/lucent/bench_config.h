@@ -17,6 +17,10 @@ namespace lucent::cli {
 // the JSON path.
 void validate_bench_config(const nlohmann::json& config, const std::string& path);
 
+// The variants of a run: its own "variants", else the configuration's (shared by every run without its own), else
+// one variant with no overrides.
+nlohmann::json run_variants(const nlohmann::json& config, const nlohmann::json& run);
+
 // The name of a run: its "name", or its scene file's stem.
 std::string run_name(const nlohmann::json& run);
 

@@ -42,11 +42,14 @@ std::vector<std::string> strings(const json& j, const char* key) {
   return out;
 }
 
-// A variant's overrides: the configuration's, then its run's, then its own ("set" lists of "key=value").
-std::vector<std::string> variant_overrides(const json& config, const json& run, const json& variant) {
+// A variant's overrides: the configuration's, then its run's, then its own ("set" lists of "key=value"), then those
+// of the command line (`lucent bench --set`), which win.
+std::vector<std::string> variant_overrides(const json& config, const json& run, const json& variant,
+                                           const std::vector<std::string>& command_line) {
   std::vector<std::string> sets = strings(config, "set");
   for (const auto& s : strings(run, "set")) sets.push_back(s);
   for (const auto& s : strings(variant, "set")) sets.push_back(s);
+  for (const auto& s : command_line) sets.push_back(s);
   return sets;
 }
 
@@ -85,6 +88,7 @@ struct Rendered {
 
 struct Bench {
   json config;
+  std::vector<std::string> command_line_sets;  // --set
   fs::path out;
   std::unique_ptr<GLContext> context;
 
@@ -117,7 +121,7 @@ struct Bench {
 
   Rendered render_variant(const json& run, const json& variant, const std::string& run_name) {
     Rendered r;
-    r.sets = variant_overrides(config, run, variant);
+    r.sets = variant_overrides(config, run, variant, command_line_sets);
     r.scene_path = run.at("scene");
     r.scene = load_scene(r.scene_path, r.sets);
     const Scene& scene = r.scene;
@@ -152,7 +156,8 @@ struct Bench {
     json& result = r.result;
     const stats::FrameSummary summary = stats::summarize(measured);
     auto spread_json = [](const stats::Spread& s) { return json{{"median", s.median}, {"min", s.min}, {"max", s.max}}; };
-    result = {{"run", run_name}, {"variant", name}, {"frames", frames}, {"image", "images/" + r.stem + ".png"},
+    result = {{"run", run_name}, {"variant", name}, {"scene", r.scene_path}, {"frames", frames},
+              {"image", "images/" + r.stem + ".png"},
               {"wall_seconds", r.wall_seconds}, {"gpu_memory_mb", static_cast<double>(last.gpu_memory_bytes) / 1048576.0},
               {"method", scene.method},
               {"occupancy", last.stat("translucent_pixels") / (static_cast<double>(scene.render.width) * scene.render.height)},
@@ -166,7 +171,13 @@ struct Bench {
     for (const std::string& s : r.sets) {  // method.X as X, other keys by their path (scale_mm, render.width, ...)
       std::string key = s.substr(0, s.find('='));
       if (key.rfind("method.", 0) == 0) key = key.substr(7);
-      result["params"][key] = json::parse(s.substr(s.find('=') + 1), nullptr, false);
+      json value = json::parse(s.substr(s.find('=') + 1), nullptr, false);
+      if (key == "method" && value.is_object()) {  // method={"name": ..., "N": 8}: a whole method block
+        for (const auto& [k, v] : value.items())
+          if (k != "name") result["params"][k] = v;
+        continue;
+      }
+      result["params"][key] = std::move(value);
     }
     if (variant.value("equal_time", false)) result["equal_time_request"] = true;
     for (const reference::ImageRegion& region : run_regions(run)) {
@@ -234,6 +245,7 @@ struct Bench {
     write_png((out / "images" / (r.stem + "_vs_" + integrator + ".png")).string(),
               heat_map(r.image, ref.mean, std::max(1e-6, 4.0 * e.rmse_rgb)));
     r.result["error"][integrator] = {{"rmse_rgb", e.rmse_rgb}, {"rmse", {e.rmse[0], e.rmse[1], e.rmse[2]}},
+                                     {"rmse_rgb_corrected", corrected_rmse(e)},
                                      {"relative_mse", e.relative_mse}, {"mean_error", e.mean_error},
                                      {"mean_error_se", e.mean_error_se},
                                      {"reference_noise_rms", e.reference_noise_rms},
@@ -254,8 +266,23 @@ struct Bench {
   // All variants of a run, then their comparison with each configured reference.
   void run(const json& run, const std::string& run_name, json& results) {
     std::vector<Rendered> rendered;
-    for (const json& v : run.value("variants", json::array({json::object()})))
-      rendered.push_back(render_variant(run, v, run_name));
+    for (const json& v : run_variants(config, run)) {
+      if (config.value("record_refusals", false)) {
+        // A method that cannot render this scene (no UVs, a deforming object, too many form factors, ...) refuses
+        // with one line: recorded as the variant's result, so a matrix of every method over every scene runs on.
+        try {
+          rendered.push_back(render_variant(run, v, run_name));
+        } catch (const Error& e) {
+          const std::string name = v.value("name", "default");
+          fmt::print(stderr, "  {} / {}: refused: {}\n", run_name, name, e.what());
+          const Scene scene = load_scene(run.at("scene").get<std::string>(), variant_overrides(config, run, v, command_line_sets));
+          results.push_back({{"run", run_name}, {"variant", name}, {"scene", run.at("scene")}, {"method", scene.method},
+                             {"refused", e.what()}});
+        }
+      } else {
+        rendered.push_back(render_variant(run, v, run_name));
+      }
+    }
     const json references = config.value("references", json::object());
     for (const auto& [integrator, spec] : references.items()) {
       if (spec.contains("only_runs") &&
@@ -299,6 +326,12 @@ std::string markdown(const json& results) {
     return fmt::format("{:+.4f} +- {:.4f}", e["mean_error"].get<double>(), e["mean_error_se"].get<double>());
   };
   for (const json& r : results) {
+    if (r.contains("refused")) {
+      md += fmt::format("| {} | {} | {} | refused: {} | | | | | | | | | |\n", r["run"].get<std::string>(),
+                        r["variant"].get<std::string>(), r.value("method", std::string("?")),
+                        r["refused"].get<std::string>());
+      continue;
+    }
     md += fmt::format("| {} | {} | {} | {} | {:.2f} [{:.2f}, {:.2f}] | {} | {} | {:.1f} | {:.3f} | {} | {} | {} | {} |\n",
                       r["run"].get<std::string>(), r["variant"].get<std::string>(), r.value("method", std::string("?")),
                       r["frames"].get<int>(), r["total_ms"]["median"].get<double>(), r["total_ms"]["min"].get<double>(),
@@ -363,6 +396,7 @@ std::string tsv_text(const json& results) {
   tsv << "\n";
   auto number = [](const json& j) { return j.is_boolean() ? std::string(j.get<bool>() ? "1" : "0") : j.dump(); };
   for (const json& r : results) {
+    if (r.contains("refused")) continue;  // listed in results.md and results.json
     auto err = [&](const char* k) {
       return r.contains("error") && r["error"].contains(k) ? std::to_string(r["error"][k]["rmse_rgb"].get<double>()) : "nan";
     };
@@ -397,12 +431,14 @@ std::vector<std::size_t> selected_runs(const json& runs, const std::vector<std::
   return selected;
 }
 
-void run(const std::string& config_path, const std::string& output, const std::vector<std::string>& only) {
+void run(const std::string& config_path, const std::string& output, const std::vector<std::string>& only,
+         const std::vector<std::string>& sets) {
   std::ifstream file(config_path);
   if (!file) throw Error(fmt::format("{}: cannot open bench configuration", config_path));
   Bench bench;
   bench.config = parse_json(file, config_path);
   validate_bench_config(bench.config, config_path);
+  bench.command_line_sets = sets;
   const json& runs = bench.config["runs"];
   const std::vector<std::size_t> selected = selected_runs(runs, only, config_path);
   // Every variant's scene, with its overrides, is loaded once before anything renders: a bad override in the last
@@ -410,10 +446,10 @@ void run(const std::string& config_path, const std::string& output, const std::v
   std::vector<std::string> inputs = {config_path};
   for (std::size_t i : selected) {
     const json& r = runs[i];
-    const json variants = r.value("variants", json::array({json::object()}));
+    const json variants = run_variants(bench.config, r);
     for (std::size_t v = 0; v < variants.size(); ++v) {
       try {
-        const Scene scene = load_scene(r.at("scene").get<std::string>(), variant_overrides(bench.config, r, variants[v]));
+        const Scene scene = load_scene(r.at("scene").get<std::string>(), variant_overrides(bench.config, r, variants[v], sets));
         for (std::string& input : scene_input_files(scene)) inputs.push_back(std::move(input));
       } catch (const Error& e) {
         throw Error(fmt::format("{}: /runs/{}{}: {}", config_path, i,
@@ -436,6 +472,7 @@ void run(const std::string& config_path, const std::string& output, const std::v
     json doc = {{"config", config_path}, {"device", Renderer::device_of_current_context()}, {"complete", complete},
                 {"results", results}};
     if (!only.empty()) doc["only_runs"] = only;  // --run: the other runs of the configuration were not run
+    if (!sets.empty()) doc["set"] = sets;        // --set: every variant's scene had these overrides last
     // One set, each written beside and renamed over: a bench stopped mid-write leaves the previous complete files.
     OutputSet tables;
     tables.add((bench.out / "results.json").string(), doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
@@ -473,7 +510,13 @@ void add_bench_command(CLI::App& app) {
                   "the full matrix, e.g. --run grapefruit")
       ->allow_extra_args(false)  // one name per --run, so `bench --run a CONFIG` keeps CONFIG as the configuration
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  cmd->callback([config, output, only] { run(*config, *output, *only); });
+  auto sets = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--set", *sets,
+                  "override a scene value in every variant, after the configuration's own overrides (repeatable), "
+                  "e.g. --set render.width=96; references are cached per override set")
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->callback([config, output, only, sets] { run(*config, *output, *only, *sets); });
 }
 
 }  // namespace lucent::cli

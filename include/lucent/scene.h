@@ -68,6 +68,7 @@ struct Deformation {
   DeformationType type = DeformationType::None;
   float amplitude = 0.3f;  // bend, wave: sideways displacement at the top [object units]; melt: height lost [0, 1)
   float period_s = 4.0f;   // one cycle [seconds]
+  float start_s = 0.0f;    // time in the cycle at render time 0 [seconds]
 };
 
 struct SceneObject {

@@ -109,6 +109,7 @@ SceneChange classify_change(const Scene& built, const Scene& now) {
     if (a.translucent() != b.translucent() || a.blob_resolution != b.blob_resolution ||
         a.world_from_object != b.world_from_object || a.deformation.type != b.deformation.type ||
         a.deformation.amplitude != b.deformation.amplitude || a.deformation.period_s != b.deformation.period_s ||
+        a.deformation.start_s != b.deformation.start_s ||
         !same_mesh(a.mesh, b.mesh))
       return SceneChange::Rebuild;
     if (a.albedo != b.albedo) materials = true;

@@ -60,7 +60,7 @@ TriangleMesh deformed_mesh(const TriangleMesh& mesh, const Deformation& d, doubl
   float y_min = 1e30f, y_max = -1e30f;
   for (const glm::vec3& p : mesh.positions) y_min = std::min(y_min, p.y), y_max = std::max(y_max, p.y);
   float height = std::max(y_max - y_min, 1e-6f);
-  double phase = kTwoPi * seconds / std::max(1e-3f, d.period_s);
+  double phase = kTwoPi * (seconds + d.start_s) / std::max(1e-3f, d.period_s);
   TriangleMesh out = mesh;
   for (glm::vec3& p : out.positions) {
     float h = (p.y - y_min) / height;  // 0 at the base, 1 at the top

@@ -62,6 +62,8 @@ constexpr ParamDecl kDeformParams[] = {
     {"type", ParamType::Enum, "\"bend\"", "", 0, 0, "bend|melt|wave", "per-frame vertex deformation"},
     {"amplitude", ParamType::Float, "0.3", "units", 0, 1e9, "", "bend, wave: sideways sway at the top; melt: fraction of height lost (< 1)"},
     {"period_s", ParamType::Float, "4", "s", 1e-3, 1e6, "", "one cycle"},
+    {"start_s", ParamType::Float, "0", "s", -1e6, 1e6, "",
+     "time in the cycle at render time 0 (a still image of a bent pose: a quarter period)"},
 };
 constexpr ParamDecl kObjectParams[] = {
     {"name", ParamType::String, "\"\"", "", 0, 0, "", "name used in messages"},
@@ -361,6 +363,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
                                                : DeformationType::Wave;
     object.deformation.amplitude = static_cast<float>(d.number("amplitude"));
     object.deformation.period_s = static_cast<float>(d.number("period_s"));
+    object.deformation.start_s = static_cast<float>(d.number("start_s"));
     if (object.deformation.type == DeformationType::Melt && object.deformation.amplitude >= 1.0f)
       fail(where.child("deform").child("amplitude"), fmt::format("{} must be below 1 for melt (the fraction of height lost)",
                                                                  object.deformation.amplitude));

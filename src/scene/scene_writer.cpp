@@ -89,7 +89,7 @@ json material_json(const Material& m) {
 
 json deformation_json(const Deformation& d) {
   const char* type = d.type == DeformationType::Bend ? "bend" : d.type == DeformationType::Melt ? "melt" : "wave";
-  return {{"type", type}, {"amplitude", d.amplitude}, {"period_s", d.period_s}};
+  return {{"type", type}, {"amplitude", d.amplitude}, {"period_s", d.period_s}, {"start_s", d.start_s}};
 }
 
 json object_json(const SceneObject& object, std::size_t index, const std::vector<std::string>& mesh_files) {

@@ -56,7 +56,7 @@ TEST(BenchConfig, RunNamesAndVariantIdsAreSafeFileNames) {
 
 TEST(BenchConfig, UnknownKeysAreNamedWithTheKnownOnes) {
   EXPECT_EQ(problem(R"({"run": []})"),
-            "b.json: /run: unknown key; known keys: description, set, references, runs, plots");
+            "b.json: /run: unknown key; known keys: description, record_refusals, set, references, runs, plots, variants");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "varients": []})")),
             "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants, regions");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frame": 4}]})")),
@@ -116,6 +116,27 @@ TEST(BenchConfig, MissingScenesAndDuplicateNames) {
             "b.json: /plots/0/output: missing; the PNG to write, e.g. \"fig13.png\"");
   EXPECT_EQ(problem(R"({"runs": [)" + std::string(kRun) + R"(], "references": {"bssrdf": {"only_runs": ["marble"]}}})"),
             "");
+}
+
+// The configuration's "variants" serve every run without its own: checked like a run's.
+TEST(BenchConfig, SharedVariantsAreCheckedLikeARunsOwn) {
+  EXPECT_EQ(problem(R"({"runs": [], "variants": [{"name": "one"}, {"id": "one"}]})"),
+            "b.json: /variants/1: variant id 'one' is also the id of variant 0 (their images would overwrite each "
+            "other)");
+  EXPECT_EQ(problem(R"({"runs": [], "variants": [{"frames": 0}]})"),
+            "b.json: /variants/0/frames: 0 is out of range; allowed range [1, 1e+06] frames");
+  EXPECT_EQ(problem(R"({"runs": [], "variants": [{"set": ["K"]}]})"),
+            "b.json: /variants/0/set/0: expected \"key=value\", got \"K\"");
+  EXPECT_EQ(problem(R"({"runs": [], "variants": {"frames": 4}})"),
+            "b.json: /variants: expected an array of variants, got {\"frames\":4}");
+  EXPECT_EQ(problem(R"({"runs": [], "record_refusals": "yes"})"),
+            "b.json: /record_refusals: expected true or false, got \"yes\"");
+  const json config = json::parse(R"({"variants": [{"name": "shared"}], "runs": [{"scene": "a.json"},
+      {"scene": "b.json", "variants": [{"name": "own"}]}, {"scene": "c.json"}]})");
+  EXPECT_EQ(lucent::cli::run_variants(config, config["runs"][0]), config["variants"]);
+  EXPECT_EQ(lucent::cli::run_variants(config, config["runs"][1]), config["runs"][1]["variants"]);
+  EXPECT_EQ(lucent::cli::run_variants(json::parse(R"({"runs": []})"), config["runs"][2]),
+            json::parse("[{}]"));
 }
 
 // A run's "regions" (measured on their own, e.g. the candle's table) name image files and table rows.

@@ -37,6 +37,21 @@ TEST(Deformation, BendSwaysTheTopAndKeepsTheBase) {
   }
 }
 
+// start_s shifts the cycle: a still image (render time 0) of a pose part-way through it, the same pose as at that time.
+TEST(Deformation, StartTimeShiftsTheCycle) {
+  TriangleMesh mesh = column();
+  Deformation bend{DeformationType::Bend, 0.5f, 4.0f};
+  Deformation shifted = bend;
+  shifted.start_s = 1.0f;
+  TriangleMesh at_quarter = deformed_mesh(mesh, bend, 1.0), started = deformed_mesh(mesh, shifted, 0.0);
+  ASSERT_EQ(at_quarter.positions.size(), started.positions.size());
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    EXPECT_EQ(started.positions[i], at_quarter.positions[i]);
+    float h = mesh.positions[i].y / 4.0f;
+    EXPECT_NEAR(started.positions[i].x - mesh.positions[i].x, 0.5f * h * h, 1e-5f) << "bent at render time 0";
+  }
+}
+
 TEST(Deformation, MeltLowersAndSpreadsThenRecovers) {
   TriangleMesh mesh = column();
   Deformation melt{DeformationType::Melt, 0.4f, 2.0f};

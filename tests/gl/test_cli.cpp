@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -133,6 +134,54 @@ TEST(Cli, BenchRunsOneRunAndRefinesItsReferenceToTheNoiseRatio) {
 
   expect_one_line_error(run("bench --run marbel " + config + " -o " + out),  // one name per --run
                         "lucent: " + config + ": --run marbel: no such run; runs: skin, marble");
+}
+
+// A matrix of every method over every scene (the leaderboard's shape): the configuration's "variants" serve every
+// run without its own; with "record_refusals" a method that refuses a scene (local-global on a deforming object) is
+// recorded with its one-line message and the bench goes on; `--set` overrides come last, after the variant's own.
+TEST(Cli, BenchSharesVariantsRecordsRefusalsAndTakesOverrides) {
+  namespace fs = std::filesystem;
+  const fs::path dir = lucent::test::output_path("bench_refusals");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string still = (dir / "still.json").string(), bending = (dir / "bending.json").string();
+  const std::string config = (dir / "bench.json").string();
+  std::ofstream(still) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0.5, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}]})";
+  std::ofstream(bending) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0.5, 0, -1]}], "objects": [{"name": "ball", "shape": "sphere", "material": "Skin1",
+    "deform": {"type": "bend", "start_s": 1}}]})";
+  nlohmann::json bench = {
+      {"record_refusals", true},
+      {"set", {"render.width=16", "render.height=12", "render.background=[0,0,0]"}},
+      {"variants",
+       {{{"name", "wrap"}, {"id", "wrap"}, {"set", {R"(method={"name": "diffuse-wrap", "wrap": 0.5})"}}},
+        {{"name", "lg"}, {"id", "lg"}, {"set", {R"(method={"name": "local-global", "atlas_size": 64})"}}}}},
+      {"runs", {{{"name", "still"}, {"scene", still}}, {{"name", "bending"}, {"scene", bending}}}}};
+  std::ofstream(config) << bench.dump(2);
+  const std::string out = (dir / "out").string();
+  Result r = run("bench " + config + " -o " + out + " --set method.specular=false");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto doc = nlohmann::json::parse(std::ifstream(fs::path(out) / "results.json"));
+  EXPECT_EQ(doc["set"], nlohmann::json::array({"method.specular=false"}));
+  ASSERT_EQ(doc["results"].size(), 4u);
+  std::map<std::string, nlohmann::json> by;
+  for (const auto& result : doc["results"])
+    by[result["run"].get<std::string>() + "/" + result["variant"].get<std::string>()] = result;
+  ASSERT_EQ(by.size(), 4u);
+  for (const char* key : {"still/wrap", "still/lg", "bending/wrap"}) {
+    EXPECT_FALSE(by[key].contains("refused")) << key << ": " << by[key].dump();
+    EXPECT_EQ(by[key]["params"]["specular"], false) << key << ": --set applies to every variant";
+  }
+  EXPECT_EQ(by["still/wrap"]["params"]["wrap"], 0.5);
+  EXPECT_EQ(by["bending/lg"]["method"], "local-global");
+  EXPECT_EQ(by["bending/lg"]["refused"],
+            bending + ": object 'ball': local-global precomputes transport over a fixed mesh; deforming objects are "
+                      "not supported (rigid objects only)");
+  std::ostringstream md_text;
+  md_text << std::ifstream(fs::path(out) / "results.md").rdbuf();
+  const std::string md = md_text.str();
+  EXPECT_NE(md.find("| bending | lg | local-global | refused: "), std::string::npos) << md;
 }
 
 TEST(Cli, MalformedJson) {
