@@ -15,6 +15,7 @@
 #include "lucent/error.h"
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
+#include "materials/artist_parameters.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
 
@@ -88,6 +89,8 @@ constexpr ParamDecl kMaterialParams[] = {
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard|photon-beam|better-dipole|tabulated", "diffusion model S_d"},
+    {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the model's flat total diffuse reflectance (with mfp_mm, instead of coefficients)"},
+    {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
 };
 constexpr ParamDecl kFieldParams[] = {
     {"type", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered|volume",
@@ -199,7 +202,8 @@ void read_environment(const json& j, const JsonLocation& where, const std::strin
 
 json normalized_material(const json& j) {
   json copy = j;
-  if (copy.contains("g") && copy["g"].is_number()) copy["g"] = json::array({copy["g"], copy["g"], copy["g"]});
+  for (const char* key : {"g", "albedo", "mfp_mm"})
+    if (copy.contains(key) && copy[key].is_number()) copy[key] = json::array({copy[key], copy[key], copy[key]});
   return copy;
 }
 
@@ -225,10 +229,8 @@ MediumField read_field(const json& j, const JsonLocation& where, const std::stri
   return field;
 }
 
-Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
-  json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
-  ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
-  Material m;
+// Coefficients from a preset or given directly.
+Material material_from_coefficients(const ParamValues& v, const JsonLocation& where) {
   const std::string& preset_name = v.text("preset");
   bool explicit_coefficients = v.has("sigma_a") || v.has("sigma_s") || v.has("sigma_s_prime") || v.has("g");
   if (!preset_name.empty()) {
@@ -237,15 +239,40 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
     if (!preset)
       fail(where.child("preset"),
            fmt::format("unknown material '{}' (see: lucent materials)", text_excerpt(preset_name)));
-    m = material_from_preset(*preset);
-  } else {
-    if (!v.has("sigma_a")) fail(where, "needs preset, or sigma_a with sigma_s (and g) or sigma_s_prime");
-    if (v.has("sigma_s") == v.has("sigma_s_prime")) fail(where, "give exactly one of sigma_s and sigma_s_prime");
-    if (v.has("sigma_s_prime") && v.has("g")) fail(where.child("g"), "not allowed with sigma_s_prime (reduced, g = 0)");
-    m.sigma_a = v.vec3("sigma_a");
-    m.sigma_s = v.has("sigma_s") ? v.vec3("sigma_s") : v.vec3("sigma_s_prime");
-    m.g = v.has("g") ? v.vec3("g") : glm::vec3(0.0f);
+    return material_from_preset(*preset);
   }
+  if (!v.has("sigma_a"))
+    fail(where, "needs preset, or sigma_a with sigma_s (and g) or sigma_s_prime, or albedo with mfp_mm");
+  if (v.has("sigma_s") == v.has("sigma_s_prime")) fail(where, "give exactly one of sigma_s and sigma_s_prime");
+  if (v.has("sigma_s_prime") && v.has("g")) fail(where.child("g"), "not allowed with sigma_s_prime (reduced, g = 0)");
+  Material m;
+  m.sigma_a = v.vec3("sigma_a");
+  m.sigma_s = v.has("sigma_s") ? v.vec3("sigma_s") : v.vec3("sigma_s_prime");
+  m.g = v.has("g") ? v.vec3("g") : glm::vec3(0.0f);
+  return m;
+}
+
+// Coefficients inverted from the surface albedo and the mean free path (materials/artist_parameters.h).
+Material material_from_artist(const ParamValues& v, const JsonLocation& where) {
+  for (const char* key : {"preset", "sigma_a", "sigma_s", "sigma_s_prime"})
+    if (v.has(key) && !(key == std::string_view("preset") && v.text("preset").empty()))
+      fail(where.child(key), "not allowed with albedo and mfp_mm (give either albedo and mfp_mm or coefficients)");
+  if (!v.has("albedo")) fail(where.child("albedo"), "missing; mfp_mm needs the surface albedo too, e.g. [0.8, 0.6, 0.5]");
+  if (!v.has("mfp_mm")) fail(where.child("mfp_mm"), "missing; albedo needs the mean free path too, e.g. [1, 0.5, 0.25]");
+  ArtistParameters artist;
+  artist.albedo = v.vec3("albedo");
+  artist.mfp_mm = v.vec3("mfp_mm");
+  if (v.has("g")) artist.g = v.vec3("g");
+  if (v.has("eta")) artist.eta = static_cast<float>(v.number("eta"));
+  artist.model = *parse_bssrdf_model(v.text("model"));
+  return invert_artist_parameters(artist, where.str()).material;
+}
+
+Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
+  json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
+  ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
+  const bool artist = v.has("albedo") || v.has("mfp_mm");
+  Material m = artist ? material_from_artist(v, where) : material_from_coefficients(v, where);
   if (v.has("eta")) m.eta = static_cast<float>(v.number("eta"));
   m.model = *parse_bssrdf_model(v.text("model"));
   if (j.contains("field")) m.field = read_field(j.at("field"), where.child("field"), base_dir);
