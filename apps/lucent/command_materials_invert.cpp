@@ -33,11 +33,14 @@ glm::vec3 per_band(const std::vector<float>& v, const char* name) {
 
 nlohmann::json array(glm::dvec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
+// A float as the shortest decimal that reads back as the same float ("1.3", not 1.2999999523162842).
+double shortest(float x) { return std::stod(fmt::format("{}", x)); }
+
 // The scene-file material: coefficients in double from alpha and mfp (they round to the inverted floats).
 nlohmann::json material_json(const ArtistParameters& a, const ArtistInversion& inv) {
   const glm::dvec3 sigma_t = 1.0 / glm::dvec3(a.mfp_mm);
   return {{"sigma_a", array((1.0 - inv.alpha) * sigma_t)}, {"sigma_s", array(inv.alpha * sigma_t)},
-          {"g", array(glm::dvec3(a.g))},                   {"eta", a.eta},
+          {"g", {shortest(a.g.x), shortest(a.g.y), shortest(a.g.z)}}, {"eta", shortest(a.eta)},
           {"model", std::string(to_string(a.model))}};
 }
 

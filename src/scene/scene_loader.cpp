@@ -1,5 +1,6 @@
 // scene_loader.cpp: JSON scene files -> Scene, validated against the parameter declarations.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
 #include "materials/artist_parameters.h"
+#include "scene/gltf_material.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
 
@@ -364,6 +366,31 @@ glm::mat4 read_transform(const ParamValues& v) {
   return glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
 }
 
+// "material": "from_mesh": the material of the object's glTF mesh (scene/gltf_material.h); an opaque glTF material
+// makes the object opaque with the base colour as its albedo.
+constexpr const char* kFromMesh = "from_mesh";
+
+void read_mesh_material(SceneObject& object, const JsonLocation& where) {
+  const std::filesystem::path mesh = object.mesh_file;
+  std::string extension = mesh.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".gltf" && extension != ".glb")
+    fail(where.child("material"), "\"from_mesh\" needs a glTF mesh (.gltf or .glb)");
+  try {
+    const GltfMaterial gltf = read_gltf_material(object.mesh_file);
+    const json material = lucent_material_json(gltf, object.mesh_file);
+    if (material.is_null()) {
+      object.albedo = gltf.base_color;
+      return;
+    }
+    const JsonLocation at{object.mesh_file, fmt::format("/materials/{}", gltf.index)};
+    object.material = read_material(material, at, mesh.parent_path().string());
+    if (!gltf.name.empty() && !material.contains("preset")) object.material->name = gltf.name;
+  } catch (const Error& e) {
+    fail(where.child("material"), e.what());
+  }
+}
+
 SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir) {
   ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile", "deform"});
   SceneObject object;
@@ -395,8 +422,9 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   object.albedo = v.vec3("albedo");
   if (j.contains("material")) {
     if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
-    object.material = read_material(j.at("material"), where.child("material"), base_dir);
-    if (object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
+    if (j.at("material") == kFromMesh) read_mesh_material(object, where);
+    else object.material = read_material(j.at("material"), where.child("material"), base_dir);
+    if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
   }
   return object;
 }
