@@ -10,7 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <set>
-#include <sstream>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -35,16 +35,21 @@ std::uint32_t read_u32(const std::string& bytes, std::size_t offset) {
 }
 
 // The JSON chunk of a binary glTF: 12-byte header (magic, version 2, length), then chunks (length, type, data).
-std::string glb_json_chunk(const std::string& bytes, const std::string& path) {
-  if (bytes.size() < 20 || read_u32(bytes, 0) != kGlbMagic)
-    throw Error(path + ": not a binary glTF (no 'glTF' header)");
-  if (read_u32(bytes, 4) != 2)
-    throw Error(fmt::format("{}: binary glTF version {}; lucent reads version 2", path, read_u32(bytes, 4)));
-  const std::uint64_t chunk_length = read_u32(bytes, 12);
-  if (read_u32(bytes, 16) != kGlbJsonChunk) throw Error(path + ": binary glTF: the first chunk is not JSON");
-  if (20 + chunk_length > bytes.size())
+// Reads the header and the chunk only, never the binary buffer behind it.
+std::string glb_json_chunk(std::ifstream& file, std::uintmax_t file_size, const std::string& path) {
+  std::string header(20, '\0');
+  file.read(header.data(), 20);
+  if (!file || read_u32(header, 0) != kGlbMagic) throw Error(path + ": not a binary glTF (no 'glTF' header)");
+  if (read_u32(header, 4) != 2)
+    throw Error(fmt::format("{}: binary glTF version {}; lucent reads version 2", path, read_u32(header, 4)));
+  const std::uint64_t chunk_length = read_u32(header, 12);
+  if (read_u32(header, 16) != kGlbJsonChunk) throw Error(path + ": binary glTF: the first chunk is not JSON");
+  if (20 + chunk_length > file_size)
     throw Error(fmt::format("{}: binary glTF: JSON chunk of {} bytes runs past the end of the file", path, chunk_length));
-  return bytes.substr(20, chunk_length);
+  std::string chunk(chunk_length, '\0');
+  file.read(chunk.data(), static_cast<std::streamsize>(chunk_length));
+  if (!file) throw Error(path + ": binary glTF: cannot read the JSON chunk");
+  return chunk;
 }
 
 // A number at `key` of `object` in [lo, hi], or `fallback` where absent.
@@ -174,12 +179,19 @@ json array(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 
 json read_gltf_json(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot open glTF file");
-  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  std::error_code ec;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
+  if (!file || ec) throw Error(path + ": cannot open glTF file");
+  std::string magic(4, '\0');
+  file.read(magic.data(), 4);
+  file.clear();
+  file.seekg(0);
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  const bool binary = extension == ".glb" || (bytes.size() >= 4 && read_u32(bytes, 0) == kGlbMagic);
-  const json doc = parse_json(binary ? glb_json_chunk(bytes, path) : bytes, {path, ""});
+  const bool binary = extension == ".glb" || read_u32(magic, 0) == kGlbMagic;
+  const std::string text = binary ? glb_json_chunk(file, file_size, path)
+                                  : std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const json doc = parse_json(text, {path, ""});
   require_object(doc, {path, ""});
   return doc;
 }

@@ -208,6 +208,9 @@ TEST(GltfMaterial, BadFilesGiveOneLine) {
   write_text(glb.path(), std::string("glTF\x01\0\0\0", 8) + std::string(20, '\0'));
   EXPECT_EQ(test::error_message([&] { read_gltf_json(glb.path()); }),
             glb.path() + ": binary glTF version 1; lucent reads version 2");
+  write_text(glb.path(), std::string("glTF\x02\0\0\0\0\0\0\0\xe8\x03\0\0JSON{}", 22));
+  EXPECT_EQ(test::error_message([&] { read_gltf_json(glb.path()); }),
+            glb.path() + ": binary glTF: JSON chunk of 1000 bytes runs past the end of the file");
   write_text(glb.path(), "{}");
   EXPECT_EQ(test::error_message([&] { read_gltf_json(glb.path()); }),
             glb.path() + ": not a binary glTF (no 'glTF' header)");
