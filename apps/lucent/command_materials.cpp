@@ -9,7 +9,9 @@ namespace lucent::cli {
 
 void add_materials_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("materials", "list the measured material presets (coefficients in mm^-1)");
-  cmd->callback([] {
+  add_materials_invert_command(*cmd);
+  cmd->callback([cmd] {
+    if (cmd->got_subcommand("invert")) return;
     fmt::print("{:<26} {:<28} {:<28} {:<22} {:<5} {}\n", "name", "sigma_a [mm^-1]", "sigma_s [mm^-1]", "g", "eta",
                "source");
     for (const MaterialPreset& p : material_presets()) {

@@ -9,6 +9,7 @@ namespace lucent::cli {
 void add_render_command(CLI::App& app);
 void add_bssrdf_command(CLI::App& app);
 void add_materials_command(CLI::App& app);
+void add_materials_invert_command(CLI::App& materials);  // `lucent materials invert`
 void add_slab_command(CLI::App& app);
 void add_reference_command(CLI::App& app);
 void add_compare_command(CLI::App& app);

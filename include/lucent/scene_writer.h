@@ -5,7 +5,8 @@
 //   lucent::Scene same = lucent::load_scene("out/my_view.json");
 //
 // A Scene keeps triangle meshes, not the shape parameters or the mesh file they were made from, so object
-// geometry is written as glTF files (exact float positions and normals) beside the scene; the object's
+// geometry is written as glTF files (exact float positions and normals) beside the scene, each with the object's
+// material as a glTF material (docs/materials.md; the scene file keeps the material too); the object's
 // transform is written as translate, rotate_deg and scale. Environment-map lights (Scene::lights appended by
 // the loader, specular off) are written as the `environment` they came from.
 #pragma once
@@ -34,7 +35,11 @@ void save_scene(const Scene& scene, const std::string& path);
 // and normals, bit for bit (assimp may merge identical vertices), and the texture coordinates as TEXCOORD_0
 // (stored as (u, 1 - v), glTF's origin being the image's top left: within an ulp of 1 after reading back). Text formats would not: assimp parses decimal
 // numbers to within an ulp, and its binary PLY reader asserts on triangle lists (assimp 5.2).
-void write_gltf(const std::string& path, const TriangleMesh& mesh);
+// `material`: a glTF material object (src/scene/gltf_material.h) that the mesh's primitive uses, or null for none.
+void write_gltf(const std::string& path, const TriangleMesh& mesh, const nlohmann::json& material = nullptr);
+// The glTF material of an object (docs/materials.md): a translucent material with KHR_materials_volume,
+// KHR_materials_ior and its exact coefficients in extras.lucent, or the opaque albedo as the base colour.
+nlohmann::json object_gltf_material(const SceneObject& object);
 
 // translate, rotate_deg (x, then y, then z, as the loader applies them) and scale of a transform the loader can
 // build; throws lucent::Error naming `what` otherwise.

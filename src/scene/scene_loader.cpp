@@ -1,5 +1,6 @@
 // scene_loader.cpp: JSON scene files -> Scene, validated against the parameter declarations.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,8 @@
 #include "lucent/error.h"
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
+#include "materials/artist_parameters.h"
+#include "scene/gltf_material.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
 
@@ -90,6 +93,8 @@ constexpr ParamDecl kMaterialParams[] = {
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard|photon-beam|better-dipole|tabulated", "diffusion model S_d"},
+    {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the model's flat total diffuse reflectance (with mfp_mm, instead of coefficients)"},
+    {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
 };
 constexpr ParamDecl kFieldParams[] = {
     {"type", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered|volume",
@@ -201,7 +206,8 @@ void read_environment(const json& j, const JsonLocation& where, const std::strin
 
 json normalized_material(const json& j) {
   json copy = j;
-  if (copy.contains("g") && copy["g"].is_number()) copy["g"] = json::array({copy["g"], copy["g"], copy["g"]});
+  for (const char* key : {"g", "albedo", "mfp_mm"})
+    if (copy.contains(key) && copy[key].is_number()) copy[key] = json::array({copy[key], copy[key], copy[key]});
   return copy;
 }
 
@@ -227,10 +233,8 @@ MediumField read_field(const json& j, const JsonLocation& where, const std::stri
   return field;
 }
 
-Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
-  json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
-  ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
-  Material m;
+// Coefficients from a preset or given directly.
+Material material_from_coefficients(const ParamValues& v, const JsonLocation& where) {
   const std::string& preset_name = v.text("preset");
   bool explicit_coefficients = v.has("sigma_a") || v.has("sigma_s") || v.has("sigma_s_prime") || v.has("g");
   if (!preset_name.empty()) {
@@ -239,15 +243,40 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
     if (!preset)
       fail(where.child("preset"),
            fmt::format("unknown material '{}' (see: lucent materials)", text_excerpt(preset_name)));
-    m = material_from_preset(*preset);
-  } else {
-    if (!v.has("sigma_a")) fail(where, "needs preset, or sigma_a with sigma_s (and g) or sigma_s_prime");
-    if (v.has("sigma_s") == v.has("sigma_s_prime")) fail(where, "give exactly one of sigma_s and sigma_s_prime");
-    if (v.has("sigma_s_prime") && v.has("g")) fail(where.child("g"), "not allowed with sigma_s_prime (reduced, g = 0)");
-    m.sigma_a = v.vec3("sigma_a");
-    m.sigma_s = v.has("sigma_s") ? v.vec3("sigma_s") : v.vec3("sigma_s_prime");
-    m.g = v.has("g") ? v.vec3("g") : glm::vec3(0.0f);
+    return material_from_preset(*preset);
   }
+  if (!v.has("sigma_a"))
+    fail(where, "needs preset, or sigma_a with sigma_s (and g) or sigma_s_prime, or albedo with mfp_mm");
+  if (v.has("sigma_s") == v.has("sigma_s_prime")) fail(where, "give exactly one of sigma_s and sigma_s_prime");
+  if (v.has("sigma_s_prime") && v.has("g")) fail(where.child("g"), "not allowed with sigma_s_prime (reduced, g = 0)");
+  Material m;
+  m.sigma_a = v.vec3("sigma_a");
+  m.sigma_s = v.has("sigma_s") ? v.vec3("sigma_s") : v.vec3("sigma_s_prime");
+  m.g = v.has("g") ? v.vec3("g") : glm::vec3(0.0f);
+  return m;
+}
+
+// Coefficients inverted from the surface albedo and the mean free path (materials/artist_parameters.h).
+Material material_from_artist(const ParamValues& v, const JsonLocation& where) {
+  for (const char* key : {"preset", "sigma_a", "sigma_s", "sigma_s_prime"})
+    if (v.has(key) && !(key == std::string_view("preset") && v.text("preset").empty()))
+      fail(where.child(key), "not allowed with albedo and mfp_mm (give either albedo and mfp_mm or coefficients)");
+  if (!v.has("albedo")) fail(where.child("albedo"), "missing; mfp_mm needs the surface albedo too, e.g. [0.8, 0.6, 0.5]");
+  if (!v.has("mfp_mm")) fail(where.child("mfp_mm"), "missing; albedo needs the mean free path too, e.g. [1, 0.5, 0.25]");
+  ArtistParameters artist;
+  artist.albedo = v.vec3("albedo");
+  artist.mfp_mm = v.vec3("mfp_mm");
+  if (v.has("g")) artist.g = v.vec3("g");
+  if (v.has("eta")) artist.eta = static_cast<float>(v.number("eta"));
+  artist.model = *parse_bssrdf_model(v.text("model"));
+  return invert_artist_parameters(artist, where.str()).material;
+}
+
+Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
+  json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
+  ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
+  const bool artist = v.has("albedo") || v.has("mfp_mm");
+  Material m = artist ? material_from_artist(v, where) : material_from_coefficients(v, where);
   if (v.has("eta")) m.eta = static_cast<float>(v.number("eta"));
   m.model = *parse_bssrdf_model(v.text("model"));
   if (j.contains("field")) m.field = read_field(j.at("field"), where.child("field"), base_dir);
@@ -339,6 +368,31 @@ glm::mat4 read_transform(const ParamValues& v) {
   return glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
 }
 
+// "material": "from_mesh": the material of the object's glTF mesh (scene/gltf_material.h); an opaque glTF material
+// makes the object opaque with the base colour as its albedo.
+constexpr const char* kFromMesh = "from_mesh";
+
+void read_mesh_material(SceneObject& object, const JsonLocation& where) {
+  const std::filesystem::path mesh = object.mesh_file;
+  std::string extension = mesh.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".gltf" && extension != ".glb")
+    fail(where.child("material"), "\"from_mesh\" needs a glTF mesh (.gltf or .glb)");
+  try {
+    const GltfMaterial gltf = read_gltf_material(object.mesh_file);
+    const json material = lucent_material_json(gltf, object.mesh_file);
+    if (material.is_null()) {
+      object.albedo = gltf.base_color;
+      return;
+    }
+    const JsonLocation at{object.mesh_file, fmt::format("/materials/{}", gltf.index)};
+    object.material = read_material(material, at, mesh.parent_path().string());
+    if (!gltf.name.empty() && !material.contains("preset")) object.material->name = gltf.name;
+  } catch (const Error& e) {
+    fail(where.child("material"), e.what());
+  }
+}
+
 SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir) {
   ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile", "deform"});
   SceneObject object;
@@ -371,8 +425,9 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   object.albedo = v.vec3("albedo");
   if (j.contains("material")) {
     if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
-    object.material = read_material(j.at("material"), where.child("material"), base_dir);
-    if (object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
+    if (j.at("material") == kFromMesh) read_mesh_material(object, where);
+    else object.material = read_material(j.at("material"), where.child("material"), base_dir);
+    if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
   }
   return object;
 }

@@ -14,6 +14,7 @@
 #include "lucent/error.h"
 #include "lucent/output_file.h"
 #include "methods/method_info.h"
+#include "scene/gltf_material.h"
 
 namespace lucent {
 namespace {
@@ -246,7 +247,7 @@ void append_bytes(std::vector<std::uint8_t>& buffer, const std::vector<T>& value
 
 }  // namespace
 
-void write_gltf(const std::string& path, const TriangleMesh& mesh) {
+void write_gltf(const std::string& path, const TriangleMesh& mesh, const json& material) {
   static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
   std::vector<std::uint8_t> buffer;
   append_bytes(buffer, mesh.positions);
@@ -286,7 +287,23 @@ void write_gltf(const std::string& path, const TriangleMesh& mesh) {
     gltf["accessors"].push_back(
         {{"bufferView", 3}, {"componentType", kFloat}, {"count", texcoords.size()}, {"type", "VEC2"}});
   }
+  if (!material.is_null()) {
+    gltf["materials"] = json::array({material});
+    gltf["meshes"][0]["primitives"][0]["material"] = 0;
+    json used = json::array();
+    for (const char* ext : {"KHR_materials_volume", "KHR_materials_ior"})
+      if (material.contains("extensions") && material["extensions"].contains(ext)) used.push_back(ext);
+    if (!used.empty()) gltf["extensionsUsed"] = used;
+  }
   write_file(path, gltf.dump() + "\n");
+}
+
+json object_gltf_material(const SceneObject& object) {
+  if (!object.material) return gltf_opaque_material_json(object.albedo);
+  glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
+  for (const glm::vec3& p : object.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 size = glm::max(hi - lo, glm::vec3(0.0f));
+  return gltf_material_json(*object.material, std::min({size.x, size.y, size.z}));
 }
 
 void save_scene(const Scene& scene, const std::string& path) {
@@ -304,7 +321,8 @@ void save_scene(const Scene& scene, const std::string& path) {
   }
   check_outputs(outputs, scene_input_files(scene));
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
-    if (!mesh_files[i].empty()) write_gltf((dir / mesh_files[i]).string(), scene.objects[i].mesh);
+    if (!mesh_files[i].empty())
+      write_gltf((dir / mesh_files[i]).string(), scene.objects[i].mesh, object_gltf_material(scene.objects[i]));
   json j = scene_to_json(scene, mesh_files);
   if (scene.environment) {
     fs::path base = fs::absolute(dir.empty() ? fs::path(".") : dir).lexically_normal();
