@@ -15,6 +15,9 @@ packages=(
   libgtest-dev libgmock-dev
   # CPU ground truth (reference renderers)
   libembree-dev libtbb-dev
+  # vdb medium fields (src/media/medium_vdb.cpp; FindOpenVDB also needs Boost.Iostreams' headers) and the example
+  # VDB's generator (scripts/make_plume_vdb.py, Debian's /usr/bin/python3 with pyopenvdb)
+  libopenvdb-dev libboost-iostreams-dev python3-openvdb
   # viewer
   libimgui-dev xvfb xauth
   # example assets: the Stanford bunny at /usr/share/glmark2/models/bunny.obj

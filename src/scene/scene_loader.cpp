@@ -14,6 +14,7 @@
 
 #include "lucent/environment.h"
 #include "lucent/error.h"
+#include "lucent/medium_vdb.h"
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
 #include "materials/artist_parameters.h"
@@ -97,11 +98,15 @@ constexpr ParamDecl kMaterialParams[] = {
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
 };
 constexpr ParamDecl kFieldParams[] = {
-    {"type", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered|volume",
+    {"type", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered|volume|vdb",
      "heterogeneous medium: density multiplier m(x); sigma_t m, sigma_s min(m, 1) (voxel-paths and volpath)"},
     {"scale_mm", ParamType::Float, "10", "mm", 1e-3, 1e6, "", "marble: vein period; layered: outer-layer thickness"},
     {"contrast", ParamType::Float, "4", "", 0, 1000, "", "marble, layered: m ranges over [1, 1 + contrast]"},
-    {"file", ParamType::String, "\"\"", "", 0, 0, "", "volume: JSON header of a raw grid of m (lucent/medium_volume.h)"},
+    {"file", ParamType::String, "\"\"", "", 0, 0, "", "volume: JSON header of a raw grid of m (lucent/medium_volume.h); vdb: an OpenVDB file (lucent/medium_vdb.h)"},
+    {"grid", ParamType::String, "\"density\"", "", 0, 0, "", "vdb: name of the float grid"},
+    {"density_scale", ParamType::Float, "1", "", 0, 1e6, "", "vdb: m = density_scale * grid value"},
+    {"transform", ParamType::Enum, "\"object-bounds\"", "", 0, 0, "object-bounds|vdb-world",
+     "vdb: the active voxels span the object's bounds, or the VDB's world coordinates are scene units"},
 };
 constexpr ParamDecl kRenderParams[] = {
     {"width", ParamType::Int, "640", "pixels", 1, 16384, "", "image width"},
@@ -222,13 +227,28 @@ MediumField read_field(const json& j, const JsonLocation& where, const std::stri
   field.scale_mm = static_cast<float>(v.number("scale_mm"));
   field.contrast = static_cast<float>(v.number("contrast"));
   field.file = v.text("file");
-  if (field.type == MediumFieldType::Volume) {
+  for (const char* key : {"grid", "density_scale", "transform"})
+    if (j.contains(key) && type != "vdb") fail(where.child(key), fmt::format("only for type vdb (type is {})", type));
+  if (type == "vdb") {
+    if (field.file.empty()) fail(where.child("file"), "a vdb field needs the file of its OpenVDB grid");
+    VdbField vdb;
+    std::filesystem::path path = field.file;
+    if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+    vdb.file = path.string();
+    vdb.grid = v.text("grid");
+    vdb.density_scale = static_cast<float>(v.number("density_scale"));
+    vdb.transform = v.text("transform") == "vdb-world" ? VdbTransform::VdbWorld : VdbTransform::ObjectBounds;
+    VdbVolume loaded = load_medium_vdb(vdb);
+    field.type = MediumFieldType::Volume;  // resampled into a dense volume: voxel-paths and volpath read it as one
+    field.volume = std::move(loaded.volume);
+    if (loaded.world) field.has_bounds = true, field.bounds_lower = loaded.lower, field.bounds_upper = loaded.upper;
+  } else if (field.type == MediumFieldType::Volume) {
     if (field.file.empty()) fail(where.child("file"), "a volume field needs the file of its JSON header");
     std::filesystem::path path = field.file;
     if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
     field.volume = load_medium_volume(path.string());
   } else if (!field.file.empty()) {
-    fail(where.child("file"), fmt::format("only for type volume (type is {})", type));
+    fail(where.child("file"), fmt::format("only for types volume and vdb (type is {})", type));
   }
   return field;
 }

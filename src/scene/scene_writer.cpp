@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "lucent/error.h"
+#include "lucent/medium_vdb.h"
 #include "lucent/output_file.h"
 #include "methods/method_info.h"
 #include "scene/gltf_material.h"
@@ -79,6 +80,12 @@ json material_json(const Material& m) {
     if (m.field.type == MediumFieldType::Volume) {
       // The file the volume was read from, absolute, so the saved scene finds it from any folder.
       field["file"] = std::filesystem::absolute(m.field.volume ? m.field.volume->source : m.field.file).string();
+      if (const VdbField* vdb = vdb_field_of(m.field.volume)) {  // read from an OpenVDB file (lucent/medium_vdb.h)
+        field["type"] = "vdb";
+        field["grid"] = vdb->grid;
+        field["density_scale"] = vdb->density_scale;
+        field["transform"] = std::string(to_string(vdb->transform));
+      }
     } else {
       field["scale_mm"] = m.field.scale_mm;
       field["contrast"] = m.field.contrast;

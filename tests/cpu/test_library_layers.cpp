@@ -64,6 +64,22 @@ TEST(LibraryLayers, CoreIncludesNoGlNoEmbreeNoReference) {
   expect_no_include(core, forbidden, "lucent_core");
 }
 
+// OpenVDB (and the oneTBB and Boost headers it brings) is compiled into one file, the library lucent_vdb; no other
+// source or header of src/, include/ and apps/ includes it.
+TEST(LibraryLayers, OpenVdbStaysInItsOwnFile) {
+  const std::vector<std::string> vdb = library_sources("lucent_vdb");
+  ASSERT_EQ(vdb, std::vector<std::string>{"src/media/medium_vdb.cpp"});
+  std::vector<std::string> others;
+  for (const char* folder : {"src", "include", "apps"})
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(LUCENT_SOURCE_DIR) / folder)) {
+      const std::string file = fs::relative(entry.path(), LUCENT_SOURCE_DIR).string();
+      if (entry.is_regular_file() && file != vdb[0] && (file.ends_with(".cpp") || file.ends_with(".h")))
+        others.push_back(file);
+    }
+  ASSERT_GE(others.size(), 100u);
+  expect_no_include(others, std::regex(R"(openvdb)"), "a file outside lucent_vdb");
+}
+
 TEST(LibraryLayers, ReferencesIncludeNoGl) {
   const std::vector<std::string> reference = library_sources("lucent_reference");
   ASSERT_GE(reference.size(), 5u);

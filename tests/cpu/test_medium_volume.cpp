@@ -126,17 +126,17 @@ TEST(MediumField, ParsesFromTheMaterial) {
 
 TEST(MediumField, BadFieldsGiveOneClearError) {
   EXPECT_EQ(scene_error(scene_with_field({{"type", "granite"}})),
-            "test.json: /objects/0/material/field/type: 'granite' is not one of {none|marble|layered|volume}");
+            "test.json: /objects/0/material/field/type: 'granite' is not one of {none|marble|layered|volume|vdb}");
   EXPECT_EQ(scene_error(scene_with_field({{"type", "marble"}, {"scale_mm", -1}})),
             "test.json: /objects/0/material/field/scale_mm: -1 is out of range; allowed range [0.001, 1e+06] mm");
   EXPECT_EQ(scene_error(scene_with_field({{"type", "volume"}})),
             "test.json: /objects/0/material/field/file: a volume field needs the file of its JSON header");
   EXPECT_EQ(scene_error(scene_with_field({{"type", "marble"}, {"file", "x.json"}})),
-            "test.json: /objects/0/material/field/file: only for type volume (type is marble)");
+            "test.json: /objects/0/material/field/file: only for types volume and vdb (type is marble)");
   EXPECT_EQ(scene_error(scene_with_field({{"type", "volume"}, {"file", "missing.json"}})),
             "./missing.json: cannot open the volume header");
   EXPECT_EQ(scene_error(scene_with_field({{"type", "marble"}, {"veins", 2}})),
-            "test.json: /objects/0/material/field/veins: unknown key; known keys: type, scale_mm, contrast, file");
+            "test.json: /objects/0/material/field/veins: unknown key; known keys: type, scale_mm, contrast, file, grid, density_scale, transform");
 }
 
 }  // namespace

@@ -96,7 +96,7 @@ bool material_editor(Material& m) {
       const std::string& name = values.text("type");
       MediumFieldType next = name == "marble"    ? MediumFieldType::Marble
                              : name == "layered" ? MediumFieldType::Layered
-                             : name == "volume"  ? MediumFieldType::Volume
+                             : name == "volume" || name == "vdb" ? MediumFieldType::Volume  // a vdb is a volume once read
                                                  : MediumFieldType::None;
       if (next != MediumFieldType::Volume || m.field.volume) {
         m.field.type = next;

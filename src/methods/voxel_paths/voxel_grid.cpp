@@ -40,7 +40,8 @@ TranslucentTriangles gather_translucent_triangles(const Scene& scene, bool effec
     const MediumField& medium = object.material->field;
     field.field = glm::vec4(static_cast<float>(medium.type), medium.scale_mm / scene.scale_mm, medium.contrast, 0.0f);
     if (medium.type == MediumFieldType::Volume) {
-      if (out.volume && medium.volume && out.volume->source != medium.volume->source)
+      if (out.volume && medium.volume && out.volume != medium.volume &&
+          (out.volume->source != medium.volume->source || out.volume->values != medium.volume->values))
         throw Error(fmt::format("{}: voxel-paths supports one volume field per scene (object '{}' has a second)",
                                 scene.source, object.name));
       if (!out.volume) out.volume = medium.volume;
