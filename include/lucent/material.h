@@ -22,6 +22,15 @@ enum class BssrdfModel {
 std::string_view to_string(BssrdfModel model);
 std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam", "better-dipole", "tabulated"
 
+// Where a heterogeneous medium came from when it was read from an OpenVDB file (lucent/medium_vdb.h reads it).
+enum class VdbTransform { ObjectBounds, VdbWorld };
+struct VdbField {
+  std::string file;                                   // the .vdb file (as the loader opens it)
+  std::string grid = "density";                       // name of a float grid in it
+  float density_scale = 1.0f;                         // m = density_scale * value, >= 0
+  VdbTransform transform = VdbTransform::ObjectBounds;
+};
+
 // A grid of density multipliers m >= 0 loaded from a file (a heterogeneous medium; lucent/medium_volume.h reads
 // it). Values at voxel centres, x fastest, then y, then z; the grid spans the object's world-space bounds.
 struct MediumVolume {
@@ -30,6 +39,7 @@ struct MediumVolume {
   glm::ivec3 size{0};           // voxels per axis, each >= 1
   std::vector<float> values;    // size.x * size.y * size.z multipliers
   float max_value = 0.0f;       // largest value: the majorant of delta tracking
+  std::optional<VdbField> vdb;  // set when resampled from an OpenVDB grid (written back as a "vdb" field)
   // Trilinear between voxel centres, clamped at the border; `unit` in [0, 1]^3 across the bounds.
   float multiplier(glm::vec3 unit) const;
 };

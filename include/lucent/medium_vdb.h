@@ -31,15 +31,6 @@
 
 namespace lucent {
 
-enum class VdbTransform { ObjectBounds, VdbWorld };
-
-struct VdbField {
-  std::string file;                                   // the .vdb file (as the loader opens it)
-  std::string grid = "density";                       // name of a float grid in it
-  float density_scale = 1.0f;                         // m = density_scale * value, >= 0
-  VdbTransform transform = VdbTransform::ObjectBounds;
-};
-
 std::string_view to_string(VdbTransform transform);  // "object-bounds", "vdb-world"
 
 struct VdbVolume {
@@ -50,15 +41,10 @@ struct VdbVolume {
 
 VdbVolume load_medium_vdb(const VdbField& field);
 
-// The field a volume was read from travels with the volume's shared_ptr as its deleter, so a saved scene names the
-// VDB file, grid and factor again (src/scene/scene_writer.cpp); nullptr for a volume from a raw file.
-struct VdbVolumeDeleter {
-  VdbField field;
-  void operator()(MediumVolume* volume) const { delete volume; }
-};
+// The field a volume was read from (MediumVolume::vdb), so a saved scene names the VDB file, grid and factor again
+// (src/scene/scene_writer.cpp); nullptr for a volume from a raw file.
 inline const VdbField* vdb_field_of(const std::shared_ptr<const MediumVolume>& volume) {
-  const VdbVolumeDeleter* deleter = std::get_deleter<VdbVolumeDeleter>(volume);
-  return deleter ? &deleter->field : nullptr;
+  return volume && volume->vdb ? &*volume->vdb : nullptr;
 }
 
 }  // namespace lucent

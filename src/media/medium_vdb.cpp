@@ -104,7 +104,8 @@ VdbVolume load_medium_vdb(const VdbField& field) {
     fail(field.file, fmt::format("density_scale {} is not a finite number >= 0", field.density_scale));
   openvdb::FloatGrid::Ptr grid = read_float_grid(field);
   const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
-  std::shared_ptr<MediumVolume> volume(new MediumVolume, VdbVolumeDeleter{field});
+  auto volume = std::make_shared<MediumVolume>();
+  volume->vdb = field;
   volume->source = field.file;
   volume->data_file = field.file;
   VdbVolume out;
