@@ -5,7 +5,12 @@ namespace lucent::methods {
 namespace {
 
 constexpr ParamDecl kParams[] = {
-    {"taps", ParamType::Int, "17", "taps", 7, 25, "", "taps of each 1D blur pass (Burley profile, denser near the centre)", kLive},
+    {"taps", ParamType::Int, "17", "taps", 7, 25, "", "taps of each 1D blur pass (denser near the profile's centre)", kLive},
+    {"profile", ParamType::Enum, "\"burley\"", "", 0, 0, "burley|gaussians",
+     "diffusion profile: Burley's normalized diffusion, or 6 Gaussians fitted to it", kLive},
+    {"transmittance", ParamType::Bool, "true", "", 0, 1, "",
+     "add the light crossing thin parts from behind (thickness from the light G-buffer, the profile's transmittance)",
+     kLive},
     {"depth_threshold", ParamType::Float, "1", "kernel radii", 0.01, 100, "",
      "a tap whose depth differs from the centre's by this many kernel radii counts as the centre (blended linearly)", kLive},
     {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer (shadows)"},
@@ -16,8 +21,8 @@ constexpr ParamDecl kParams[] = {
 
 constexpr PassDecl kPasses[] = {
     {"light_gbuffer", "one layered G-buffer of every light (shadow maps)"},
-    {"irradiance", "the irradiance transmitted into each translucent camera pixel"},
-    {"blur_horizontal", "1D Burley-profile blur along x, width scaled by depth, depth-aware"},
+    {"irradiance", "the irradiance transmitted into each translucent camera pixel, plus light crossing from behind"},
+    {"blur_horizontal", "1D profile blur along x, width scaled by depth, depth-aware"},
     {"blur_vertical", "the same along y"},
     {"shade", "L = F_t(w_o) albedo E_blurred / pi, plus the shared specular terms"},
 };
@@ -32,7 +37,8 @@ constexpr StatDecl kStats[] = {
 extern const MethodInfo screen_space_info;
 const MethodInfo screen_space_info{
     "screen-space",
-    "separable screen-space blur of the irradiance with a Burley normalized-diffusion kernel (Jimenez et al. 2015)",
+    "separable screen-space blur of the irradiance with a Burley normalized-diffusion kernel (Jimenez et al. 2015), "
+    "transmittance through thin parts (Jimenez et al. 2010)",
     kParams,
     kPasses,
     kStats,
