@@ -381,7 +381,7 @@ std::array<double, 3> backlit_slab(double thickness, const std::string& profile,
 
 // The radiance the method's formula gives there, in double from closed forms: the light enters the back at normal
 // incidence, F_t(1) E; the fraction T(d) reaches the front (Burley: (e^{-s d} + 3 e^{-s d / 3}) / 4; Gaussians: the
-// fitted weights and variances); the blur keeps a uniform irradiance; the front shows
+// fitted weights and variances); the front shows (the term is added after the blur, which has nothing to blur here)
 // L = F_t(1) albedo E_back / pi with albedo = R_total / (1 - 2 C1(1/eta)) (1 - 2 C1(1/1.3) = 4 x 0.234717).
 double backlit_expected(double thickness, const std::string& profile, std::size_t b) {
   const double s = burley_s(b), u = s * thickness;
@@ -399,10 +399,10 @@ double backlit_expected(double thickness, const std::string& profile, std::size_
 }
 
 // Tolerance 0.1% per band: the slab is flat and uniformly lit, its thickness is read from the light G-buffer's
-// positions (exact for a flat face), and the blur keeps a uniform irradiance exactly, so what remains is float
+// positions (exact for a flat face) and the front face receives no light directly, so what remains is float
 // rounding and the shaders' Fresnel-moment polynomial (2e-5, the energy test). Measured 0.99998 in every band, both
 // profiles, 1 and 2 mm; L(1 mm) / L(2 mm) equal to T(1 mm) / T(2 mm) to 5 digits. A thickness off by one light-map
-// texel (0.11 mm) would change T by 4-13%.
+// texel (0.11 mm) would change T(1 mm) by 6-10%.
 constexpr double kBacklitTolerance = 0.001;
 
 TEST(ScreenSpace, ThinSlabLitFromBehindShowsTheProfilesTransmittance) {

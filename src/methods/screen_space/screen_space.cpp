@@ -3,7 +3,7 @@
 // Burley's normalized-diffusion profile fitted to each material, or a sum of Gaussians fitted to it
 // (screen_space_kernel.h), its width the profile's world-space radius projected to pixels at each pixel's depth,
 // depth-aware; then L = F_t(w_o) albedo E / pi. Light crossing thin parts from behind (thickness from the light
-// G-buffer, the profile's transmittance) is added to the irradiance before the blur.
+// G-buffer, the profile's transmittance) is added to the blurred irradiance in the last pass.
 // Shaders: src/methods/screen_space/shaders/; docs/methods/screen-space.md.
 #include "methods/method.h"
 

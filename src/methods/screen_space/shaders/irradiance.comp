@@ -1,16 +1,13 @@
 // irradiance.comp: the screen-space method's first pass: per camera pixel on a translucent object, the irradiance
 // transmitted through its boundary, E_t = sum over lights of F_t(eta, n.l) (n.l) E V (common/diffuse_lighting.glsl
-// with no wrap; shadows from the light G-buffer), plus, when the method's transmittance is on, the light that
-// crosses the object from behind (transmittance.glsl). Other pixels get 0 with a = 0.
+// with no wrap; shadows from the light G-buffer). Other pixels get 0 with a = 0.
 #include "common/frame.glsl"
 #include "common/lights.glsl"
 #include "common/diffuse_lighting.glsl"
 #include "methods/screen_space/screen_space_io.h"
-#include "methods/screen_space/shaders/transmittance.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-layout(std140, binding = LUCENT_BINDING_METHOD) uniform MethodBlock { ScreenSpaceGPU method; };
 layout(binding = LUCENT_TEX_CAMERA_POSITION) uniform sampler2D camera_position;
 layout(binding = LUCENT_TEX_CAMERA_NORMAL) uniform sampler2D camera_normal;
 layout(rgba32f, binding = LUCENT_IMAGE_SCREEN_SPACE_IRRADIANCE) uniform writeonly image2D irradiance;
@@ -25,9 +22,6 @@ void main() {
     return;
   }
   vec3 n = normalize(texelFetch(camera_normal, pixel, 0).xyz);
-  MaterialGPU material = materials[material_index];
-  float eta = material.sigma_a.w;
-  vec3 E = transmitted_irradiance(p.xyz, n, eta, 0.0f, true);
-  if (method.counts.z != 0) E += back_irradiance(int(p.w) - 1, p.xyz, n, material, method.counts.y);
-  imageStore(irradiance, pixel, vec4(E, 1.0f));
+  float eta = materials[material_index].sigma_a.w;
+  imageStore(irradiance, pixel, vec4(transmitted_irradiance(p.xyz, n, eta, 0.0f, true), 1.0f));
 }

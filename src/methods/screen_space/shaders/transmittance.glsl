@@ -1,6 +1,8 @@
 // transmittance.glsl: light that crosses a thin part of a translucent object from behind (Jimenez et al. 2010,
-// "Real-Time Realistic Skin Translucency"), as irradiance at a front surface point x to be blurred and shaded like
-// the light entering x directly. The including shader includes common/frame.glsl and common/lights.glsl first.
+// "Real-Time Realistic Skin Translucency"), as irradiance at a front surface point x, shaded like the blurred light
+// entering x directly but not blurred itself: T(d) below is already the profile integrated over the back surface
+// (blurring it again would spread it twice; the blur's discrete taps also copied the bright thin rims of a backlit
+// sphere into visible bands). The including shader includes common/frame.glsl and common/lights.glsl first.
 //
 // For each light whose light reaches x from behind (n . w_l <= 0, so x itself receives none of it), the light
 // G-buffer layer framing the translucent objects holds, at x's texel, the first surface the light's ray toward x
