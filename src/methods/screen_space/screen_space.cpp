@@ -96,7 +96,7 @@ class ScreenSpace final : public Method {
   }
 
  private:
-  // The kernels depend on the materials and the tap count only (offsets in scene units, not pixels).
+  // The kernels depend on the materials, the tap count and the profile only (offsets in scene units, not pixels).
   void upload_kernels(const Scene& scene) {
     taps_ = scene.method_params.integer("taps");
     profile_ = scene.method_params.text("profile") == "gaussians" ? LUCENT_SCREEN_SPACE_PROFILE_GAUSSIANS

@@ -13,14 +13,14 @@ constexpr ParamDecl kParams[] = {
      kLive},
     {"depth_threshold", ParamType::Float, "1", "kernel radii", 0.01, 100, "",
      "a tap whose depth differs from the centre's by this many kernel radii counts as the centre (blended linearly)", kLive},
-    {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer (shadows)"},
+    {"light_map_size", ParamType::Int, "512", "texels", 8, 8192, "", "resolution of each light G-buffer layer (shadows, thickness)"},
     {"visibility_taps", ParamType::Int, "3", "taps/axis", 1, 7, "", "multi-sampled shadow taps per axis", kLive},
     {"specular", ParamType::Bool, "true", "", 0, 1, "", "add GGX specular reflection of the lights", kLive},
     {"roughness", ParamType::Float, "0.15", "GGX alpha", 0.01, 1, "", "roughness of the specular reflection", kLive},
 };
 
 constexpr PassDecl kPasses[] = {
-    {"light_gbuffer", "one layered G-buffer of every light (shadow maps)"},
+    {"light_gbuffer", "one layered G-buffer of every light (shadow maps; entry points for the transmittance)"},
     {"irradiance", "the irradiance transmitted into each translucent camera pixel"},
     {"blur_horizontal", "1D profile blur along x, width scaled by depth, depth-aware"},
     {"blur_vertical", "the same along y"},
