@@ -1,8 +1,9 @@
 // transmittance.glsl: light that crosses a thin part of a translucent object from behind (Jimenez et al. 2010,
 // "Real-Time Realistic Skin Translucency"), as irradiance at a front surface point x, shaded like the blurred light
 // entering x directly but not blurred itself: T(d) below is already the profile integrated over the back surface
-// (blurring it again would spread it twice; the blur's discrete taps also copied the bright thin rims of a backlit
-// sphere into visible bands). The including shader includes common/frame.glsl and common/lights.glsl first.
+// (blurring it again would spread it twice). The including shader includes common/frame.glsl and
+// common/lights.glsl first; scenes with directional lights only compile without the point-light lookup
+// (LUCENT_DIRECTIONAL_LIGHTS_ONLY, render/light_gbuffer.h).
 //
 // For each light whose light reaches x from behind (n . w_l <= 0, so x itself receives none of it), the light
 // G-buffer layer framing the translucent objects holds, at x's texel, the first surface the light's ray toward x
@@ -39,8 +40,12 @@ vec3 back_irradiance(int object, vec3 x, vec3 n, MaterialGPU material, int profi
       layer = light.views.x;
       uv = view_coords(frame.light_views[layer], x).xy;
       if (any(lessThan(uv, vec2(0.0f))) || any(greaterThanEqual(uv, vec2(1.0f)))) continue;
-    } else if (!point_light_lookup(light, light.views.x, light.views.y, x - light.position.xyz, layer, uv)) {
+    } else {
+#if defined(LUCENT_DIRECTIONAL_LIGHTS_ONLY)
       continue;
+#else
+      if (!point_light_lookup(light, light.views.x, light.views.y, x - light.position.xyz, layer, uv)) continue;
+#endif
     }
     ivec3 texel = ivec3(clamp(ivec2(uv * float(size)), ivec2(0), ivec2(size - 1)), layer);
     vec4 x_i = texelFetch(light_position, texel, 0);
