@@ -1,7 +1,9 @@
 // screen_space.cpp: separable screen-space subsurface scattering as game engines ship it (Jimenez et al. 2015):
 // the transmitted irradiance per camera pixel into an image, a horizontal and a vertical blur with a kernel from
-// Burley's normalized-diffusion profile fitted to each material (screen_space_kernel.h), its width the profile's
-// world-space radius projected to pixels at each pixel's depth, depth-aware; then L = F_t(w_o) albedo E / pi.
+// Burley's normalized-diffusion profile fitted to each material, or a sum of Gaussians fitted to it
+// (screen_space_kernel.h), its width the profile's world-space radius projected to pixels at each pixel's depth,
+// depth-aware; then L = F_t(w_o) albedo E / pi. Light crossing thin parts from behind (thickness from the light
+// G-buffer, the profile's transmittance) is added to the blurred irradiance in the last pass.
 // Shaders: src/methods/screen_space/shaders/; docs/methods/screen-space.md.
 #include "methods/method.h"
 
@@ -44,7 +46,7 @@ class ScreenSpace final : public Method {
     light_gbuffer_.fill_frame(frame);
     frame.light_counts.w = params_.integer("visibility_taps");
     frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
-    const shader::ScreenSpaceGPU block{glm::ivec4(taps_, 0, 0, 0),
+    const shader::ScreenSpaceGPU block{glm::ivec4(taps_, profile_, params_.boolean("transmittance") ? 1 : 0, 0),
                                        glm::vec4(params_.number("depth_threshold"), 0.0f, 0.0f, 0.0f)};
     glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
   }
@@ -94,10 +96,12 @@ class ScreenSpace final : public Method {
   }
 
  private:
-  // The kernels depend on the materials and the tap count only (offsets in scene units, not pixels).
+  // The kernels depend on the materials, the tap count and the profile only (offsets in scene units, not pixels).
   void upload_kernels(const Scene& scene) {
     taps_ = scene.method_params.integer("taps");
-    const std::vector<shader::ScreenSpaceTapGPU> kernels = screen_space::scene_kernels(scene, taps_);
+    profile_ = scene.method_params.text("profile") == "gaussians" ? LUCENT_SCREEN_SPACE_PROFILE_GAUSSIANS
+                                                                   : LUCENT_SCREEN_SPACE_PROFILE_BURLEY;
+    const std::vector<shader::ScreenSpaceTapGPU> kernels = screen_space::scene_kernels(scene, taps_, profile_);
     const std::size_t bytes = kernels.size() * sizeof(shader::ScreenSpaceTapGPU);
     if (bytes != kernel_bytes_) {
       glDeleteBuffers(1, &kernel_buffer_);
@@ -116,7 +120,7 @@ class ScreenSpace final : public Method {
       blurred_{"screen-space blurred irradiance"};
   GLuint block_buffer_ = 0, kernel_buffer_ = 0;
   std::size_t kernel_bytes_ = 0;
-  int taps_ = 0;
+  int taps_ = 0, profile_ = LUCENT_SCREEN_SPACE_PROFILE_BURLEY;
 };
 
 }  // namespace

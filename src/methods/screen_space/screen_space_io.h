@@ -14,7 +14,8 @@
 LUCENT_SHADER_BEGIN
 
 struct ScreenSpaceGPU {
-  ivec4 counts;  // x: taps per pass; yzw: unused
+  ivec4 counts;  // x: taps per pass; y: profile (LUCENT_SCREEN_SPACE_PROFILE_*); z: 1 = transmittance through thin
+                 // parts on; w: unused
   vec4 blur;     // x: depth threshold, in kernel radii, beyond which a tap is blended back to the centre; yzw: unused
 };
 
