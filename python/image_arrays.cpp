@@ -42,8 +42,10 @@ ImageRGBA32F from_array(const pybind11::handle& object, const std::string& what)
 void bind_images(py::module_& m) {
   m.def("read_exr", [](const std::string& path) { return to_array(read_exr(path)); }, py::arg("path"),
         "Linear RGB of an EXR file as float32 (height, width, 3); alpha is dropped.");
-  m.def("write_exr", [](const std::string& path, const py::handle& image) { write_exr(path, from_array(image, "image")); },
-        py::arg("path"), py::arg("image"), "Writes (height, width, 3 or 4) linear values as an RGBA float EXR.");
+  m.def(
+      "write_exr",
+      [](const std::string& path, const py::handle& image) { write_exr(path, from_array(image, "image")); },
+      py::arg("path"), py::arg("image"), "Writes (height, width, 3 or 4) linear values as an RGBA float EXR.");
   m.def(
       "write_png",
       [](const std::string& path, const py::handle& image, float exposure) {

@@ -19,7 +19,8 @@ reference::ReferenceSettings settings_of(const std::string& integrator, int spp,
     throw Error(fmt::format("integrator: '{}' is not one of volpath, bssrdf", integrator));
   if (spp < 1) throw Error(fmt::format("spp: {} is out of range; allowed range [1, 1000000000]", spp));
   if (threads < 0) throw Error(fmt::format("threads: {} is out of range; allowed range [0, 4096]", threads));
-  if (max_scatter < 0) throw Error(fmt::format("max_scatter: {} is out of range; allowed range [0, 1000000000]", max_scatter));
+  if (max_scatter < 0)
+    throw Error(fmt::format("max_scatter: {} is out of range; allowed range [0, 1000000000]", max_scatter));
   reference::ReferenceSettings s;
   s.integrator = integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
   if (max_scatter > 0 && s.integrator != reference::Integrator::Volpath)
