@@ -24,6 +24,8 @@ packages=(
   glmark2-data
   # benchmark plots
   gnuplot-nox
+  # the Python module (python/) and its tests; Debian's /usr/bin/python3
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

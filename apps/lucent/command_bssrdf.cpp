@@ -8,12 +8,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "bssrdf/model.h"
 #include "commands.h"
 #include "option_checks.h"
 #include "lucent/error.h"
 #include "lucent/material.h"
 #include "lucent/scene.h"
+#include "materials/bssrdf_evaluation.h"
 #include "materials/model_total_reflectance.h"
 
 namespace lucent::cli {
@@ -91,12 +91,9 @@ void run(const BssrdfOptions& o) {
   if (o.total) return run_total(o, m);
   glm::vec3 x_i = vec(o.xi, "xi"), x_o = vec(o.xo, "xo");
   glm::vec3 n_i = unit_vec(o.ni, "ni"), w_i = unit_vec(o.wi, "wi"), n_o = unit_vec(o.no, "no");
-  std::array<float, 3> S{};
-  for (int band = 0; band < 3; ++band) {
-    shader::BandMedium medium = shader::make_band_medium(m.sigma_a[band], m.sigma_s[band], m.g[band]);
-    S[static_cast<std::size_t>(band)] = shader::bssrdf_Sd(static_cast<int>(m.model), medium, m.eta, x_i, w_i, n_i, x_o, n_o);
-  }
-  float T12 = shader::fresnel_transmittance(m.eta, glm::dot(w_i, n_i));
+  const BssrdfEvaluation e = evaluate_bssrdf(m, x_i, w_i, n_i, x_o, n_o);
+  const std::array<float, 3> S = {e.S_d.x, e.S_d.y, e.S_d.z};
+  const float T12 = e.T12;
   if (o.json) {
     nlohmann::json out = {{"model", to_string(m.model)}, {"material", m.name}, {"eta", m.eta},
                           {"S_d", S},                    {"T12", T12},         {"units", "mm^-2"}};

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "option_checks.h"
+#include "image/image_error_json.h"
 #include "image/image_metrics.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
@@ -21,13 +22,6 @@ struct CompareOptions {
   double scale = 0.0;
   bool json = false;
 };
-
-nlohmann::json to_json(const ImageError& e) {
-  return {{"rmse", {e.rmse[0], e.rmse[1], e.rmse[2]}}, {"rmse_rgb", e.rmse_rgb},
-          {"relative_mse", e.relative_mse},             {"mean_error", e.mean_error},
-          {"mean_error_se", e.mean_error_se},           {"psnr_db", e.psnr_db},
-          {"reference_noise_rms", e.reference_noise_rms}};
-}
 
 void run(const CompareOptions& o) {
   std::string se_path = reference::reference_files(o.b).standard_error;

@@ -1,0 +1,22 @@
+// render_overrides.h: the keyword arguments of lucent.render and lucent.reference (size, frames, seed, method and
+// its parameters) as the scene overrides they stand for, so that they are checked like --set values.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/pybind11.h>
+
+namespace lucent::python {
+
+struct RenderArguments {
+  std::optional<int> width, height, frames;
+  std::optional<long long> seed;
+  std::optional<std::string> method;  // a registered method: replaces the scene's method and its parameters
+  pybind11::object params;            // dict of method parameters (None: none)
+};
+
+// "render.width=W", ...; "method={"name": M, ...params}" with a method, else "method.<key>=<value>" per parameter.
+std::vector<std::string> render_overrides(const RenderArguments& arguments);
+
+}  // namespace lucent::python

@@ -1,0 +1,52 @@
+# test_render.py: lucent.render() gives the radiance `lucent render --exr` writes for the same scene, size, frames
+# and method settings (one headless context for all renders of the process).
+import json
+
+import numpy as np
+import pytest
+
+import lucent
+from conftest import run_cli
+
+SIZE = {"width": 64, "height": 40, "frames": 2}
+# Small maps: a few seconds on llvmpipe.
+RADIOSITY_MAPS = {"K": 8, "N": 16, "map_size": 64, "light_map_size": 128, "vpls": 0}
+PER_PIXEL = {"N": 16, "light_map_size": 128}
+
+
+def cli_render(out_dir, *sets):
+    exr = out_dir / "cli.exr"
+    args = ["render", "-q", "--frames", SIZE["frames"], "-o", out_dir / "cli.png", "--exr", exr,
+            "--set", f"render.width={SIZE['width']}", "--set", f"render.height={SIZE['height']}"]
+    for s in sets:
+        args += ["--set", s]
+    run_cli(*args)
+    return lucent.read_exr(str(exr))
+
+
+def assert_same_image(py, cli):
+    assert py.dtype == np.float32 and py.shape == (SIZE["height"], SIZE["width"], 3)
+    assert py.max() > 0.01  # lit, not black
+    # The same code on the same driver: equal up to float rounding in the accumulation.
+    np.testing.assert_allclose(py, cli, rtol=1e-5, atol=1e-6 * float(cli.max()))
+
+
+def test_default_method_with_parameter_overrides(out_dir):
+    py = lucent.render(lucent.load_scene(), params=RADIOSITY_MAPS, **SIZE)
+    cli = cli_render(out_dir, *(f"method.{k}={json.dumps(v)}" for k, v in RADIOSITY_MAPS.items()))
+    assert_same_image(py, cli)
+
+
+def test_another_method_and_timings(out_dir):
+    py, info = lucent.render(lucent.load_scene(), method="per-pixel", params=PER_PIXEL, timings=True, **SIZE)
+    cli = cli_render(out_dir, "method=" + json.dumps({"name": "per-pixel", **PER_PIXEL}))
+    assert_same_image(py, cli)
+    assert len(info["frames"]) == SIZE["frames"] and info["device"]
+    assert all(f["total_ms"] > 0.0 for f in info["frames"])
+
+
+def test_unknown_method_is_the_cli_message(out_dir):
+    with pytest.raises(lucent.Error) as error:
+        lucent.render(lucent.load_scene(), method="no-such-method")
+    cli = run_cli("render", "--set", 'method={"name": "no-such-method"}', "-o", out_dir / "x.png", check=False)
+    assert cli.returncode == 1 and cli.stderr == f"lucent: {error.value}\n"
