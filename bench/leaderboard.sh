@@ -15,5 +15,5 @@ start=$(date +%s)
 "$LUCENT" bench bench/leaderboard.json -o "$OUT" "$@"
 runtime=$(( $(date +%s) - start ))
 python3 bench/leaderboard_report.py "$OUT/results.json" "$DOC" "$PLOTS" --runtime "$runtime" \
-  --command "bash bench/leaderboard.sh $*"
+  --command "bash bench/leaderboard.sh $*" --notes bench/leaderboard_notes.md
 echo "leaderboard: ${runtime} s in all -> $DOC"

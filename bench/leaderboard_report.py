@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Writes docs/leaderboard.md (and its plots) from the results of `lucent bench bench/leaderboard.json`.
 
-Usage: leaderboard_report.py RESULTS_JSON OUT_MD PLOT_DIR [--runtime SECONDS] [--command TEXT]
+Usage: leaderboard_report.py RESULTS_JSON OUT_MD PLOT_DIR [--runtime SECONDS] [--command TEXT] [--notes FILE]
+
+--notes: a hand-written markdown file (the reading of the numbers) placed after the summary.
 
 Per scene: an error-against-time plot (every setting of every method, the Pareto front marked), the equal-time
 ranking, and a table of every setting; then a summary of which method wins where. Only the Python standard library
@@ -18,8 +20,10 @@ Definitions (also written into the page):
 import json
 import math
 import os
+import struct
 import subprocess
 import sys
+import zlib
 
 
 def fmt_ms(ms):
@@ -43,6 +47,69 @@ def error(result, integrator):
 
 def time_ms(result):
     return result["frames"] * result["total_ms"]["median"]
+
+
+def read_png(path):
+    """8-bit RGB or RGBA PNG (as lucent writes them) -> (width, height, rows of RGB bytes)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    pos, idat, width, height, channels = 8, b"", 0, 0, 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            if depth != 8 or colour not in (2, 6):
+                raise ValueError(f"{path}: only 8-bit RGB/RGBA PNGs")
+            channels = 3 if colour == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw = zlib.decompress(idat)
+    stride = width * channels
+    rows, prev = [], bytearray(stride)
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b = prev[i]
+            c = prev[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        prev = line
+        rows.append(bytes(line[k] for k in range(stride) if k % channels < 3))
+    return width, height, rows
+
+
+def write_strip(paths, out_png, gap=2):
+    """The images side by side (same height), separated by a dark gap: a contact strip for the page."""
+    images = [read_png(p) for p in paths]
+    height = max(h for _, h, _ in images)
+    width = sum(w for w, _, _ in images) + gap * (len(images) - 1)
+    raw = b""
+    for y in range(height):
+        line = b""
+        for k, (w, h, rows) in enumerate(images):
+            line += rows[y] if y < h else bytes(3 * w)
+            if k + 1 < len(images):
+                line += bytes([40, 40, 40]) * gap
+        raw += b"\x00" + line
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xffffffff)
+    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+           chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+    tmp = out_png + ".tmp"
+    with open(tmp, "wb") as f:
+        f.write(png)
+    os.replace(tmp, out_png)
 
 
 def pareto(points):
@@ -95,6 +162,11 @@ def main():
     if "--runtime" in args:
         k = args.index("--runtime")
         runtime = float(args[k + 1])
+        del args[k:k + 2]
+    notes = None
+    if "--notes" in args:
+        k = args.index("--notes")
+        notes = args[k + 1]
         del args[k:k + 2]
     if "--command" in args:
         k = args.index("--command")
@@ -156,6 +228,28 @@ def main():
         rel = os.path.relpath(png, os.path.dirname(out_md) or ".")
         sec.append(f"![{run}: error against time]({rel})")
         sec.append("")
+        # The references and, per method, its most accurate setting: what the numbers describe.
+        images_dir = os.path.join(os.path.dirname(results_path), "images")
+        by_method_best = {}
+        for r in rows:
+            if r["method"] not in by_method_best or error(r, "volpath") < error(by_method_best[r["method"]], "volpath"):
+                by_method_best[r["method"]] = r
+        strip = [os.path.join(os.path.dirname(results_path), rows[0]["error"]["volpath"]["reference_image"])]
+        names = ["volpath"]
+        if "bssrdf" in rows[0]["error"]:
+            strip.append(os.path.join(os.path.dirname(results_path), rows[0]["error"]["bssrdf"]["reference_image"]))
+            names.append("bssrdf")
+        for m in sorted(by_method_best):
+            strip.append(os.path.join(os.path.dirname(results_path), by_method_best[m]["image"]))
+            names.append(f"{m} ({by_method_best[m]['variant']})")
+        if all(os.path.exists(p) for p in strip):
+            strip_png = os.path.join(plot_dir, f"{run}_images.png")
+            write_strip(strip, strip_png)
+            sec.append(f"![{run}: references and each method's most accurate setting]"
+                       f"({os.path.relpath(strip_png, os.path.dirname(out_md) or '.')})")
+            sec.append("")
+            sec.append("Left to right: " + "; ".join(names) + ".")
+            sec.append("")
         # Equal-time rankings: at the tight budget (the median of the methods' fastest settings: half the methods
         # fit) and at the generous one (the largest: every method fits).
         by_method = {}
@@ -231,6 +325,10 @@ def main():
             wins.setdefault(row[k][1], []).append(row[0])
         md.append(f"Wins at the {label} budget: " + "; ".join(
             f"{m} {len(v)} ({', '.join(v)})" for m, v in sorted(wins.items(), key=lambda x: -len(x[1]))) + ".")
+        md.append("")
+    if notes and os.path.exists(notes):
+        with open(notes) as f:
+            md.append(f.read().rstrip("\n"))
         md.append("")
     md.extend(sections)
     md.append("")
