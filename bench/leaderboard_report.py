@@ -194,7 +194,9 @@ def main():
     if not doc.get("complete", True):
         md.append("- **Incomplete**: the bench was stopped before its last run; the tables hold the runs it finished.")
     md.append("- **Time** is the time to the image: frames x the median frame time (the sum of the method's GPU pass "
-              "times), in ms. Precomputation cached on disk (atlases, kernels, form factors, tables) is not counted. "
+              "times), in ms, measured after a warm-up frame and a restart of the method (`warmup_frames`), so a "
+              "1-frame setting costs what an image after a scene change costs, without shader compilation or "
+              "first-use driver work. Precomputation cached on disk (atlases, kernels, form factors, tables) is not counted. "
               "On a software rasterizer (llvmpipe) the times rank the methods' work, not what a GPU would show; "
               "`docs/performance.md` has GPU timings.")
     md.append("- **Error** is the RMSE of linear radiance against the volpath reference (the physics), corrected for "

@@ -21,6 +21,8 @@ constexpr double kMaxSpp = 1 << 30;
 
 constexpr ParamDecl kBenchParams[] = {
     {"description", ParamType::String, "\"\"", "", 0, 0, "", "what the matrix measures, free text"},
+    {"warmup_frames", ParamType::Int, "0", "frames", 0, 1e3, "",
+     "every variant's frames rendered and discarded first (the method then restarts): timings of warm frames"},
     {"record_refusals", ParamType::Bool, "false", "", 0, 1, "",
      "a variant whose method refuses its scene is recorded with the method's message instead of stopping the bench"},
 };
@@ -42,6 +44,9 @@ constexpr ParamDecl kVariantParams[] = {
     {"frames", ParamType::Int, "", "frames", 1, 1e6, "", "frames rendered (default: the scene's render.frames)"},
     {"equal_time", ParamType::Bool, "false", "", 0, 1, "", "also measure a bssrdf reference given the same time"},
     {"restart_every_frame", ParamType::Bool, "false", "", 0, 1, "", "recompute cached state every frame"},
+    {"warmup_frames", ParamType::Int, "", "frames", 0, 1e3, "",
+     "frames rendered and discarded first (then the method restarts), so the measured frames are warm (default: the "
+     "configuration's, else 0)"},
 };
 constexpr ParamDecl kRegionParams[] = {
     {"name", ParamType::String, "", "", 0, 0, "", "region name in the tables (required)"},

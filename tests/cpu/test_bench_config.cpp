@@ -56,12 +56,13 @@ TEST(BenchConfig, RunNamesAndVariantIdsAreSafeFileNames) {
 
 TEST(BenchConfig, UnknownKeysAreNamedWithTheKnownOnes) {
   EXPECT_EQ(problem(R"({"run": []})"),
-            "b.json: /run: unknown key; known keys: description, record_refusals, set, references, runs, plots, variants");
+            "b.json: /run: unknown key; known keys: description, warmup_frames, record_refusals, set, references, runs, "
+            "plots, variants");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "varients": []})")),
             "b.json: /runs/0/varients: unknown key; known keys: name, scene, restart_every_frame, set, variants, regions");
   EXPECT_EQ(problem(with_run(R"({"scene": "s.json", "variants": [{"frame": 4}]})")),
             "b.json: /runs/0/variants/0/frame: unknown key; known keys: name, id, frames, equal_time, "
-            "restart_every_frame, set");
+            "restart_every_frame, warmup_frames, set");
   EXPECT_EQ(problem(R"({"runs": [], "references": {"volpth": {"spp": 4}}})"),
             "b.json: /references/volpth: unknown integrator; known: bssrdf, volpath");
   EXPECT_EQ(problem(R"({"runs": [], "references": {"bssrdf": {"sp": 4}}})"),
@@ -129,6 +130,8 @@ TEST(BenchConfig, SharedVariantsAreCheckedLikeARunsOwn) {
             "b.json: /variants/0/set/0: expected \"key=value\", got \"K\"");
   EXPECT_EQ(problem(R"({"runs": [], "variants": {"frames": 4}})"),
             "b.json: /variants: expected an array of variants, got {\"frames\":4}");
+  EXPECT_EQ(problem(R"({"runs": [], "warmup_frames": -1})"),
+            "b.json: /warmup_frames: -1 is out of range; allowed range [0, 1000] frames");
   EXPECT_EQ(problem(R"({"runs": [], "record_refusals": "yes"})"),
             "b.json: /record_refusals: expected true or false, got \"yes\"");
   const json config = json::parse(R"({"variants": [{"name": "shared"}], "runs": [{"scene": "a.json"},
