@@ -22,7 +22,10 @@
 //
 // Where the table comes from: C++ provides bssrdf_table_offset() (finds or builds the medium's table, through the
 // precompute cache) and bssrdf_table_value(); the shaders search the directory of the buffer the renderer
-// uploads (render/scene_gpu.cpp), which holds every table the scene's materials need.
+// uploads (render/scene_gpu.cpp), which holds every table the scene's materials need. In that buffer the directory
+// is sorted by albedo and its unused entries hold albedo kBssrdfTableUnusedAlbedo, so the shaders find an entry by
+// a binary search of fixed length written without a loop: a directory loop per BSSRDF sample exceeded llvmpipe's
+// cap of 65535 loop iterations per invocation (per-pixel at N 4096 with 7 or more tables read zeros, silently).
 #ifndef LUCENT_BSSRDF_TABULATED_H
 #define LUCENT_BSSRDF_TABULATED_H
 #include "shared/bridge.h"
@@ -31,7 +34,7 @@
 #include "bssrdf/fresnel.h"
 #include "bssrdf/medium.h"
 
-#define LUCENT_BSSRDF_TABLE_CAPACITY 64
+#define LUCENT_BSSRDF_TABLE_CAPACITY 64  // a power of two: the shaders' binary search halves it 6 times
 
 LUCENT_SHADER_BEGIN
 
@@ -43,6 +46,8 @@ LUCENT_CONST float kBssrdfTableThetaMaxDeg = 84.0f;
 LUCENT_CONST float kBssrdfTableRMin = 0.02f;  // reduced mean free paths
 LUCENT_CONST int kBssrdfTableHeader = 4;
 LUCENT_CONST int kBssrdfTableDirectory = 1 + 4 * LUCENT_BSSRDF_TABLE_CAPACITY;
+LUCENT_CONST float kBssrdfTableUnusedAlbedo = 3.0e38f;  // unused directory entries of the uploaded buffer
+LUCENT_CONST int kBssrdfTableSameAlbedo = 4;  // entries whose albedo matches within 1e-5 (other g or eta) searched
 LUCENT_CONST int kBssrdfTableFloats = kBssrdfTableHeader + kBssrdfTableTheta * kBssrdfTablePhi * kBssrdfTableR;
 
 LUCENT_SHADER_END
@@ -58,15 +63,31 @@ float bssrdf_table_value(int i);
 layout(std430, binding = LUCENT_BINDING_BSSRDF_TABLES) readonly buffer BssrdfTableBlock { float bssrdf_tables[]; };
 float bssrdf_table_value(int i) { return bssrdf_tables[i]; }
 // Directory search; -1 when the renderer uploaded no table for this medium (it always does for its materials).
+float bssrdf_table_albedo(int k) { return bssrdf_tables[1 + 4 * k]; }
+// The table offset of directory entry k when it is the medium (albedo within 1e-5 relative, g and eta within 1e-6).
+int bssrdf_table_match(int k, float albedo, float g, float eta) {
+  if (k >= kBssrdfTableCapacity) return -1;
+  int e = 1 + 4 * k;
+  bool same = abs(bssrdf_tables[e] - albedo) <= 1e-5f * albedo && abs(bssrdf_tables[e + 1] - g) <= 1e-6f &&
+              abs(bssrdf_tables[e + 2] - eta) <= 1e-6f;
+  return same ? int(bssrdf_tables[e + 3]) : -1;
+}
+// Binary search of the sorted directory without a loop (see above): the first entry whose albedo is at least
+// albedo (1 - 1e-5), then the kBssrdfTableSameAlbedo entries from there checked for g and eta as well.
 int bssrdf_table_offset(float albedo, float g, float eta) {
-  int count = int(bssrdf_tables[0]);
-  for (int k = 0; k < count; ++k) {
-    int e = 1 + 4 * k;
-    if (abs(bssrdf_tables[e] - albedo) <= 1e-5f * albedo && abs(bssrdf_tables[e + 1] - g) <= 1e-6f &&
-        abs(bssrdf_tables[e + 2] - eta) <= 1e-6f)
-      return int(bssrdf_tables[e + 3]);
-  }
-  return -1;
+  float key = albedo - 1e-5f * albedo;
+  int i = 0;
+  if (bssrdf_table_albedo(i + 31) < key) i += 32;
+  if (bssrdf_table_albedo(i + 15) < key) i += 16;
+  if (bssrdf_table_albedo(i + 7) < key) i += 8;
+  if (bssrdf_table_albedo(i + 3) < key) i += 4;
+  if (bssrdf_table_albedo(i + 1) < key) i += 2;
+  if (bssrdf_table_albedo(i) < key) i += 1;
+  int found = bssrdf_table_match(i, albedo, g, eta);
+  if (found < 0) found = bssrdf_table_match(i + 1, albedo, g, eta);
+  if (found < 0) found = bssrdf_table_match(i + 2, albedo, g, eta);
+  if (found < 0) found = bssrdf_table_match(i + 3, albedo, g, eta);
+  return found;
 }
 #endif
 

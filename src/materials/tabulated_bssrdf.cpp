@@ -242,7 +242,33 @@ void prepare_bssrdf_tables(const Material& material) {
   }
 }
 
-std::span<const float> bssrdf_table_array() { return store().in_use(); }
+std::vector<float> bssrdf_table_array() {
+  const std::span<const float> in_use = store().in_use();
+  std::vector<float> gpu(in_use.begin(), in_use.end());
+  const int count = static_cast<int>(gpu[0]);
+  struct Entry {
+    float a, g, eta, offset;
+  };
+  std::vector<Entry> entries(static_cast<std::size_t>(kBssrdfTableCapacity),
+                             Entry{shader::kBssrdfTableUnusedAlbedo, 0.0f, 0.0f, -1.0f});
+  for (int k = 0; k < count; ++k) {
+    const float* e = &gpu[static_cast<std::size_t>(1 + 4 * k)];
+    entries[static_cast<std::size_t>(k)] = {e[0], e[1], e[2], e[3]};
+  }
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) { return x.a < y.a; });
+  // The shaders check kBssrdfTableSameAlbedo entries from the first whose albedo is within 1e-5 of theirs.
+  for (int k = 0; k + shader::kBssrdfTableSameAlbedo < count; ++k)
+    if (entries[static_cast<std::size_t>(k + shader::kBssrdfTableSameAlbedo)].a -
+            entries[static_cast<std::size_t>(k)].a <=
+        2e-5f * entries[static_cast<std::size_t>(k)].a)
+      throw Error(fmt::format("the tabulated model tells at most {} band media of one albedo ({}) apart on the GPU",
+                              shader::kBssrdfTableSameAlbedo, entries[static_cast<std::size_t>(k)].a));
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    float* e = &gpu[1 + 4 * k];
+    e[0] = entries[k].a, e[1] = entries[k].g, e[2] = entries[k].eta, e[3] = entries[k].offset;
+  }
+  return gpu;
+}
 std::uint64_t bssrdf_table_generation() { return store().generation(); }
 BssrdfTableStats last_bssrdf_table_stats() { return store().last_stats(); }
 

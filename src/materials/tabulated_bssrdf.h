@@ -42,8 +42,10 @@ std::vector<float> build_bssrdf_table(float albedo, float g, float eta, std::uin
 // Builds (or reads from the cache) the tables of every band of `material` when its model is Tabulated.
 void prepare_bssrdf_tables(const Material& material);
 
-// The array in use: directory and every table built so far. Stays valid; grows only.
-std::span<const float> bssrdf_table_array();
+// The array for the shaders' storage buffer: every table built so far, with the directory sorted by albedo and
+// its unused entries at kBssrdfTableUnusedAlbedo (bssrdf/tabulated.h: the shaders' loop-free search). Throws
+// lucent::Error when more than kBssrdfTableSameAlbedo band media share one albedo.
+std::vector<float> bssrdf_table_array();
 // Changes whenever a table is added (the renderer re-uploads the array).
 std::uint64_t bssrdf_table_generation();
 // Statistics of the most recent table added (for --verbose output and the documentation's measurements).

@@ -149,9 +149,8 @@ SceneGpu::~SceneGpu() {
 void SceneGpu::upload_bssrdf_tables() {
   if (bssrdf_table_buffer_ != 0 && bssrdf_table_generation_ == bssrdf_table_generation()) return;
   bssrdf_table_generation_ = bssrdf_table_generation();
-  const std::span<const float> tables = bssrdf_table_array();
   if (bssrdf_table_buffer_ != 0) glDeleteBuffers(1, &bssrdf_table_buffer_);
-  bssrdf_table_buffer_ = make_buffer(std::vector<float>(tables.begin(), tables.end()), "bssrdf tables");
+  bssrdf_table_buffer_ = make_buffer(bssrdf_table_array(), "bssrdf tables");
 }
 
 void SceneGpu::bind_buffers() const {

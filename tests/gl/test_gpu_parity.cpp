@@ -75,8 +75,8 @@ TEST(GpuParity, BssrdfComputeShaderMatchesCpp) {
   glCreateBuffers(3, buffers);
   glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(cases.size() * sizeof(ParityCaseGPU)), cases.data(), 0);
   glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(cases.size() * sizeof(ParityResultGPU)), nullptr, 0);
-  const std::span<const float> tables = lucent::bssrdf_table_array();
-  glNamedBufferStorage(buffers[2], static_cast<GLsizeiptr>(tables.size_bytes()), tables.data(), 0);
+  const std::vector<float> tables = lucent::bssrdf_table_array();
+  glNamedBufferStorage(buffers[2], static_cast<GLsizeiptr>(tables.size() * sizeof(float)), tables.data(), 0);
   auto program = lucent::gpu::ShaderProgram::compute("tests/bssrdf_parity.comp", "#define LUCENT_TABULATED_MODEL 1\n");
   glUseProgram(program.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_PARITY, buffers[0]);
