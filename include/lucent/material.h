@@ -65,6 +65,29 @@ struct MediumField {
   float multiplier(glm::vec3 p, glm::vec3 lower, glm::vec3 upper, float scene_scale_mm) const;
 };
 
+// A spatially varying material from textures (src/materials/material_maps.h reads them), looked up through the
+// mesh's texture coordinates (channel 0; OpenGL's origin, v = 0 at the bottom row), bilinear between texel centres,
+// repeating outside [0, 1]. Each map is optional: where one is absent its base value holds everywhere.
+//  - albedo_map: the surface albedo per texel (the model's flat total, as the material's "albedo"), inverted per
+//    texel to the single-scattering albedo alpha = sigma_s / sigma_t, which is what is stored and interpolated;
+//  - mfp_map: a factor on the mean free path per texel (so 1 / density), stored as the mean free path in mm.
+// The coefficients at a point are sigma_s = alpha / mfp and sigma_a = (1 - alpha) / mfp. A renderer evaluates
+// them where light leaves the surface (the exit point of S_d, the point a camera path enters the medium; see
+// docs/materials.md, "Textures").
+struct MaterialMaps {
+  std::string albedo_file, mfp_file;  // as resolved ("" when not given)
+  glm::vec3 base_alpha{0.5f};         // alpha where there is no albedo_map
+  glm::vec3 base_mfp_mm{1.0f};        // mean free path where there is no mfp_map [mm]
+  glm::ivec2 alpha_size{0};           // albedo_map's texels (0 when absent)
+  std::vector<glm::vec3> alpha;       // alpha per texel and band, rows from v = 0 up, x fastest
+  glm::ivec2 mfp_size{0};             // mfp_map's texels (0 when absent)
+  std::vector<glm::vec3> mfp_mm;      // mean free path per texel and band [mm]
+  glm::vec3 alpha_at(glm::vec2 uv) const;
+  glm::vec3 mfp_mm_at(glm::vec2 uv) const;
+  // sigma_a and sigma_s [mm^-1] at texture coordinates uv.
+  void coefficients(glm::vec2 uv, glm::vec3& sigma_a, glm::vec3& sigma_s) const;
+};
+
 // A translucent material. Coefficients in mm^-1; the scene's scale_mm maps them to scene units.
 struct Material {
   std::string name = "custom";
@@ -74,6 +97,10 @@ struct Material {
   float eta = 1.3f;         // relative refractive index n_material / n_outside
   BssrdfModel model = BssrdfModel::DirectionalDipole;
   MediumField field;        // homogeneous unless set (used by voxel-paths and volpath; the diffusion models ignore it)
+  // Textured: coefficients per surface point (the ones above are those of the maps' mean albedo and mean free
+  // path, for messages and for what needs one value, such as the references' sampling bounds).
+  std::shared_ptr<const MaterialMaps> maps;
+  bool textured() const { return maps != nullptr; }
 
   glm::vec3 sigma_s_prime() const { return sigma_s * (1.0f - g); }  // [mm^-1]
   glm::vec3 sigma_t() const { return sigma_a + sigma_s; }          // [mm^-1]

@@ -188,6 +188,14 @@ Key& Key::material(const Material& m) {
   } else {
     integer(-1);
   }
+  if (m.maps) {  // textured: the per-texel values, not the files' names
+    const MaterialMaps& maps = *m.maps;
+    vec3(maps.base_alpha).vec3(maps.base_mfp_mm);
+    integer(maps.alpha_size.x).integer(maps.alpha_size.y).bytes(as_bytes(maps.alpha));
+    integer(maps.mfp_size.x).integer(maps.mfp_size.y).bytes(as_bytes(maps.mfp_mm));
+  } else {
+    integer(-2);
+  }
   return *this;
 }
 

@@ -19,6 +19,7 @@ nlohmann::ordered_json enum_choices(std::string_view rest) {
 nlohmann::ordered_json method_json(const MethodInfo& m) {
   nlohmann::ordered_json j = {{"name", m.name}, {"summary", m.summary}, {"default", &m == &default_method()}};
   j["needs_texture_atlas"] = m.needs_texture_atlas;
+  j["reads_material_maps"] = m.reads_material_maps;
   j["reference_tolerance"] = m.reference_tolerance;
   j["params"] = nlohmann::ordered_json::array();
   for (const ParamDecl& p : m.params) j["params"].push_back(param_decl_json(p));

@@ -68,11 +68,18 @@ struct MethodInfo {
   // needs_texture_atlas: the atlas options from the method's parameters (null: AtlasOptions{}).
   texture_space::AtlasOptions (*atlas_options)(const ParamValues& params) = nullptr;
   const PrecomputeDecl* precompute = nullptr;  // null: the method precomputes nothing on the CPU
+  // Textured materials (MaterialMaps): a method that does not read them is refused such a scene with one line,
+  // rather than rendering the maps' mean.
+  bool reads_material_maps = false;
 };
 
 // Every registered method (src/methods/method_list.h), the default first.
 std::span<const MethodInfo* const> method_registry();
 const MethodInfo* find_method(std::string_view name);
 const MethodInfo& default_method();
+
+// Throws lucent::Error("<scene>: /objects/<i>/material/<map key>: method '<name>' does not read textured
+// materials; ...") for the first object whose material has maps.
+void refuse_material_maps(const Scene& scene, const MethodInfo& method);
 
 }  // namespace lucent::methods

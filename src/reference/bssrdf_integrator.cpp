@@ -117,13 +117,17 @@ glm::dvec3 integrand(const ReferenceScene& s, const ObjectData& o, const shader:
   return sum;
 }
 
-// B(x_o) / pi, one MIS sample.
-glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm::dvec3 x_o, glm::dvec3 n_o, Rng& rng) {
+// B(x_o) / pi, one MIS sample. A textured material's S_d takes the coefficients at x_o (uv_o), where the light
+// leaves: the convention of the volpath reference (the medium of the point a camera path enters) and of engines'
+// texture-driven subsurface scattering; the probes follow the same coefficients.
+glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm::dvec3 x_o, glm::dvec3 n_o,
+                                       glm::dvec2 uv_o, Rng& rng) {
   const ObjectData& o = s.rt.object(object);
+  const MediumCoefficients at_exit = o.medium_at(uv_o);
   shader::BandMedium media[3];
   Probe probe{x_o, n_o, {}, {}, {}, 0.0};
   for (int c = 0; c < 3; ++c) {
-    media[c] = shader::make_band_medium(static_cast<float>(o.sigma_a[c]), static_cast<float>(o.sigma_s[c]),
+    media[c] = shader::make_band_medium(static_cast<float>(at_exit.sigma_a[c]), static_cast<float>(at_exit.sigma_s[c]),
                                         static_cast<float>(o.g[c]));
     probe.sigma_tr[c] = media[c].sigma_tr;
   }
@@ -169,7 +173,7 @@ glm::dvec3 emergent_irradiance(const ReferenceScene& s, const SurfaceHit& hit, g
   double eps = s.rt.ray_epsilon();
   if (s.rt.occluded(hit.position + eps * n, w, d - 3.0 * eps)) return glm::dvec3(0.0);
   double T21 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_v));
-  glm::dvec3 L_v = T21 * scattered_radiosity_over_pi(s, object, v.position, v.normal, rng);
+  glm::dvec3 L_v = T21 * scattered_radiosity_over_pi(s, object, v.position, v.normal, v.uv, rng);
   double pdf = 1.0 / (o.area * static_cast<double>(translucent.size()));
   return L_v * cos_v * cos_x / (d * d) / pdf;
 }
@@ -188,7 +192,7 @@ glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec
   }
   double cos_o = std::max(0.0, -glm::dot(n, direction));
   double T21 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_o));
-  return T21 * scattered_radiosity_over_pi(s, hit.object, hit.position, n, rng);
+  return T21 * scattered_radiosity_over_pi(s, hit.object, hit.position, n, hit.uv, rng);
 }
 
 }  // namespace lucent::reference

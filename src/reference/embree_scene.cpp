@@ -47,11 +47,31 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     d.mesh_lower = d.lower, d.mesh_upper = d.upper;
     if (m.field.has_bounds) d.lower = m.field.bounds_lower, d.upper = m.field.bounds_upper;
     d.majorant = static_cast<double>(m.field.max_multiplier()) * (d.sigma_a + d.sigma_s);
+    if (m.maps && !object.mesh.uvs.empty()) {
+      d.maps = m.maps;
+      d.corner_uvs.reserve(d.corners.size());
+      for (std::size_t t = 0; t + 2 < d.indices.size(); t += 3)
+        d.corner_uvs.push_back({object.mesh.uvs[d.indices[t]], object.mesh.uvs[d.indices[t + 1]],
+                                object.mesh.uvs[d.indices[t + 2]]});
+    }
   }
   return d;
 }
 
+glm::dvec2 corner_uv(const ObjectData& d, unsigned triangle, double b1, double b2) {
+  if (!d.textured()) return glm::dvec2(0.0);
+  const std::array<glm::vec2, 3>& uv = d.corner_uvs[triangle];
+  return (1.0 - b1 - b2) * glm::dvec2(uv[0]) + b1 * glm::dvec2(uv[1]) + b2 * glm::dvec2(uv[2]);
+}
+
 }  // namespace
+
+MediumCoefficients ObjectData::medium_at(glm::dvec2 uv) const {
+  if (!maps) return {sigma_a, sigma_s};
+  glm::vec3 a, s;
+  maps->coefficients(glm::vec2(uv), a, s);
+  return {glm::dvec3(a) * static_cast<double>(scale_mm), glm::dvec3(s) * static_cast<double>(scale_mm)};
+}
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
   device_ = rtcNewDevice(nullptr);
@@ -112,6 +132,7 @@ SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& di
   hit.normal = glm::normalize(n);
   glm::dvec3 ng = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
   hit.geometric_normal = glm::dot(ng, hit.normal) < 0.0 ? -ng : ng;
+  hit.uv = corner_uv(objects_[static_cast<std::size_t>(hit.object)], rh.hit.primID, u, v);
   return hit;
 }
 
@@ -132,12 +153,13 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
 
 SurfaceSample EmbreeScene::sample_surface(int object, double u0, double u1, double u2, double u3) const {
   const ObjectData& d = objects_[static_cast<std::size_t>(object)];
-  const ObjectData::Corners& c = d.corners[d.triangle_by_area.sample(u0, u1)];
+  const std::size_t triangle = d.triangle_by_area.sample(u0, u1);
+  const ObjectData::Corners& c = d.corners[triangle];
   // Uniform barycentrics (square-root mapping).
   double s = std::sqrt(u2), b0 = 1.0 - s, b1 = u3 * s, b2 = 1.0 - b0 - b1;
   glm::dvec3 p = b0 * glm::dvec3(c.position[0]) + b1 * glm::dvec3(c.position[1]) + b2 * glm::dvec3(c.position[2]);
   glm::dvec3 n = b0 * glm::dvec3(c.normal[0]) + b1 * glm::dvec3(c.normal[1]) + b2 * glm::dvec3(c.normal[2]);
-  return {p, glm::normalize(n), 1.0 / d.area};
+  return {p, glm::normalize(n), 1.0 / d.area, corner_uv(d, static_cast<unsigned>(triangle), b1, b2)};
 }
 
 }  // namespace lucent::reference

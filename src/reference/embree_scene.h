@@ -2,6 +2,8 @@
 // triangles, one Embree geometry per object, interpolated shading normals, materials in scene units and
 // uniform area sampling of each object's surface.
 #pragma once
+#include <array>
+#include <memory>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -18,7 +20,14 @@ struct SurfaceHit {
   glm::dvec3 position{0.0};  // [scene units]
   glm::dvec3 normal{0.0};    // interpolated shading normal, unit, pointing out of the object
   glm::dvec3 geometric_normal{0.0};  // unit, on the same side as `normal`
+  glm::dvec2 uv{0.0};        // texture coordinates (only for objects with a textured material; else 0)
   bool hit() const { return object >= 0; }
+};
+
+// A medium's coefficients at one point [1/scene unit], unreduced sigma_s.
+struct MediumCoefficients {
+  glm::dvec3 sigma_a{0.0}, sigma_s{0.0};
+  glm::dvec3 sigma_t() const { return sigma_a + sigma_s; }
 };
 
 // Per object: optical properties in scene units and the data for area sampling.
@@ -28,6 +37,14 @@ struct ObjectData {
   glm::dvec3 sigma_a{0.0}, sigma_s{0.0}, g{0.0};  // [1/scene unit], unreduced sigma_s
   double eta = 1.0;
   int model = 1;                                  // LUCENT_MODEL_*
+  // A textured material (lucent::MaterialMaps, coefficients in mm^-1) with each triangle's corner texture
+  // coordinates; sigma_a and sigma_s above are then those of the maps' mean.
+  std::shared_ptr<const MaterialMaps> maps;
+  std::vector<std::array<glm::vec2, 3>> corner_uvs;
+  bool textured() const { return maps != nullptr; }
+  // The coefficients where light leaves (or a camera path enters) the surface at texture coordinates uv: the
+  // maps' there, the material's for an untextured object.
+  MediumCoefficients medium_at(glm::dvec2 uv) const;
   // Heterogeneous medium (media/heterogeneous_field.h): sigma_t(x) = m(x) sigma_t, sigma_s(x) = min(m, 1) sigma_s
   // over the world-space bounds [lower, upper]; `majorant` = max m sigma_t bounds sigma_t(x) for delta tracking.
   MediumField field;
@@ -53,6 +70,7 @@ struct ObjectData {
 struct SurfaceSample {
   glm::dvec3 position, normal;
   double pdf_area;  // 1 / area
+  glm::dvec2 uv{0.0};  // texture coordinates (textured objects only)
 };
 
 class EmbreeScene {

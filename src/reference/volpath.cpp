@@ -111,12 +111,13 @@ RefractedBeam find_refracted_point_beam(const ReferenceScene& s, int object, glm
   return beam;
 }
 
-// Transmittance along the segment from `a` to `b` inside object o: exact in a homogeneous medium; in a
+// Transmittance along the segment from `a` to `b` inside object o whose homogeneous coefficients are `k` (the
+// material's, or a textured material's at the point the path entered): exact in a homogeneous medium; in a
 // heterogeneous one, ratio tracking (Novak et al. 2014): tentative points at the rate mu of the largest band
 // majorant, each multiplying band k by 1 - sigma_t,k(x) / mu. Unbiased, and in [0, 1] because mu >= sigma_t.
-glm::dvec3 transmittance(const ObjectData& o, glm::dvec3 a, glm::dvec3 b, Rng& rng) {
+glm::dvec3 transmittance(const ObjectData& o, const MediumCoefficients& k, glm::dvec3 a, glm::dvec3 b, Rng& rng) {
   const double length = glm::length(b - a);
-  if (!o.heterogeneous()) return exp_neg((o.sigma_a + o.sigma_s) * length);
+  if (!o.heterogeneous()) return exp_neg(k.sigma_t() * length);
   const double mu = max_component(o.majorant);
   const glm::dvec3 direction = (b - a) / std::max(length, 1e-300), sigma_t = o.sigma_a + o.sigma_s;
   glm::dvec3 T(1.0);
@@ -143,7 +144,7 @@ glm::dvec3 shadow_transmittance(const ReferenceScene& s, glm::dvec3 origin, glm:
     // The far side: the next surface must be the same object's (nested or touching media are not supported).
     const SurfaceHit leave = s.rt.intersect(enter.position, direction, t_max - enter.t);
     if (!leave.hit() || leave.object != enter.object) return glm::dvec3(0.0);
-    T *= transmittance(o, enter.position, leave.position, rng);
+    T *= transmittance(o, o.medium_at(enter.uv), enter.position, leave.position, rng);
     if (max_component(T) <= 0.0) return T;
     origin = leave.position;
     t_max -= enter.t + leave.t;
@@ -153,8 +154,10 @@ glm::dvec3 shadow_transmittance(const ReferenceScene& s, glm::dvec3 origin, glm:
 
 namespace {
 
-// Next-event estimation at a medium scattering vertex: light in-scattered toward -path_dir.
-glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 path_dir, Rng& rng) {
+// Next-event estimation at a medium scattering vertex: light in-scattered toward -path_dir, through the medium
+// `k` of the path.
+glm::dvec3 medium_next_event(const ReferenceScene& s, int object, const MediumCoefficients& k, glm::dvec3 x,
+                             glm::dvec3 path_dir, Rng& rng) {
   const ObjectData& o = s.rt.object(object);
   glm::dvec3 L(0.0);
   for (const DirectionalLight& light : s.scene.lights) {
@@ -165,7 +168,7 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, 
     const glm::dvec3 outside = shadow_transmittance(s, entry_outside, -light_dir, 1e30, rng);
     if (max_component(outside) <= 0.0) continue;
     glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
-    L += glm::dvec3(light.radiance) * beam.irradiance_factor * outside * transmittance(o, beam.entry, x, rng) * phase;
+    L += glm::dvec3(light.radiance) * beam.irradiance_factor * outside * transmittance(o, k, beam.entry, x, rng) * phase;
   }
   for (const PointLight& light : s.scene.point_lights) {
     glm::dvec3 x_l(light.position);
@@ -178,7 +181,7 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, glm::dvec3 x, 
     if (max_component(outside) <= 0.0) continue;
     glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
     L += point_light_intensity(s, light, light_dir) * beam.irradiance_factor * outside *
-         transmittance(o, beam.entry, x, rng) * phase;
+         transmittance(o, k, beam.entry, x, rng) * phase;
   }
   return L;
 }
@@ -195,6 +198,9 @@ struct PathState {
   glm::dvec3 radiance{0.0};
   int hero = 0;
   int medium = -1;  // object whose interior the path is in
+  // Its coefficients: the material's, or a textured material's where the path entered it (each walk inside is
+  // one homogeneous medium, as in Cycles' random-walk subsurface scattering; docs/materials.md, "Textures").
+  MediumCoefficients medium_k;
   int events = 0;
   int scatterings = 0;  // medium scattering events so far
   glm::dvec3 weight() const { return throughput / mean(r_u); }
@@ -235,7 +241,7 @@ bool leave_or_reflect(const ReferenceScene& s, PathState& p, Rng& rng, const Sur
 // new direction from the hero band's phase function.
 bool scatter(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) {
   const ObjectData& o = s.rt.object(p.medium);
-  p.add(medium_next_event(s, p.medium, x, p.direction, rng));
+  p.add(medium_next_event(s, p.medium, p.medium_k, x, p.direction, rng));
   if (s.max_scatter > 0 && ++p.scatterings >= s.max_scatter) return false;
   glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[p.hero]);
   glm::dvec3 phase = hg_pdf_bands(glm::dot(next, p.direction), o.g);
@@ -290,7 +296,7 @@ Flight delta_track(const ReferenceScene& s, PathState& p, Rng& rng, double bound
 // Inside a medium: scatter (with next-event estimation) or reach the boundary and reflect or leave.
 bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
   const ObjectData& o = s.rt.object(p.medium);
-  glm::dvec3 sigma_t = o.sigma_a + o.sigma_s;
+  const glm::dvec3 sigma_t = p.medium_k.sigma_t();
   // Medium rays start inside (scattering vertices, or boundary points offset inward): no epsilon skip, so a vertex
   // within epsilon of the boundary still finds it.
   if (o.heterogeneous()) {
@@ -317,7 +323,7 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
     // Scattering vertex: distance pdf sigma_t e^{-sigma_t t} of each band relative to the hero's.
     glm::dvec3 attenuation = exp_neg(sigma_t * t);
     glm::dvec3 pdf = sigma_t * attenuation;
-    p.throughput *= o.sigma_s * attenuation / pdf[p.hero];
+    p.throughput *= p.medium_k.sigma_s * attenuation / pdf[p.hero];
     p.r_u *= pdf / pdf[p.hero];
     return scatter(s, p, rng, x);
   }
@@ -358,6 +364,7 @@ bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce, c
     p.throughput /= o.eta * o.eta;
     p.origin = hit.position - s.rt.ray_epsilon() * ng;
     p.medium = hit.object;
+    p.medium_k = o.medium_at(hit.uv);
   }
   return true;
 }

@@ -193,6 +193,7 @@ struct Renderer::Impl {
     if (scene.method.empty()) scene.method = std::string(methods::default_method().name);
     const methods::MethodInfo* info = methods::find_method(scene.method);
     if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
+    if (!info->reads_material_maps) methods::refuse_material_maps(scene, *info);
     method.reset();
     atlas.reset();
     atlas_scene.reset();

@@ -18,6 +18,7 @@
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
 #include "materials/artist_parameters.h"
+#include "materials/material_maps.h"
 #include "scene/gltf_material.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
@@ -96,6 +97,10 @@ constexpr ParamDecl kMaterialParams[] = {
     {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard|photon-beam|better-dipole|tabulated", "diffusion model S_d"},
     {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the model's flat total diffuse reflectance (with mfp_mm, instead of coefficients)"},
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
+    {"albedo_map", ParamType::String, "\"\"", "", 0, 0, "",
+     "surface albedo per texel through the mesh's texture coordinates (.png sRGB, .exr, .hdr; with mfp_mm, instead of albedo)"},
+    {"mfp_map", ParamType::String, "\"\"", "", 0, 0, "",
+     "factor on the mean free path per texel (.png linear, .exr, .hdr)"},
 };
 constexpr ParamDecl kFieldParams[] = {
     {"type", ParamType::Enum, "\"none\"", "", 0, 0, "none|marble|layered|volume|vdb",
@@ -276,15 +281,21 @@ Material material_from_coefficients(const ParamValues& v, const JsonLocation& wh
   return m;
 }
 
-// Coefficients inverted from the surface albedo and the mean free path (materials/artist_parameters.h).
-Material material_from_artist(const ParamValues& v, const JsonLocation& where) {
+// Coefficients inverted from the surface albedo and the mean free path (materials/artist_parameters.h). With an
+// albedo map, `map_albedo` (its mean) stands in for the albedo.
+Material material_from_artist(const ParamValues& v, const JsonLocation& where, const glm::vec3* map_albedo) {
   for (const char* key : {"preset", "sigma_a", "sigma_s", "sigma_s_prime"})
     if (v.has(key) && !(key == std::string_view("preset") && v.text("preset").empty()))
       fail(where.child(key), "not allowed with albedo and mfp_mm (give either albedo and mfp_mm or coefficients)");
-  if (!v.has("albedo")) fail(where.child("albedo"), "missing; mfp_mm needs the surface albedo too, e.g. [0.8, 0.6, 0.5]");
-  if (!v.has("mfp_mm")) fail(where.child("mfp_mm"), "missing; albedo needs the mean free path too, e.g. [1, 0.5, 0.25]");
+  if (map_albedo && v.has("albedo"))
+    fail(where.child("albedo"), "not allowed with albedo_map (the map is the surface albedo)");
+  if (!map_albedo && !v.has("albedo"))
+    fail(where.child("albedo"), "missing; mfp_mm needs the surface albedo too, e.g. [0.8, 0.6, 0.5]");
+  if (!v.has("mfp_mm"))
+    fail(where.child("mfp_mm"), map_albedo ? "missing; albedo_map needs the mean free path too, e.g. [1, 0.5, 0.25]"
+                                           : "missing; albedo needs the mean free path too, e.g. [1, 0.5, 0.25]");
   ArtistParameters artist;
-  artist.albedo = v.vec3("albedo");
+  artist.albedo = map_albedo ? *map_albedo : v.vec3("albedo");
   artist.mfp_mm = v.vec3("mfp_mm");
   if (v.has("g")) artist.g = v.vec3("g");
   if (v.has("eta")) artist.eta = static_cast<float>(v.number("eta"));
@@ -292,14 +303,56 @@ Material material_from_artist(const ParamValues& v, const JsonLocation& where) {
   return invert_artist_parameters(artist, where.str()).material;
 }
 
+// A map's file from the material's key ("" when absent or empty).
+std::optional<MapImage> read_map_key(const ParamValues& v, const char* key, bool colour, const JsonLocation& where,
+                                     const std::string& base_dir) {
+  if (!v.has(key) || v.text(key).empty()) return std::nullopt;
+  return read_material_map(resolve_path(v.text(key), base_dir), colour, where.child(key).str());
+}
+
+// The middle of the albedos the material's model reaches, for an albedo map's mean outside them (the texels are
+// clamped and counted in make_material_maps; the mean only sets the base coefficients).
+glm::vec3 reachable_mean_albedo(glm::vec3 mean, const ParamValues& v) {
+  const BssrdfModel curve = inversion_curve_model(*parse_bssrdf_model(v.text("model")));
+  const float eta = v.has("eta") ? static_cast<float>(v.number("eta")) : ArtistParameters{}.eta;
+  const glm::vec3 g = v.has("g") ? v.vec3("g") : glm::vec3(0.0f);
+  for (int c = 0; c < 3; ++c) {
+    if (!(std::abs(g[c]) < 1.0f) || !(eta >= 1.0f && eta <= 3.0f)) continue;  // reported by the inversion
+    const double lo = flat_total_of_albedo(curve, kArtistAlphaMin, g[c], eta);
+    const double hi = std::min(1.0, flat_total_of_albedo(curve, kArtistAlphaMax, g[c], eta));
+    mean[c] = static_cast<float>(std::clamp<double>(mean[c], lo + 1e-3 * (hi - lo), hi - 1e-3 * (hi - lo)));
+  }
+  return mean;
+}
+
 Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
   json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
   ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
-  const bool artist = v.has("albedo") || v.has("mfp_mm");
-  Material m = artist ? material_from_artist(v, where) : material_from_coefficients(v, where);
+  const std::optional<MapImage> albedo_map = read_map_key(v, "albedo_map", true, where, base_dir);
+  const std::optional<MapImage> mfp_map = read_map_key(v, "mfp_map", false, where, base_dir);
+  const bool artist = v.has("albedo") || v.has("mfp_mm") || albedo_map;
+  std::optional<glm::vec3> map_albedo;
+  if (albedo_map) map_albedo = reachable_mean_albedo(map_mean(*albedo_map), v);
+  Material m = artist ? material_from_artist(v, where, map_albedo ? &*map_albedo : nullptr)
+                      : material_from_coefficients(v, where);
   if (v.has("eta")) m.eta = static_cast<float>(v.number("eta"));
   m.model = *parse_bssrdf_model(v.text("model"));
   if (j.contains("field")) m.field = read_field(j.at("field"), where.child("field"), base_dir);
+  if (albedo_map || mfp_map) {
+    const char* map_key = albedo_map ? "albedo_map" : "mfp_map";
+    if (m.field.heterogeneous())
+      fail(where.child("field"), fmt::format("not with {}: a material is textured or has a 3D field, not both", map_key));
+    if (m.model == BssrdfModel::Tabulated)
+      fail(where.child("model"), fmt::format("tabulated takes no {}: its tables hold one medium each, a texture has "
+                                             "a medium per texel", map_key));
+    validate_material(m, where.str());
+    m.maps = make_material_maps(m, albedo_map ? &*albedo_map : nullptr, mfp_map ? &*mfp_map : nullptr, where.str());
+    if (mfp_map) {  // the material's own coefficients: those at the map's mean factor
+      const glm::vec3 scale = map_mean(*mfp_map);
+      for (int c = 0; c < 3; ++c)
+        if (scale[c] > 0.0f) m.sigma_a[c] /= scale[c], m.sigma_s[c] /= scale[c];
+    }
+  }
   validate_material(m, where.str());
   return m;
 }
@@ -448,6 +501,12 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
     if (j.at("material") == kFromMesh) read_mesh_material(object, where);
     else object.material = read_material(j.at("material"), where.child("material"), base_dir);
     if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
+    if (object.material && object.material->textured() && object.mesh.uvs.empty()) {
+      const MaterialMaps& maps = *object.material->maps;
+      fail(where.child("material").child(maps.albedo_file.empty() ? "mfp_map" : "albedo_map"),
+           fmt::format("a texture needs the mesh's texture coordinates; {} has none",
+                       object.blob_resolution > 0 ? "a blob surface" : object.mesh_file.empty() ? "the shape" : object.mesh_file));
+    }
   }
   return object;
 }
@@ -581,6 +640,10 @@ std::vector<std::string> scene_input_files(const Scene& scene) {
   if (scene.environment) files.push_back(scene.environment->file);
   for (const SceneObject& object : scene.objects) {
     if (!object.mesh_file.empty()) files.push_back(object.mesh_file);
+    if (object.material && object.material->maps) {
+      for (const std::string* file : {&object.material->maps->albedo_file, &object.material->maps->mfp_file})
+        if (!file->empty()) files.push_back(*file);
+    }
     if (object.material && object.material->field.volume) {
       files.push_back(object.material->field.volume->source);
       files.push_back(object.material->field.volume->data_file);

@@ -75,6 +75,21 @@ json material_json(const Material& m) {
   }
   j["eta"] = m.eta;
   j["model"] = std::string(to_string(m.model));
+  if (m.maps) {  // the coefficients written above are the maps' mean; the maps themselves by absolute path
+    const MaterialMaps& maps = *m.maps;
+    if (!maps.albedo_file.empty()) {
+      // An albedo map needs the artist form: its mean free path (the map's alpha replaces the coefficients').
+      j.erase("preset"), j.erase("sigma_a"), j.erase("sigma_s");
+      j["mfp_mm"] = vec(maps.base_mfp_mm);
+      j["albedo_map"] = std::filesystem::absolute(maps.albedo_file).string();
+    } else {
+      j.erase("preset");
+      j["sigma_a"] = vec((1.0f - maps.base_alpha) / maps.base_mfp_mm);
+      j["sigma_s"] = vec(maps.base_alpha / maps.base_mfp_mm);
+      j["g"] = vec(m.g);
+    }
+    if (!maps.mfp_file.empty()) j["mfp_map"] = std::filesystem::absolute(maps.mfp_file).string();
+  }
   if (m.field.heterogeneous()) {
     json field = {{"type", std::string(to_string(m.field.type))}};
     if (m.field.type == MediumFieldType::Volume) {

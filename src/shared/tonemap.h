@@ -16,6 +16,13 @@ LUCENT_INLINE float srgb_encode(float linear) {
   return 1.055f * pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
+// The inverse: an sRGB-encoded value in [0, 1] -> linear (colour textures).
+LUCENT_INLINE float srgb_decode(float encoded) {
+  float c = clamp(encoded, 0.0f, 1.0f);
+  if (c <= 0.04045f) return c / 12.92f;
+  return pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
 LUCENT_INLINE vec3 tonemap_operator(vec3 x, int op) {
   if (op == LUCENT_TONEMAP_REINHARD) return x / (vec3(1.0f) + x);
   if (op == LUCENT_TONEMAP_ACES) {

@@ -1,0 +1,193 @@
+// material_maps.cpp: see material_maps.h.
+#include "materials/material_maps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "lucent/error.h"
+#include "lucent/image.h"
+#include "materials/artist_parameters.h"
+#include "shared/tonemap.h"
+
+namespace lucent {
+namespace {
+
+// Bilinear between texel centres, repeating.
+glm::vec3 bilinear(const std::vector<glm::vec3>& texels, glm::ivec2 size, glm::vec2 uv) {
+  const float x = uv.x * static_cast<float>(size.x) - 0.5f, y = uv.y * static_cast<float>(size.y) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  auto wrap = [](float i, int n) {
+    const long long k = static_cast<long long>(i) % n;
+    return static_cast<std::size_t>(k < 0 ? k + n : k);
+  };
+  const std::size_t x0 = wrap(fx, size.x), x1 = wrap(fx + 1.0f, size.x);
+  const std::size_t y0 = wrap(fy, size.y), y1 = wrap(fy + 1.0f, size.y);
+  const std::size_t w = static_cast<std::size_t>(size.x);
+  const glm::vec3 bottom = glm::mix(texels[y0 * w + x0], texels[y0 * w + x1], tx);
+  const glm::vec3 top = glm::mix(texels[y1 * w + x0], texels[y1 * w + x1], tx);
+  return glm::mix(bottom, top, ty);
+}
+
+// uv outside a float's reach of [0, 1] (a NaN from degenerate geometry included) reads texel 0.
+glm::vec2 sane(glm::vec2 uv) {
+  for (int i = 0; i < 2; ++i)
+    if (!(std::abs(uv[i]) < 1e6f)) uv[i] = 0.0f;
+  return uv;
+}
+
+double alpha_of_node(int k) {
+  const double lo = std::log1p(-kArtistAlphaMin), hi = std::log1p(-kArtistAlphaMax);
+  const double u = lo + (hi - lo) * k / (kAlbedoCurveNodes - 1);
+  return -std::expm1(u);
+}
+
+std::string lower_extension(const std::string& file) {
+  std::string ext = std::filesystem::path(file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+glm::vec3 MaterialMaps::alpha_at(glm::vec2 uv) const {
+  return alpha.empty() ? base_alpha : bilinear(alpha, alpha_size, sane(uv));
+}
+
+glm::vec3 MaterialMaps::mfp_mm_at(glm::vec2 uv) const {
+  return mfp_mm.empty() ? base_mfp_mm : bilinear(mfp_mm, mfp_size, sane(uv));
+}
+
+void MaterialMaps::coefficients(glm::vec2 uv, glm::vec3& sigma_a, glm::vec3& sigma_s) const {
+  const glm::vec3 a = alpha_at(uv), sigma_t = 1.0f / mfp_mm_at(uv);
+  sigma_s = a * sigma_t;
+  sigma_a = (1.0f - a) * sigma_t;
+}
+
+AlbedoCurve::AlbedoCurve(BssrdfModel model, float g, float eta) : g_(g) {
+  totals_.resize(kAlbedoCurveNodes);
+  for (int k = 0; k < kAlbedoCurveNodes; ++k) totals_[k] = flat_total_of_albedo(model, alpha_of_node(k), g, eta);
+  for (int k = 1; k < kAlbedoCurveNodes; ++k) totals_[k] = std::max(totals_[k], totals_[k - 1]);  // rising
+}
+
+double AlbedoCurve::alpha(double albedo) const {
+  if (!(albedo > totals_.front())) return alpha_of_node(0);
+  if (!(albedo < totals_.back())) return alpha_of_node(kAlbedoCurveNodes - 1);
+  const auto upper = std::upper_bound(totals_.begin(), totals_.end(), albedo);
+  const int k = static_cast<int>(upper - totals_.begin()) - 1;  // totals_[k] <= albedo < totals_[k + 1]
+  const double t = (albedo - totals_[k]) / std::max(totals_[k + 1] - totals_[k], 1e-300);
+  // Linear in log(1 - alpha), the nodes' spacing.
+  const double u0 = std::log1p(-alpha_of_node(k)), u1 = std::log1p(-alpha_of_node(k + 1));
+  return -std::expm1(u0 + t * (u1 - u0));
+}
+
+MapImage read_material_map(const std::string& file, bool colour, const std::string& where) {
+  MapImage out;
+  out.file = file;
+  const std::string ext = lower_extension(file);
+  ImageRGBA32F image;
+  try {
+    if (ext == ".png") {
+      const ImageRGBA8 png = read_png(file);
+      image.width = png.width, image.height = png.height;
+      image.pixels.resize(png.pixels.size());
+      for (std::size_t i = 0; i < png.pixels.size(); ++i) {
+        const float v = static_cast<float>(png.pixels[i]) / 255.0f;
+        image.pixels[i] = colour && i % 4 != 3 ? shader::srgb_decode(v) : v;
+      }
+    } else if (ext == ".exr") {
+      image = read_exr(file);
+    } else if (ext == ".hdr") {
+      image = read_hdr(file);
+    } else {
+      throw Error(fmt::format("{}: unknown image type '{}'; a map is .png, .exr or .hdr", file, ext));
+    }
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", where, e.what()));
+  }
+  out.size = {image.width, image.height};
+  out.texels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float* p = image.at(x, image.height - 1 - y);  // files store the top row first
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(p[c]) || p[c] < 0.0f)
+          throw Error(fmt::format("{}: {}: texel ({}, {}) band {} = {}; map values are finite and >= 0", where, file,
+                                  x, image.height - 1 - y, c, p[c]));
+      }
+      out.texels[static_cast<std::size_t>(y) * image.width + x] = glm::vec3(p[0], p[1], p[2]);
+    }
+  }
+  return out;
+}
+
+glm::vec3 map_mean(const MapImage& image) {
+  glm::dvec3 sum(0.0);
+  for (const glm::vec3& t : image.texels) sum += glm::dvec3(t);
+  return glm::vec3(sum / std::max<double>(1.0, static_cast<double>(image.texels.size())));
+}
+
+std::shared_ptr<const MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
+                                                       const MapImage* mfp_scale, const std::string& where) {
+  auto maps = std::make_shared<MaterialMaps>();
+  const glm::vec3 sigma_t = base.sigma_t();
+  maps->base_alpha = base.sigma_s / sigma_t;
+  maps->base_mfp_mm = 1.0f / sigma_t;
+  if (albedo) {
+    maps->albedo_file = albedo->file;
+    maps->alpha_size = albedo->size;
+    const BssrdfModel curve_model = inversion_curve_model(base.model);
+    std::vector<AlbedoCurve> curves;
+    int band_curve[3];
+    for (int c = 0; c < 3; ++c) {
+      auto same = std::find_if(curves.begin(), curves.end(), [&](const AlbedoCurve& k) { return k.g() == base.g[c]; });
+      if (same == curves.end()) curves.emplace_back(curve_model, base.g[c], base.eta), same = curves.end() - 1;
+      band_curve[c] = static_cast<int>(same - curves.begin());
+    }
+    std::size_t clamped = 0;
+    maps->alpha.resize(albedo->texels.size());
+    for (std::size_t i = 0; i < albedo->texels.size(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        const AlbedoCurve& curve = curves[static_cast<std::size_t>(band_curve[c])];
+        const double a = albedo->texels[i][c];
+        if (a <= curve.lowest() || a >= curve.highest()) ++clamped;
+        maps->alpha[i][c] = static_cast<float>(curve.alpha(a));
+      }
+    }
+    if (clamped > 0) {
+      const AlbedoCurve& curve = curves.front();
+      std::cerr << fmt::format(
+          "lucent: warning: {}/albedo_map: {}: {} of {} texel values are outside the surface albedos the {} model "
+          "reaches ({:.4g}, {:.4g}) at g {} and eta {}; clamped to them\n",
+          where, albedo->file, clamped, 3 * albedo->texels.size(), to_string(curve_model), curve.lowest(),
+          std::min(curve.highest(), 1.0), curve.g(), base.eta);
+    }
+  }
+  if (mfp_scale) {
+    maps->mfp_file = mfp_scale->file;
+    maps->mfp_size = mfp_scale->size;
+    maps->mfp_mm.resize(mfp_scale->texels.size());
+    for (std::size_t i = 0; i < mfp_scale->texels.size(); ++i) {
+      const glm::vec3 mfp = maps->base_mfp_mm * mfp_scale->texels[i];
+      for (int c = 0; c < 3; ++c) {
+        // > 1e-30 mm and < 1e30 mm keep both coefficients finite, positive floats.
+        if (!(mfp[c] > 1e-30f && mfp[c] < 1e30f)) {
+          const int w = std::max(1, mfp_scale->size.x);
+          const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
+          throw Error(fmt::format("{}/mfp_map: {}: texel ({}, {}) band {} scales the mean free path {} mm to {} mm; "
+                                  "allowed (0, inf): a map value of 0 is no mean free path",
+                                  where, mfp_scale->file, x, mfp_scale->size.y - 1 - y, c, maps->base_mfp_mm[c],
+                                  mfp[c]));
+        }
+      }
+      maps->mfp_mm[i] = mfp;
+    }
+  }
+  return maps;
+}
+
+}  // namespace lucent

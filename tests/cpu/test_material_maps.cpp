@@ -1,0 +1,274 @@
+// test_material_maps.cpp: textured translucent materials (lucent/material.h MaterialMaps,
+// materials/material_maps.h): the per-texel inversion against the model's exact flat total, the texture lookup's
+// conventions (bilinear between texel centres, repeating, v = 0 at the bottom row, sRGB colour), the scene syntax
+// and its one-line errors, and both CPU references against the untextured material.
+//
+// The references evaluate a textured material where the light leaves the surface (S_d's exit point; volpath's
+// walk takes the medium of the point where the camera path entered). On a convex object no path re-enters, so a
+// pixel whose surface point lies in a texture region of albedo A renders exactly as the untextured material of
+// albedo A: with the same random numbers the two estimates differ only by the inversion's 1e-4.
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "../test_support.h"
+#include "lucent/error.h"
+#include "lucent/image.h"
+#include "lucent/scene.h"
+#include "materials/artist_parameters.h"
+#include "materials/material_maps.h"
+#include "methods/method_info.h"
+#include "reference/embree_scene.h"
+#include "reference/integrators.h"
+#include "shared/tonemap.h"
+#include "transport/estimate.h"
+
+namespace lucent {
+namespace {
+
+using test::TempFile;
+using test::error_message;
+
+// A width x height PNG whose left half is `left` and right half `right` (8-bit sRGB values).
+void write_halves_png(const std::string& path, int width, int height, glm::u8vec3 left, glm::u8vec3 right) {
+  ImageRGBA8 image{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(4 * width * height))};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::u8vec3 c = x < width / 2 ? left : right;
+      std::uint8_t* p = image.at(x, y);
+      p[0] = c.r, p[1] = c.g, p[2] = c.b, p[3] = 255;
+    }
+  write_png(path, image);
+}
+
+glm::vec3 decoded(glm::u8vec3 c) {
+  return {shader::srgb_decode(c.r / 255.0f), shader::srgb_decode(c.g / 255.0f), shader::srgb_decode(c.b / 255.0f)};
+}
+
+std::string vec_json(glm::vec3 v) { return fmt::format("[{}, {}, {}]", v.x, v.y, v.z); }
+
+Scene sphere_scene(const std::string& material_json) {
+  return parse_scene(fmt::format(R"({{
+    "scale_mm": 1,
+    "lights": [{{ "direction": [0.3, -1, 0.2], "radiance": [2, 2, 2] }}],
+    "objects": [{{ "shape": "sphere", "radius": 5, "segments": 48, "material": {} }}] }})",
+                                 material_json),
+                     "maps-test", "/");
+}
+
+TEST(MaterialMaps, AlbedoCurveInvertsTheExactFlatTotal) {
+  struct Case {
+    BssrdfModel model;
+    float g, eta;
+  };
+  const Case cases[] = {{BssrdfModel::StandardDipole, 0.0f, 1.3f},     {BssrdfModel::StandardDipole, 0.8f, 1.0f},
+                        {BssrdfModel::DirectionalDipole, 0.0f, 1.3f},  {BssrdfModel::DirectionalDipole, -0.3f, 1.5f},
+                        {BssrdfModel::BetterDipole, 0.5f, 1.4f},       {BssrdfModel::PhotonBeamDiffusion, 0.0f, 1.3f}};
+  double worst = 0.0;
+  for (const Case& c : cases) {
+    const AlbedoCurve curve(c.model, c.g, c.eta);
+    for (double albedo = 0.05; albedo < 0.951; albedo += 0.05) {
+      if (albedo <= curve.lowest() || albedo >= curve.highest()) continue;  // outside what the model reaches
+      const double alpha = curve.alpha(albedo);
+      const double total = flat_total_of_albedo(c.model, alpha, c.g, c.eta);
+      worst = std::max(worst, std::abs(total - albedo));
+      EXPECT_NEAR(total, albedo, 1e-4) << to_string(c.model) << " g " << c.g << " eta " << c.eta;
+    }
+  }
+  std::printf("largest |total(alpha(A)) - A| over the cases: %.2e\n", worst);
+}
+
+TEST(MaterialMaps, TexelsHoldTheUniformInversionAndTheLookupFollowsTheConventions) {
+  TempFile png(".png");
+  const glm::u8vec3 left{200, 120, 60}, right{90, 160, 230};
+  write_halves_png(png.path(), 64, 2, left, right);
+  const Scene scene = sphere_scene(fmt::format(R"({{ "albedo_map": "{}", "mfp_mm": [1, 0.5, 0.25],
+                                                    "model": "standard" }})", png.path()));
+  const Material& m = *scene.objects[0].material;
+  ASSERT_TRUE(m.textured());
+  const MaterialMaps& maps = *m.maps;
+  EXPECT_EQ(maps.alpha_size, glm::ivec2(64, 2));
+  for (auto [colour, u] : {std::pair{left, 0.2f}, std::pair{right, 0.8f}}) {
+    ArtistParameters artist;
+    artist.albedo = decoded(colour);
+    artist.mfp_mm = {1.0f, 0.5f, 0.25f};
+    artist.model = BssrdfModel::StandardDipole;
+    const Material uniform = invert_artist_parameters(artist, "uniform").material;
+    glm::vec3 sigma_a, sigma_s;
+    maps.coefficients({u, 0.5f}, sigma_a, sigma_s);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(sigma_a[c], uniform.sigma_a[c], 2e-3 * uniform.sigma_t()[c]) << "band " << c << " u " << u;
+      EXPECT_NEAR(sigma_s[c], uniform.sigma_s[c], 2e-3 * uniform.sigma_t()[c]) << "band " << c << " u " << u;
+    }
+  }
+  // Bilinear between texel centres: u = 0.5 is halfway between texels 31 and 32; repeating: u + 1 is u.
+  const glm::vec3 mid = maps.alpha_at({0.5f, 0.5f});
+  EXPECT_NEAR(mid.r, 0.5f * (maps.alpha_at({0.2f, 0.5f}).r + maps.alpha_at({0.8f, 0.5f}).r), 1e-6f);
+  for (float u : {1.2f, -0.8f})
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(maps.alpha_at({u, 0.5f})[c], maps.alpha_at({0.2f, 0.5f})[c], 1e-6f) << u;
+}
+
+TEST(MaterialMaps, RowsRunFromTheBottomUp) {
+  // A 1 x 2 EXR of mean free path factors: the top row (stored first) 4, the bottom row 1.
+  TempFile exr(".exr");
+  ImageRGBA32F image{1, 2, {4, 4, 4, 1, 1, 1, 1, 1}};
+  write_exr(exr.path(), image);
+  const Scene scene = sphere_scene(fmt::format(R"({{ "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1.9, 1.9, 1.9],
+                                                    "mfp_map": "{}" }})", exr.path()));
+  const MaterialMaps& maps = *scene.objects[0].material->maps;
+  EXPECT_FLOAT_EQ(maps.mfp_mm_at({0.5f, 0.25f}).x, 0.5f);  // bottom row: factor 1 on mfp 1 / 2 mm
+  EXPECT_FLOAT_EQ(maps.mfp_mm_at({0.5f, 0.75f}).x, 2.0f);  // top row: factor 4
+  EXPECT_FLOAT_EQ(maps.alpha_at({0.5f, 0.25f}).x, 0.95f);  // no albedo map: the material's alpha everywhere
+  // The material's own coefficients are those at the map's mean factor 2.5.
+  EXPECT_NEAR(scene.objects[0].material->sigma_t().x, 2.0f / 2.5f, 1e-6f);
+}
+
+TEST(MaterialMaps, BadMapsGetOneLine) {
+  TempFile png(".png");
+  write_halves_png(png.path(), 4, 1, {200, 150, 120}, {150, 180, 230});
+  const std::string where = "maps-test: /objects/0/material";
+  auto load = [&](const std::string& material) { return error_message([&] { sphere_scene(material); }); };
+  EXPECT_EQ(load(fmt::format(R"({{ "albedo_map": "{}", "albedo": 0.5, "mfp_mm": 1 }})", png.path())),
+            where + "/albedo: not allowed with albedo_map (the map is the surface albedo)");
+  EXPECT_EQ(load(fmt::format(R"({{ "albedo_map": "{}" }})", png.path())),
+            where + "/mfp_mm: missing; albedo_map needs the mean free path too, e.g. [1, 0.5, 0.25]");
+  EXPECT_EQ(load(fmt::format(R"({{ "albedo_map": "{}", "mfp_mm": 1, "model": "tabulated" }})", png.path())),
+            where + "/model: tabulated takes no albedo_map: its tables hold one medium each, a texture has a medium "
+                    "per texel");
+  EXPECT_EQ(load(fmt::format(R"({{ "albedo_map": "{}", "mfp_mm": 1, "field": {{ "type": "marble" }} }})", png.path())),
+            where + "/field: not with albedo_map: a material is textured or has a 3D field, not both");
+  EXPECT_EQ(load(R"({ "albedo_map": "/nonexistent/a.png", "mfp_mm": 1 })"),
+            where + "/albedo_map: /nonexistent/a.png: cannot read PNG: No such file or directory");
+  EXPECT_EQ(load(R"({ "albedo_map": "/nonexistent/a.tga", "mfp_mm": 1 })"),
+            where + "/albedo_map: /nonexistent/a.tga: unknown image type '.tga'; a map is .png, .exr or .hdr");
+  TempFile zero(".exr");
+  write_exr(zero.path(), ImageRGBA32F{2, 1, {1, 1, 1, 1, 1, 0, 1, 1}});
+  const float skim_mfp = 1.0f / material_from_preset(*find_material_preset("Skimmilk")).sigma_t()[1];
+  EXPECT_EQ(load(fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", zero.path())),
+            fmt::format("{}/mfp_map: {}: texel (1, 0) band 1 scales the mean free path {} mm to 0 mm; allowed "
+                        "(0, inf): a map value of 0 is no mean free path",
+                        where, zero.path(), skim_mfp));
+  TempFile negative(".exr");
+  write_exr(negative.path(), ImageRGBA32F{1, 1, {1, -1, 1, 1}});
+  EXPECT_EQ(load(fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", negative.path())),
+            fmt::format("{}/mfp_map: {}: texel (0, 0) band 1 = -1; map values are finite and >= 0", where,
+                        negative.path()));
+}
+
+TEST(MaterialMaps, AMeshWithoutTextureCoordinatesIsRefused) {
+  TempFile png(".png"), obj(".obj");
+  write_halves_png(png.path(), 4, 1, {200, 150, 120}, {150, 180, 230});
+  {
+    std::FILE* f = std::fopen(obj.path().c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n", f);
+    std::fclose(f);
+  }
+  const std::string message = error_message([&] {
+    parse_scene(fmt::format(R"({{ "objects": [{{ "mesh": "{}", "material": {{ "albedo_map": "{}", "mfp_mm": 1 }} }}] }})",
+                            obj.path(), png.path()),
+                "maps-test", "/");
+  });
+  EXPECT_EQ(message, fmt::format("maps-test: /objects/0/material/albedo_map: a texture needs the mesh's texture "
+                                 "coordinates; {} has none",
+                                 obj.path()));
+}
+
+TEST(MaterialMaps, AlbedosOutsideTheModelsRangeAreClampedWithOneWarning) {
+  TempFile png(".png");
+  write_halves_png(png.path(), 4, 1, {0, 0, 0}, {128, 128, 128});  // black: below every model's smallest total
+  ::testing::internal::CaptureStderr();
+  const Scene scene = sphere_scene(fmt::format(R"({{ "albedo_map": "{}", "mfp_mm": 1, "model": "standard" }})",
+                                               png.path()));
+  const std::string warning = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(warning.find("lucent: warning: maps-test: /objects/0/material/albedo_map: " + png.path() +
+                         ": 6 of 12 texel values are outside the surface albedos the standard model reaches"),
+            std::string::npos)
+      << warning;
+  EXPECT_NEAR(scene.objects[0].material->maps->alpha_at({0.125f, 0.5f}).x, kArtistAlphaMin, 1e-9);
+}
+
+TEST(MaterialMaps, MethodsThatDoNotReadMapsAreRefused) {
+  TempFile png(".png");
+  write_halves_png(png.path(), 4, 1, {200, 150, 120}, {150, 180, 230});
+  const Scene scene = sphere_scene(fmt::format(R"({{ "albedo_map": "{}", "mfp_mm": 1 }})", png.path()));
+  for (const methods::MethodInfo* method : methods::method_registry()) {
+    if (method->reads_material_maps) continue;
+    EXPECT_EQ(error_message([&] { methods::refuse_material_maps(scene, *method); }),
+              fmt::format("maps-test: /objects/0/material/albedo_map: method '{}' does not read textured materials "
+                          "(methods that do: none; the references lucent reference --integrator volpath|bssrdf do)",
+                          method->name));
+  }
+}
+
+// Radiance of camera rays toward points of the sphere at azimuth fraction u (the sphere's texture u) and
+// latitude 30 degrees, from outside along the normal; the same random numbers for every scene.
+reference::Estimate sphere_radiance(const Scene& scene, bool volpath, double u, int samples, std::vector<double>* each) {
+  reference::EmbreeScene rt(scene);
+  const reference::ReferenceScene rs{scene, rt};
+  reference::Accumulator acc;
+  for (int i = 0; i < samples; ++i) {
+    reference::Rng rng(29, static_cast<std::uint64_t>(i));
+    const double phi = 2.0 * M_PI * (u + 0.04 * (rng.uniform() - 0.5)), lat = (30.0 + 20.0 * (rng.uniform() - 0.5)) * M_PI / 180.0;
+    // The sphere's u runs with atan2(z, x) or its mirror; the hit's own uv is checked below.
+    const glm::dvec3 n(std::cos(lat) * std::cos(phi), std::sin(lat), std::cos(lat) * std::sin(phi));
+    const reference::SurfaceHit hit = rt.intersect(15.0 * n, -n);
+    if (!hit.hit()) continue;
+    const glm::dvec3 L = volpath ? reference::volpath_radiance(rs, 15.0 * n, -n, rng, &hit)
+                                 : reference::bssrdf_radiance(rs, 15.0 * n, -n, rng, &hit);
+    acc.add(L.x + L.y + L.z);
+    if (each) each->push_back(L.x + L.y + L.z);
+  }
+  return acc.estimate();
+}
+
+// Which texture half the points at azimuth fraction u fall in (the sphere's u may run either way round).
+double texture_u_of(const Scene& scene, double u) {
+  reference::EmbreeScene rt(scene);
+  const double phi = 2.0 * M_PI * u, lat = 30.0 * M_PI / 180.0;
+  const glm::dvec3 n(std::cos(lat) * std::cos(phi), std::sin(lat), std::cos(lat) * std::sin(phi));
+  return rt.intersect(15.0 * n, -n).uv.x;
+}
+
+void expect_references_follow_the_map(bool volpath) {
+  TempFile png(".png");
+  const glm::u8vec3 left{235, 170, 110}, right{60, 100, 210};
+  write_halves_png(png.path(), 64, 4, left, right);
+  const std::string common = R"("mfp_mm": [0.8, 0.5, 0.3], "model": "standard", "eta": 1.3)";
+  const Scene textured = sphere_scene(fmt::format(R"({{ "albedo_map": "{}", {} }})", png.path(), common));
+  const Scene uniform_left = sphere_scene(fmt::format(R"({{ "albedo": {}, {} }})", vec_json(decoded(left)), common));
+  const Scene uniform_right = sphere_scene(fmt::format(R"({{ "albedo": {}, {} }})", vec_json(decoded(right)), common));
+  const int samples = volpath ? 6000 : 4000;
+  for (double u : {0.25, 0.75}) {
+    const double tex_u = texture_u_of(textured, u);
+    ASSERT_TRUE(std::abs(tex_u - 0.25) < 0.1 || std::abs(tex_u - 0.75) < 0.1) << tex_u;
+    const Scene& same = tex_u < 0.5 ? uniform_left : uniform_right;
+    const Scene& other = tex_u < 0.5 ? uniform_right : uniform_left;
+    std::vector<double> a, b, c;
+    const reference::Estimate t = sphere_radiance(textured, volpath, u, samples, &a);
+    const reference::Estimate s = sphere_radiance(same, volpath, u, samples, &b);
+    const reference::Estimate o = sphere_radiance(other, volpath, u, samples, &c);
+    ASSERT_EQ(a.size(), b.size());
+    reference::Accumulator diff, diff_other;
+    for (std::size_t i = 0; i < a.size(); ++i) diff.add(a[i] - b[i]), diff_other.add(a[i] - c[i]);
+    const reference::Estimate d = diff.estimate(), e = diff_other.estimate();
+    std::printf("%s u %.2f (texture u %.3f): textured %.5f +- %.5f, untextured same albedo %.5f (paired difference "
+                "%.2e +- %.2e), other albedo %.5f (%.2e +- %.2e)\n",
+                volpath ? "volpath" : "bssrdf", u, tex_u, t.mean, t.standard_error, s.mean, d.mean,
+                d.standard_error, o.mean, e.mean, e.standard_error);
+    // Equal to the untextured material of the texel's albedo: within the inversion's precision (2e-3 of the
+    // mean) plus 4 paired standard errors (volpath's paths can branch apart on a 1e-4 change of sigma_t).
+    EXPECT_LT(std::abs(d.mean), 2e-3 * s.mean + 4.0 * d.standard_error);
+    // And far from the other half's material: the map made the difference.
+    EXPECT_GT(std::abs(e.mean), 6.0 * e.standard_error);
+  }
+}
+
+TEST(MaterialMaps, BssrdfReferenceTakesTheCoefficientsWhereTheLightLeaves) { expect_references_follow_the_map(false); }
+
+TEST(MaterialMaps, VolpathTakesTheMediumWhereTheCameraPathEnters) { expect_references_follow_the_map(true); }
+
+}  // namespace
+}  // namespace lucent
