@@ -128,6 +128,9 @@ TriangleMesh deformed_mesh(const TriangleMesh& mesh, const Deformation& deformat
 // e.g. for the CPU references of an animated scene.
 Scene scene_at_time(const Scene& scene, double seconds);
 
+// Whether any object's material is textured (Material::maps).
+bool has_material_maps(const Scene& scene);
+
 // Every file the scene was built from (the scene file, meshes, environment map, volume header and data): the
 // inputs an output must never overwrite (lucent/output_file.h).
 std::vector<std::string> scene_input_files(const Scene& scene);

@@ -7,6 +7,8 @@
 //   vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o, MaterialGPU material);
 //     rgb: radiance leaving x toward w_o by subsurface scattering; a: 1 when the method has data for x, else 0
 //
+// It may call camera_uv(pixel), the texture coordinates of x (0 unless the scene has textured materials).
+//
 // and, optionally before the include, LUCENT_OPAQUE_INDIRECT(x, n): irradiance an opaque surface receives from
 // the translucent objects (emergent light), added to its Lambertian shading.
 #include "common/direct_shading.glsl"
@@ -19,6 +21,12 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(binding = LUCENT_TEX_CAMERA_POSITION) uniform sampler2D camera_position;
 layout(binding = LUCENT_TEX_CAMERA_NORMAL) uniform sampler2D camera_normal;
+#if defined(LUCENT_MATERIAL_MAPS)
+layout(binding = LUCENT_TEX_CAMERA_UV) uniform sampler2D camera_uv_texture;
+vec2 camera_uv(ivec2 pixel) { return texelFetch(camera_uv_texture, pixel, 0).xy; }
+#else
+vec2 camera_uv(ivec2 pixel) { return vec2(0.0f); }
+#endif
 layout(rgba32f, binding = LUCENT_IMAGE_HDR) uniform writeonly image2D hdr;
 layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
 

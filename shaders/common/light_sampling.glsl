@@ -10,6 +10,7 @@
 // Scenes without point or spot lights compile with LUCENT_DIRECTIONAL_LIGHTS_ONLY: llvmpipe executes both sides
 // of a branch under a lane mask, and the unused point-light side cost the directional integration 1.7x.
 #include "bssrdf/model.h"
+#include "media/material_map.h"
 #include "shared/random.h"
 
 // B for one band from light l, without the factor pi * power[band] (and, for point lights, per unit intensity).
@@ -70,9 +71,13 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
 }
 
 // Scattered radiosity B(x_o) in all bands from all lights, with `samples` samples per band and light;
-// `stream_base` separates independent estimates (map texels).
-vec3 scattered_radiosity(int object, vec3 x_o, vec3 n_o, uint point_index, uint stream_base, int samples) {
+// `stream_base` separates independent estimates (map texels). A textured material's coefficients are those at
+// x_o's texture coordinates uv_o, where the light leaves (as in the CPU references).
+vec3 scattered_radiosity(int object, vec3 x_o, vec3 n_o, vec2 uv_o, uint point_index, uint stream_base, int samples) {
   MaterialGPU material = materials[objects[object].info.x];
+#if defined(LUCENT_MATERIAL_MAPS)
+  material = material_at(material, uv_o);
+#endif
   vec3 B = vec3(0.0f);
   for (int l = 0; l < frame.light_counts.x; ++l) {
     for (int band = 0; band < 3; ++band) {

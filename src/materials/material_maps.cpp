@@ -11,33 +11,18 @@
 #include "lucent/error.h"
 #include "lucent/image.h"
 #include "materials/artist_parameters.h"
+#include "media/material_map.h"
 #include "shared/tonemap.h"
 
 namespace lucent {
 namespace {
 
-// Bilinear between texel centres, repeating.
+// The shaders' lookup (media/material_map.h).
 glm::vec3 bilinear(const std::vector<glm::vec3>& texels, glm::ivec2 size, glm::vec2 uv) {
-  const float x = uv.x * static_cast<float>(size.x) - 0.5f, y = uv.y * static_cast<float>(size.y) - 0.5f;
-  const float fx = std::floor(x), fy = std::floor(y);
-  const float tx = x - fx, ty = y - fy;
-  auto wrap = [](float i, int n) {
-    const long long k = static_cast<long long>(i) % n;
-    return static_cast<std::size_t>(k < 0 ? k + n : k);
-  };
-  const std::size_t x0 = wrap(fx, size.x), x1 = wrap(fx + 1.0f, size.x);
-  const std::size_t y0 = wrap(fy, size.y), y1 = wrap(fy + 1.0f, size.y);
-  const std::size_t w = static_cast<std::size_t>(size.x);
-  const glm::vec3 bottom = glm::mix(texels[y0 * w + x0], texels[y0 * w + x1], tx);
-  const glm::vec3 top = glm::mix(texels[y1 * w + x0], texels[y1 * w + x1], tx);
-  return glm::mix(bottom, top, ty);
-}
-
-// uv outside a float's reach of [0, 1] (a NaN from degenerate geometry included) reads texel 0.
-glm::vec2 sane(glm::vec2 uv) {
-  for (int i = 0; i < 2; ++i)
-    if (!(std::abs(uv[i]) < 1e6f)) uv[i] = 0.0f;
-  return uv;
+  const shader::MapTaps taps = shader::material_map_taps(uv, size);
+  glm::vec3 sum(0.0f);
+  for (int k = 0; k < 4; ++k) sum += taps.weight[k] * texels[static_cast<std::size_t>(taps.index[k])];
+  return sum;
 }
 
 double alpha_of_node(int k) {
@@ -55,11 +40,11 @@ std::string lower_extension(const std::string& file) {
 }  // namespace
 
 glm::vec3 MaterialMaps::alpha_at(glm::vec2 uv) const {
-  return alpha.empty() ? base_alpha : bilinear(alpha, alpha_size, sane(uv));
+  return alpha.empty() ? base_alpha : bilinear(alpha, alpha_size, uv);
 }
 
 glm::vec3 MaterialMaps::mfp_mm_at(glm::vec2 uv) const {
-  return mfp_mm.empty() ? base_mfp_mm : bilinear(mfp_mm, mfp_size, sane(uv));
+  return mfp_mm.empty() ? base_mfp_mm : bilinear(mfp_mm, mfp_size, uv);
 }
 
 void MaterialMaps::coefficients(glm::vec2 uv, glm::vec3& sigma_a, glm::vec3& sigma_s) const {

@@ -14,6 +14,7 @@ std::string light_sampling_defines(const Scene& scene) {
       defines += "#define LUCENT_TABULATED_MODEL 1\n";  // bssrdf/model.h
       break;
     }
+  if (has_material_maps(scene)) defines += "#define LUCENT_MATERIAL_MAPS 1\n";  // media/material_map.h
   return defines;
 }
 

@@ -38,15 +38,17 @@ struct OutputImages {
   GLuint hdr = 0, ldr = 0, ldr_framebuffer = 0;
   std::unique_ptr<gpu::GBuffer> camera_gbuffer;
 
-  void resize(int w, int h) {
-    if (w == width && h == height) return;
+  bool with_uv = false;  // the camera G-buffer keeps texture coordinates (scenes with textured materials)
+
+  void resize(int w, int h, bool uv) {
+    if (w == width && h == height && uv == with_uv) return;
     release();
-    width = w, height = h;
+    width = w, height = h, with_uv = uv;
     hdr = make_image_texture(w, h, GL_RGBA32F, "radiance (HDR)");
     ldr = make_image_texture(w, h, GL_RGBA8, "display (tone-mapped)");
     glCreateFramebuffers(1, &ldr_framebuffer);
     glNamedFramebufferTexture(ldr_framebuffer, GL_COLOR_ATTACHMENT0, ldr, 0);
-    camera_gbuffer = std::make_unique<gpu::GBuffer>(w, h, 0, "camera G-buffer");
+    camera_gbuffer = std::make_unique<gpu::GBuffer>(w, h, 0, "camera G-buffer", with_uv);
   }
   void release() {
     if (!hdr) return;
@@ -55,6 +57,7 @@ struct OutputImages {
     glDeleteFramebuffers(1, &ldr_framebuffer);
     camera_gbuffer.reset();
     hdr = ldr = ldr_framebuffer = 0;
+    width = height = 0;
   }
   ~OutputImages() { release(); }
 };
@@ -272,6 +275,7 @@ struct Renderer::Impl {
     glUseProgram(camera_program.id());
     scene_gpu->draw_all();
     output.camera_gbuffer->bind_textures(LUCENT_TEX_CAMERA_POSITION, LUCENT_TEX_CAMERA_NORMAL, LUCENT_TEX_CAMERA_DEPTH);
+    if (output.camera_gbuffer->has_uv()) output.camera_gbuffer->bind_uv(LUCENT_TEX_CAMERA_UV);
   }
 
   void tonemap_pass() {
@@ -312,7 +316,7 @@ struct Renderer::Impl {
   void render(const Camera& camera, const RenderTarget& target) {
     if (target.width <= 0 || target.height <= 0)
       throw Error(fmt::format("render target size {}x{} is empty", target.width, target.height));
-    output.resize(target.width, target.height);
+    output.resize(target.width, target.height, has_material_maps(scene));
     profiler.begin_frame(++frame_counter);
     shader::FrameGPU frame = frame_block(camera);
     restart = false;

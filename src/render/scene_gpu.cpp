@@ -30,12 +30,25 @@ BoundingSphere bounds_of(const std::vector<glm::vec3>& points) {
   return sphere;
 }
 
-MaterialGPU to_gpu(const Material& m, float scale_mm) {
+// A map's texels appended to `texels` (scaled by `scale`); its descriptor (first texel, width, height).
+glm::ivec4 append_map(const std::vector<glm::vec3>& values, glm::ivec2 size, float scale, std::vector<glm::vec4>& texels) {
+  if (values.empty()) return glm::ivec4(-1, 0, 0, 0);
+  const glm::ivec4 map(static_cast<int>(texels.size()), size.x, size.y, 0);
+  for (const glm::vec3& v : values) texels.emplace_back(v * scale, 0.0f);
+  return map;
+}
+
+MaterialGPU to_gpu(const Material& m, float scale_mm, std::vector<glm::vec4>& map_texels) {
   // Coefficients are in mm^-1; one scene unit is scale_mm millimetres.
   MaterialGPU out;
   out.sigma_a = glm::vec4(m.sigma_a * scale_mm, m.eta);
   out.sigma_s = glm::vec4(m.sigma_s * scale_mm, static_cast<float>(static_cast<int>(m.model)));
   out.g = glm::vec4(m.g, 0.0f);
+  out.alpha_map = out.mfp_map = glm::ivec4(-1, 0, 0, 0);
+  if (m.maps) {
+    out.alpha_map = append_map(m.maps->alpha, m.maps->alpha_size, 1.0f, map_texels);
+    out.mfp_map = append_map(m.maps->mfp_mm, m.maps->mfp_size, 1.0f / scale_mm, map_texels);  // [scene units]
+  }
   return out;
 }
 
@@ -66,6 +79,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
   std::vector<VertexGPU> vertices;
   std::vector<std::uint32_t> indices;
   std::vector<MaterialGPU> materials;
+  std::vector<glm::vec4> map_texels;
   std::vector<ObjectGPU> objects(scene.objects.size());
   std::vector<glm::vec3> all_points, translucent_points;
   for (std::size_t i : order) {
@@ -103,7 +117,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
     if (object.translucent()) {
       translucent_index_count_ = static_cast<GLsizei>(indices.size());
       objects[i].info = glm::ivec4(static_cast<int>(materials.size()), 0, 0, 0);
-      materials.push_back(to_gpu(*object.material, scene.scale_mm));
+      materials.push_back(to_gpu(*object.material, scene.scale_mm, map_texels));
     } else {
       objects[i].info = glm::ivec4(-1, 0, 0, 0);
     }
@@ -131,6 +145,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
   material_buffer_ = make_buffer(materials, "materials", GL_DYNAMIC_STORAGE_BIT);
   object_buffer_ = make_buffer(objects, "objects", GL_DYNAMIC_STORAGE_BIT);
   material_count_ = materials.size();
+  upload_material_maps(map_texels);
   for (const SceneObject& object : scene.objects)
     if (object.translucent()) prepare_bssrdf_tables(*object.material);
   upload_bssrdf_tables();
@@ -141,8 +156,9 @@ SceneGpu::SceneGpu(const Scene& scene) {
 }
 
 SceneGpu::~SceneGpu() {
-  GLuint buffers[] = {vertex_buffer_, index_buffer_, material_buffer_, object_buffer_, bssrdf_table_buffer_};
-  glDeleteBuffers(5, buffers);
+  GLuint buffers[] = {vertex_buffer_, index_buffer_, material_buffer_, object_buffer_, bssrdf_table_buffer_,
+                      material_map_buffer_};
+  glDeleteBuffers(6, buffers);
   glDeleteVertexArrays(1, &vao_);
 }
 
@@ -153,7 +169,13 @@ void SceneGpu::upload_bssrdf_tables() {
   bssrdf_table_buffer_ = make_buffer(bssrdf_table_array(), "bssrdf tables");
 }
 
+void SceneGpu::upload_material_maps(const std::vector<glm::vec4>& texels) {
+  if (material_map_buffer_ != 0) glDeleteBuffers(1, &material_map_buffer_);
+  material_map_buffer_ = make_buffer(texels, "material maps");  // one unused texel when no material has maps
+}
+
 void SceneGpu::bind_buffers() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_MATERIAL_MAPS, material_map_buffer_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_BSSRDF_TABLES, bssrdf_table_buffer_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_MATERIALS, material_buffer_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_OBJECTS, object_buffer_);
@@ -187,6 +209,7 @@ void SceneGpu::update(double seconds, gpu::FrameProfiler* profiler) {
 
 void SceneGpu::update_materials(const Scene& scene) {
   std::vector<MaterialGPU> materials;
+  std::vector<glm::vec4> map_texels;
   std::vector<ObjectGPU> objects(scene.objects.size());
   // Same order as the constructor: translucent objects first.
   for (int pass = 0; pass < 2; ++pass)
@@ -195,13 +218,14 @@ void SceneGpu::update_materials(const Scene& scene) {
       if (object.translucent() != (pass == 0)) continue;
       objects[i].info = glm::ivec4(object.translucent() ? static_cast<int>(materials.size()) : -1, 0, 0, 0);
       objects[i].albedo = glm::vec4(object.albedo, 1.0f);
-      if (object.translucent()) materials.push_back(to_gpu(*object.material, scene.scale_mm));
+      if (object.translucent()) materials.push_back(to_gpu(*object.material, scene.scale_mm, map_texels));
     }
   if (materials.size() != material_count_)
     throw Error("SceneGpu::update_materials: the translucent objects changed; rebuild the scene instead");
   for (const SceneObject& object : scene.objects)
     if (object.translucent()) prepare_bssrdf_tables(*object.material);
   upload_bssrdf_tables();  // callers bind the buffers again before drawing
+  upload_material_maps(map_texels);
   if (!materials.empty())
     glNamedBufferSubData(material_buffer_, 0, static_cast<GLsizeiptr>(materials.size() * sizeof(MaterialGPU)),
                          materials.data());

@@ -78,6 +78,8 @@ class SceneGpu {
   // The tabulated model's table array (materials/tabulated_bssrdf.h) as uploaded, and its generation then.
   void upload_bssrdf_tables();
   GLuint bssrdf_table_buffer_ = 0;
+  GLuint material_map_buffer_ = 0;  // textured materials' texels (media/material_map.h)
+  void upload_material_maps(const std::vector<glm::vec4>& texels);
   std::uint64_t bssrdf_table_generation_ = 0;
 
   GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0, material_buffer_ = 0, object_buffer_ = 0;

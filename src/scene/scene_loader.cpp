@@ -635,6 +635,11 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   return parse_scene(text.str(), path, base_dir.empty() ? "." : base_dir, overrides);
 }
 
+bool has_material_maps(const Scene& scene) {
+  return std::any_of(scene.objects.begin(), scene.objects.end(),
+                     [](const SceneObject& o) { return o.material && o.material->textured(); });
+}
+
 std::vector<std::string> scene_input_files(const Scene& scene) {
   std::vector<std::string> files = {scene.source};
   if (scene.environment) files.push_back(scene.environment->file);

@@ -22,6 +22,7 @@
 #define LUCENT_BINDING_LAYER_VIEWS 4  // ViewGPU[] of the layered G-buffer pass being drawn (std430): each such pass
                                       // binds its own views (light layers, a method's maps) before drawing
 #define LUCENT_BINDING_BSSRDF_TABLES 0  // float[]: the tabulated model's directory and tables (bssrdf/tabulated.h)
+#define LUCENT_BINDING_MATERIAL_MAPS 31  // vec4[]: textured materials' texels (media/material_map.h)
 
 // ---- texture units (samplers) -----------------------------------------------------------------------------
 #define LUCENT_TEX_CAMERA_POSITION 0
@@ -32,6 +33,7 @@
 #define LUCENT_TEX_LIGHT_DEPTH 5
 #define LUCENT_TEX_ENVIRONMENT 6
 #define LUCENT_TEX_HDR 7  // the frame's radiance, read by the tone-mapping pass
+#define LUCENT_TEX_CAMERA_UV 23  // the camera G-buffer's texture coordinates (scenes with textured materials only)
 
 // ---- image units ------------------------------------------------------------------------------------------
 #define LUCENT_IMAGE_HDR 0  // the frame's radiance (RGBA32F), written by the method's final pass
@@ -43,7 +45,7 @@
 #define LUCENT_METHOD_STORAGE_FIRST 20
 #define LUCENT_METHOD_STORAGE_LAST 29
 #define LUCENT_METHOD_TEX_FIRST 8
-#define LUCENT_METHOD_TEX_LAST 23
+#define LUCENT_METHOD_TEX_LAST 22
 #define LUCENT_METHOD_IMAGE_FIRST 2
 #define LUCENT_METHOD_IMAGE_LAST 5
 
@@ -60,7 +62,7 @@
 #define LUCENT_TEXTURE_SPACE_IMAGE_LAST 7
 
 #define LUCENT_TEST_STORAGE_FIRST 30
-#define LUCENT_TEST_STORAGE_LAST 31
+#define LUCENT_TEST_STORAGE_LAST 30
 #define LUCENT_BINDING_PARITY 30  // the GPU parity test's cases and results (std430)
 
 #if defined(__cplusplus)
@@ -85,6 +87,8 @@ inline constexpr SlotRange kSlotTable[] = {
     {"LUCENT_BINDING_LAYER_VIEWS", SlotKind::Storage, LUCENT_BINDING_LAYER_VIEWS, LUCENT_BINDING_LAYER_VIEWS, true},
     {"LUCENT_BINDING_BSSRDF_TABLES", SlotKind::Storage, LUCENT_BINDING_BSSRDF_TABLES, LUCENT_BINDING_BSSRDF_TABLES,
      true},
+    {"LUCENT_BINDING_MATERIAL_MAPS", SlotKind::Storage, LUCENT_BINDING_MATERIAL_MAPS, LUCENT_BINDING_MATERIAL_MAPS,
+     true},
     {"LUCENT_TEX_CAMERA_POSITION", SlotKind::Texture, LUCENT_TEX_CAMERA_POSITION, LUCENT_TEX_CAMERA_POSITION, true},
     {"LUCENT_TEX_CAMERA_NORMAL", SlotKind::Texture, LUCENT_TEX_CAMERA_NORMAL, LUCENT_TEX_CAMERA_NORMAL, true},
     {"LUCENT_TEX_CAMERA_DEPTH", SlotKind::Texture, LUCENT_TEX_CAMERA_DEPTH, LUCENT_TEX_CAMERA_DEPTH, true},
@@ -93,6 +97,7 @@ inline constexpr SlotRange kSlotTable[] = {
     {"LUCENT_TEX_LIGHT_DEPTH", SlotKind::Texture, LUCENT_TEX_LIGHT_DEPTH, LUCENT_TEX_LIGHT_DEPTH, true},
     {"LUCENT_TEX_ENVIRONMENT", SlotKind::Texture, LUCENT_TEX_ENVIRONMENT, LUCENT_TEX_ENVIRONMENT, true},
     {"LUCENT_TEX_HDR", SlotKind::Texture, LUCENT_TEX_HDR, LUCENT_TEX_HDR, true},
+    {"LUCENT_TEX_CAMERA_UV", SlotKind::Texture, LUCENT_TEX_CAMERA_UV, LUCENT_TEX_CAMERA_UV, true},
     {"LUCENT_IMAGE_HDR", SlotKind::Image, LUCENT_IMAGE_HDR, LUCENT_IMAGE_HDR, true},
     {"LUCENT_IMAGE_LDR", SlotKind::Image, LUCENT_IMAGE_LDR, LUCENT_IMAGE_LDR, true},
     {"method uniform", SlotKind::Uniform, LUCENT_METHOD_UNIFORM_FIRST, LUCENT_METHOD_UNIFORM_LAST, false},

@@ -21,11 +21,13 @@
 
 LUCENT_SHADER_BEGIN
 
-// One translucent material, coefficients already converted to scene units (std430, 48 bytes).
+// One translucent material, coefficients already converted to scene units (std430, 80 bytes).
 struct MaterialGPU {
-  vec4 sigma_a;  // xyz: absorption [1/scene unit]; w: eta (relative refractive index)
-  vec4 sigma_s;  // xyz: scattering, unreduced [1/scene unit]; w: BSSRDF model id (LUCENT_MODEL_*)
-  vec4 g;        // xyz: Henyey-Greenstein g per band; w: unused
+  vec4 sigma_a;     // xyz: absorption [1/scene unit]; w: eta (relative refractive index)
+  vec4 sigma_s;     // xyz: scattering, unreduced [1/scene unit]; w: BSSRDF model id (LUCENT_MODEL_*)
+  vec4 g;           // xyz: Henyey-Greenstein g per band; w: unused
+  ivec4 alpha_map;  // a textured material's maps (media/material_map.h): x the first texel in the material-map
+  ivec4 mfp_map;    // buffer (-1: none), y and z width and height; w unused. sigma_a and sigma_s are the maps' mean.
 };
 
 // One scene object (std430, 32 bytes).
@@ -118,7 +120,7 @@ LUCENT_SHADER_END
 
 #if defined(__cplusplus)
 #include <cstddef>
-static_assert(sizeof(lucent::shader::MaterialGPU) == 48);
+static_assert(sizeof(lucent::shader::MaterialGPU) == 80);
 static_assert(sizeof(lucent::shader::ObjectGPU) == 32);
 static_assert(sizeof(lucent::shader::ViewGPU) == 96);
 static_assert(sizeof(lucent::shader::VertexGPU) == 48);

@@ -65,7 +65,7 @@ class RadiosityMaps final : public Method {
         map_size_(params_.integer("map_size")),
         light_map_size_(params_.integer("light_map_size")),
         light_gbuffer_(scene, scene_gpu, light_map_size_),
-        map_gbuffer_(map_size_, map_size_, K_, "radiosity-map G-buffer"),
+        map_gbuffer_(map_size_, map_size_, K_, "radiosity-map G-buffer", has_material_maps(scene)),
         vpl_count_(params_.integer("vpls")),
         vpl_map_size_(params_.integer("vpl_map_size")),
         vpl_gbuffer_(vpl_count_ > 0 ? vpl_map_size_ : 1, vpl_count_ > 0 ? vpl_map_size_ : 1, 6, "VPL cube map"),
@@ -179,8 +179,9 @@ class RadiosityMaps final : public Method {
 
   std::size_t gpu_memory_bytes() const override {
     auto layers = [](const gpu::GBuffer& g) { return static_cast<std::size_t>(std::max(1, g.layers())); };
-    auto gbuffer = [&](const gpu::GBuffer& g) {  // RGBA32F position + RGBA16F normal + DEPTH32F
-      return static_cast<std::size_t>(g.size_x()) * static_cast<std::size_t>(g.size_y()) * layers(g) * (16 + 8 + 4);
+    auto gbuffer = [&](const gpu::GBuffer& g) {  // RGBA32F position + RGBA16F normal + DEPTH32F (+ RG32F uv)
+      return static_cast<std::size_t>(g.size_x()) * static_cast<std::size_t>(g.size_y()) * layers(g) *
+             (16 + 8 + 4 + (g.has_uv() ? 8 : 0));
     };
     std::size_t maps = static_cast<std::size_t>(map_size_) * static_cast<std::size_t>(map_size_) *
                        static_cast<std::size_t>(K_) * 16 * 4 / 3;  // RGBA32F with its mip chain
@@ -292,6 +293,7 @@ class RadiosityMaps final : public Method {
   void integrate(const FrameContext& context) {
     auto pass = context.profiler.pass("integrate");
     map_gbuffer_.bind_textures(LUCENT_TEX_MAP_POSITION, LUCENT_TEX_MAP_NORMAL, LUCENT_TEX_MAP_DEPTH);
+    if (map_gbuffer_.has_uv()) map_gbuffer_.bind_uv(LUCENT_TEX_MAP_UV);
     light_gbuffer_.bind_textures();
     glBindImageTexture(LUCENT_IMAGE_RADIOSITY, radiosity_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     glUseProgram(integrate_program_.id());

@@ -65,6 +65,9 @@ const MethodInfo radiosity_maps_info{
     R"({"K": 8, "N": 16, "map_size": 64, "light_map_size": 128, "vpls": 0, "specular": false})",
     0.05,  // measured 1.2% on llvmpipe (the same model as the reference; what remains is map resolution and noise)
     false,
+    nullptr,
+    nullptr,
+    true,  // textured materials: eq. 9 per map texel with the coefficients at the texel's texture coordinates
 };
 
 }  // namespace lucent::methods

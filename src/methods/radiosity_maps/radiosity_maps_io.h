@@ -15,6 +15,7 @@
 #define LUCENT_TEX_VPL_POSITION 12
 #define LUCENT_TEX_VPL_NORMAL 13
 #define LUCENT_TEX_VPL_DEPTH 14
+#define LUCENT_TEX_MAP_UV 15  // the maps' texture coordinates (scenes with textured materials)
 #define LUCENT_IMAGE_RADIOSITY 2
 
 // Debug views of the combine pass (RadiosityMapsGPU.counts.w).
@@ -41,7 +42,7 @@ static_assert(offsetof(lucent::shader::RadiosityMapsGPU, maps) == 64);
 static_assert(sizeof(lucent::shader::RadiosityMapsGPU) == 64 + 96 * (LUCENT_MAX_MAPS + 6));
 static_assert(sizeof(lucent::shader::RadiosityMapsGPU) <= 16384, "GL guarantees uniform blocks of 16 KiB only");
 static_assert(LUCENT_BINDING_VPLS >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_PROBES <= LUCENT_METHOD_STORAGE_LAST);
-static_assert(LUCENT_TEX_MAP_POSITION >= LUCENT_METHOD_TEX_FIRST && LUCENT_TEX_VPL_DEPTH <= LUCENT_METHOD_TEX_LAST);
+static_assert(LUCENT_TEX_MAP_POSITION >= LUCENT_METHOD_TEX_FIRST && LUCENT_TEX_MAP_UV <= LUCENT_METHOD_TEX_LAST);
 static_assert(LUCENT_IMAGE_RADIOSITY >= LUCENT_METHOD_IMAGE_FIRST && LUCENT_IMAGE_RADIOSITY <= LUCENT_METHOD_IMAGE_LAST);
 #endif
 

@@ -14,7 +14,7 @@ layout(rgba32f, binding = LUCENT_IMAGE_PER_PIXEL_SUM) uniform image2D accumulate
 vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o, MaterialGPU material) {
   vec4 sum = frame.seeds.z != 0u ? vec4(0.0f) : imageLoad(accumulated, pixel);
   uint point = uint(pixel.y * frame.output_size.x + pixel.x);
-  sum += vec4(scattered_radiosity(object_index, x, n, point, 0u, method.counts.x), 1.0f);
+  sum += vec4(scattered_radiosity(object_index, x, n, camera_uv(pixel), point, 0u, method.counts.x), 1.0f);
   imageStore(accumulated, pixel, sum);
   return vec4(fresnel_transmittance(material.sigma_a.w, dot(n, w_o)) * kInvPi * sum.rgb / sum.a, 1.0f);
 }

@@ -10,6 +10,9 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(binding = LUCENT_TEX_MAP_POSITION) uniform sampler2DArray map_position;
 layout(binding = LUCENT_TEX_MAP_NORMAL) uniform sampler2DArray map_normal;
+#if defined(LUCENT_MATERIAL_MAPS)
+layout(binding = LUCENT_TEX_MAP_UV) uniform sampler2DArray map_uv;
+#endif
 layout(rgba32f, binding = LUCENT_IMAGE_RADIOSITY) uniform image2DArray radiosity;
 layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
 
@@ -25,7 +28,12 @@ void main() {
   }
   atomicAdd(counters.method_counts[0], 1u);  // covered map texels
   vec3 n_o = normalize(texelFetch(map_normal, texel, 0).xyz);
-  vec3 B = scattered_radiosity(int(p_o.w) - 1, p_o.xyz, n_o, uint(texel.y * size + texel.x), uint(texel.z),
-                                method.counts.y);
+#if defined(LUCENT_MATERIAL_MAPS)
+  vec2 uv_o = texelFetch(map_uv, texel, 0).xy;
+#else
+  vec2 uv_o = vec2(0.0f);
+#endif
+  vec3 B = scattered_radiosity(int(p_o.w) - 1, p_o.xyz, n_o, uv_o, uint(texel.y * size + texel.x), uint(texel.z),
+                               method.counts.y);
   imageStore(radiosity, texel, previous + vec4(B, 1.0f));
 }

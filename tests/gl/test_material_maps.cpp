@@ -1,0 +1,119 @@
+// test_material_maps.cpp: textured materials on the GPU (media/material_map.h). The methods that read them evaluate
+// eq. 9 with the coefficients at the exit point's texture coordinates, as the CPU references do
+// (tests/cpu/test_material_maps.cpp). A sphere whose texture is split into two halves of different surface albedo
+// is seen across the seam: with the same random numbers, every pixel renders as the untextured sphere of one half's
+// albedo or of the other's, except in a band along the seam where the bilinear lookup (and for the maps their texel
+// spacing) mixes them. Both halves must show, each matching its own material. The pixels that match are also
+// compared as a whole: the mean over the textured image equals the mean of the matching uniform pixels.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "image_compare.h"
+#include "lucent/lucent.h"
+#include "shared/tonemap.h"
+
+namespace {
+
+using lucent::ImageRGBA32F;
+
+constexpr int kSize = 64;
+
+std::string halves_png() {
+  const std::string path = lucent::test::output_path("material_maps_halves.png");
+  lucent::ImageRGBA8 image{64, 4, std::vector<std::uint8_t>(64 * 4 * 4)};
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 64; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      const bool left = x < 32;
+      p[0] = left ? 235 : 60, p[1] = left ? 170 : 100, p[2] = left ? 110 : 210, p[3] = 255;
+    }
+  lucent::write_png(path, image);
+  return path;
+}
+
+std::string decoded(float r, float g, float b) {
+  using lucent::shader::srgb_decode;
+  return fmt::format("[{}, {}, {}]", srgb_decode(r / 255.0f), srgb_decode(g / 255.0f), srgb_decode(b / 255.0f));
+}
+
+// The sphere seen from +x, across the seam of its texture (u = 0 | 1 along +x; u < 0.5 toward +z).
+lucent::Scene sphere(const std::string& albedo, const std::string& method) {
+  return lucent::parse_scene(fmt::format(R"({{
+    "scale_mm": 10,
+    "camera": {{ "eye": [6, 1, 0], "target": [0, 0, 0], "fov_y_deg": 22 }},
+    "lights": [{{ "direction": [-1, -0.4, 0.2], "radiance": [1, 1, 1] }}],
+    "objects": [{{ "shape": "sphere", "radius": 1, "segments": 96,
+                   "material": {{ {}, "mfp_mm": [0.8, 0.5, 0.3], "model": "standard" }} }}],
+    "method": {},
+    "render": {{ "width": {}, "height": {}, "frames": 4 }} }})",
+                                         albedo, method, kSize, kSize),
+                             "textured sphere", "/");
+}
+
+ImageRGBA32F render(const lucent::Scene& scene) {
+  lucent::OffscreenFramebuffer framebuffer(kSize, kSize);
+  lucent::Renderer renderer(scene);
+  for (int f = 0; f < scene.render.frames; ++f) renderer.render(scene.camera, {framebuffer.id(), kSize, kSize});
+  return renderer.read_radiance();
+}
+
+void expect_each_half_renders_as_its_material(const std::string& method) {
+  lucent::test::ensure_gl_context();
+  const std::string png = halves_png();
+  const ImageRGBA32F textured = render(sphere(fmt::format(R"("albedo_map": "{}")", png), method));
+  const ImageRGBA32F left = render(sphere(fmt::format(R"("albedo": {})", decoded(235, 170, 110)), method));
+  const ImageRGBA32F right = render(sphere(fmt::format(R"("albedo": {})", decoded(60, 100, 210)), method));
+  int covered = 0, as_left = 0, as_right = 0;
+  double sum_textured = 0.0, sum_matched = 0.0;
+  for (std::size_t i = 0; i < textured.pixels.size(); i += 4) {
+    if (textured.pixels[i + 3] <= 0.0f) continue;  // background
+    ++covered;
+    double t = 0.0, l = 0.0, r = 0.0;
+    for (int c = 0; c < 3; ++c) t += textured.pixels[i + c], l += left.pixels[i + c], r += right.pixels[i + c];
+    // Within 1% of one material (or 1e-4 absolute in the dark): the same estimator with the same samples and
+    // coefficients equal within the albedo inversion's 1e-4.
+    const bool is_left = std::abs(t - l) <= 0.01 * l + 1e-4, is_right = std::abs(t - r) <= 0.01 * r + 1e-4;
+    as_left += is_left && !is_right, as_right += is_right && !is_left;
+    if (is_left != is_right) sum_textured += t, sum_matched += is_left ? l : r;
+  }
+  const double f_left = double(as_left) / covered, f_right = double(as_right) / covered;
+  std::printf("%s: %d covered pixels, %.3f as the left half's material, %.3f as the right half's, %.3f neither "
+              "(the seam); matched mean ratio %.6f\n",
+              method.c_str(), covered, f_left, f_right, 1.0 - f_left - f_right, sum_textured / sum_matched);
+  EXPECT_GT(covered, kSize * kSize / 8);
+  // Seen from +x each half covers about half of the disc; the seam band is a few texels wide.
+  EXPECT_GT(f_left, 0.3);
+  EXPECT_GT(f_right, 0.3);
+  EXPECT_LT(1.0 - f_left - f_right, 0.15);
+  EXPECT_NEAR(sum_textured / sum_matched, 1.0, 2e-3);
+}
+
+TEST(MaterialMapsGpu, PerPixelTakesTheCoefficientsAtEachPixel) {
+  expect_each_half_renders_as_its_material(R"({"name": "per-pixel", "N": 16, "light_map_size": 128, "specular": false})");
+}
+
+TEST(MaterialMapsGpu, RadiosityMapsTakeTheCoefficientsAtEachMapTexel) {
+  expect_each_half_renders_as_its_material(
+      R"({"name": "radiosity-maps", "K": 8, "N": 16, "map_size": 128, "light_map_size": 128, "specular": false, "vpls": 0})");
+}
+
+TEST(MaterialMapsGpu, OtherMethodsRefuseTexturedMaterials) {
+  lucent::test::ensure_gl_context();
+  const std::string png = halves_png();
+  const lucent::Scene scene = sphere(fmt::format(R"("albedo_map": "{}")", png), R"({"name": "diffuse-wrap"})");
+  std::string message;
+  try {
+    lucent::Renderer renderer(scene);
+  } catch (const lucent::Error& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, "textured sphere: /objects/0/material/albedo_map: method 'diffuse-wrap' does not read textured "
+                     "materials (methods that do: radiosity-maps, per-pixel; the references lucent reference "
+                     "--integrator volpath|bssrdf do)");
+}
+
+}  // namespace
