@@ -94,6 +94,9 @@ MapImage read_material_map(const std::string& file, bool colour, const std::stri
   } catch (const Error& e) {
     throw Error(fmt::format("{}: {}", where, e.what()));
   }
+  if (image.width > kMaxMaterialMapSide || image.height > kMaxMaterialMapSide)
+    throw Error(fmt::format("{}: {}: map is {}x{}, more than the {} x {} texels a material map may have", where, file,
+                            image.width, image.height, kMaxMaterialMapSide, kMaxMaterialMapSide));
   out.size = {image.width, image.height};
   out.texels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
   for (int y = 0; y < image.height; ++y) {

@@ -23,6 +23,8 @@
 namespace lucent {
 
 inline constexpr int kAlbedoCurveNodes = 384;
+// The largest map: 4096 x 4096 texels (192 MiB as RGB floats here, 256 MiB as the GPU's vec4 texels).
+inline constexpr int kMaxMaterialMapSide = 4096;
 
 // One band's flat total against alpha, for the inversion.
 class AlbedoCurve {

@@ -115,6 +115,8 @@ SceneChange classify_change(const Scene& built, const Scene& now) {
         a.deformation.start_s != b.deformation.start_s ||
         !same_mesh(a.mesh, b.mesh))
       return SceneChange::Rebuild;
+    // Other maps: the G-buffers' attachments, the shaders' defines and whether the method accepts them may change.
+    if (a.material && a.material->maps != b.material->maps) return SceneChange::Rebuild;
     if (a.albedo != b.albedo) materials = true;
     if (a.material && !same_material(*a.material, *b.material)) materials = true;
   }

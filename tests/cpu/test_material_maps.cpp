@@ -8,15 +8,19 @@
 // pixel whose surface point lies in a texture region of albedo A renders exactly as the untextured material of
 // albedo A: with the same random numbers the two estimates differ only by the inversion's 1e-4.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "../test_support.h"
 #include "lucent/error.h"
 #include "lucent/image.h"
 #include "lucent/scene.h"
+#include "lucent/scene_writer.h"
 #include "materials/artist_parameters.h"
 #include "materials/material_maps.h"
 #include "methods/method_info.h"
@@ -150,6 +154,11 @@ TEST(MaterialMaps, BadMapsGetOneLine) {
             fmt::format("{}/mfp_map: {}: texel (1, 0) band 1 scales the mean free path {} mm to 0 mm; allowed "
                         "(0, inf): a map value of 0 is no mean free path",
                         where, zero.path(), skim_mfp));
+  TempFile wide(".exr");
+  write_exr(wide.path(), ImageRGBA32F{4097, 1, std::vector<float>(4 * 4097, 1.0f)});
+  EXPECT_EQ(load(fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", wide.path())),
+            fmt::format("{}/mfp_map: {}: map is 4097x1, more than the 4096 x 4096 texels a material map may have",
+                        where, wide.path()));
   TempFile negative(".exr");
   write_exr(negative.path(), ImageRGBA32F{1, 1, {1, -1, 1, 1}});
   EXPECT_EQ(load(fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", negative.path())),
@@ -201,6 +210,40 @@ TEST(MaterialMaps, MethodsThatDoNotReadMapsAreRefused) {
                           "(methods that do: radiosity-maps, per-pixel; the references lucent reference "
                           "--integrator volpath|bssrdf do)",
                           method->name));
+  }
+}
+
+TEST(MaterialMaps, TheSceneWriterKeepsTheMaps) {
+  TempFile png(".png"), exr(".exr");
+  write_halves_png(png.path(), 8, 2, {235, 170, 110}, {60, 100, 210});
+  write_exr(exr.path(), ImageRGBA32F{2, 1, {1, 1, 1, 1, 0.5f, 0.5f, 0.5f, 1}});
+  for (const std::string& material :
+       {fmt::format(R"({{ "albedo_map": "{}", "mfp_map": "{}", "mfp_mm": [1, 0.5, 0.25], "g": 0.3, "eta": 1.4,
+                      "model": "standard" }})", png.path(), exr.path()),
+        fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", exr.path())}) {
+    const Scene scene = sphere_scene(material);
+    TempFile saved(".json");
+    save_scene(scene, saved.path());
+    const Scene again = load_scene(saved.path());
+    std::error_code ignored;
+    std::filesystem::remove_all(saved.path().substr(0, saved.path().size() - 5) + ".meshes", ignored);
+    const std::string written = nlohmann::json::parse(std::ifstream(saved.path())).dump();
+    const Material &a = *scene.objects[0].material, &b = *again.objects[0].material;
+    ASSERT_TRUE(b.textured()) << written;
+    EXPECT_EQ(a.maps->albedo_file, b.maps->albedo_file);
+    EXPECT_EQ(a.maps->mfp_file, b.maps->mfp_file);
+    EXPECT_EQ(a.g, b.g);
+    EXPECT_EQ(a.eta, b.eta);
+    EXPECT_EQ(a.model, b.model);
+    for (glm::vec2 uv : {glm::vec2(0.1f, 0.3f), glm::vec2(0.8f, 0.6f)}) {
+      glm::vec3 sa, ss, ta, ts;
+      a.maps->coefficients(uv, sa, ss);
+      b.maps->coefficients(uv, ta, ts);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(ta[c], sa[c], 1e-5f * (sa[c] + ss[c])) << written;
+        EXPECT_NEAR(ts[c], ss[c], 1e-5f * (sa[c] + ss[c])) << written;
+      }
+    }
   }
 }
 
