@@ -205,8 +205,8 @@ def main():
               "method's error alone. relMSE is the mean of (a - b)^2 / (b^2 + 0.01); bias the mean of (a - b) +- "
               "its standard error.")
     md.append("- **Equal time**: each method is ranked by its most accurate setting within a time budget, at two "
-              "budgets per scene: tight, the median over methods of each method's fastest setting (about half the "
-              "methods fit), and generous, the largest of them (every method fits). The Pareto front holds the settings no other setting beats in both time and error.")
+              "budgets per scene: tight, the median (the lower middle value for an even count) over methods of each "
+              "method's fastest setting (about half the methods fit), and generous, the largest of them (every method fits). The Pareto front holds the settings no other setting beats in both time and error.")
     md.append("")
 
     summary = []
