@@ -82,6 +82,14 @@ struct MaterialMaps {
   std::vector<glm::vec3> alpha;       // alpha per texel and band, rows from v = 0 up, x fastest
   glm::ivec2 mfp_size{0};             // mfp_map's texels (0 when absent)
   std::vector<glm::vec3> mfp_mm;      // mean free path per texel and band [mm]
+  glm::vec3 min_alpha{0.5f};          // the smallest alpha and mean free path over the texels, per band
+  glm::vec3 min_mfp_mm{1.0f};         // [mm]
+  // What the texels were made with: the material's g, eta and model, and its coefficients (the maps' mean).
+  // A material whose fields differ from these no longer matches its texels (check_material_maps in scene.h).
+  glm::vec3 made_with_g{0.0f};
+  float made_with_eta = 1.3f;
+  BssrdfModel made_with_model = BssrdfModel::DirectionalDipole;
+  glm::vec3 made_with_sigma_a{0.0f}, made_with_sigma_s{0.0f};  // [mm^-1]
   glm::vec3 alpha_at(glm::vec2 uv) const;
   glm::vec3 mfp_mm_at(glm::vec2 uv) const;
   // sigma_a and sigma_s [mm^-1] at texture coordinates uv.

@@ -130,6 +130,11 @@ Scene scene_at_time(const Scene& scene, double seconds);
 
 // Whether any object's material is textured (Material::maps).
 bool has_material_maps(const Scene& scene);
+// Throws lucent::Error("<scene>: /objects/<i>/material: ...") for a textured material that a renderer cannot use as
+// it stands: on a mesh without texture coordinates (or a blob surface), with the tabulated model, or whose
+// coefficients, g, eta or model were changed after its maps were made (the maps hold texels inverted with them;
+// change them in the scene file). The loader never makes such a scene; an edit through the API can.
+void check_material_maps(const Scene& scene);
 
 // Every file the scene was built from (the scene file, meshes, environment map, volume header and data): the
 // inputs an output must never overwrite (lucent/output_file.h).

@@ -3,8 +3,7 @@
 #include "bssrdf/model.h"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = LUCENT_BINDING_PARITY) readonly buffer Cases { ParityCaseGPU cases[]; };
-layout(std430, binding = LUCENT_BINDING_PARITY + 1) writeonly buffer Results { ParityResultGPU results[]; };
+layout(std430, binding = LUCENT_BINDING_PARITY) buffer Cases { ParityCaseGPU cases[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -16,5 +15,5 @@ void main() {
     BandMedium m = make_band_medium(c.sigma_a[band], c.sigma_s[band], c.g[band]);
     S[band] = bssrdf_Sd(int(c.sigma_s.w), m, eta, c.x_i.xyz, c.w_i.xyz, c.n_i.xyz, c.x_o.xyz, c.n_o.xyz);
   }
-  results[i].S_d = vec4(S, fresnel_transmittance(eta, dot(c.w_i.xyz, c.n_i.xyz)));
+  cases[i].result.S_d = vec4(S, fresnel_transmittance(eta, dot(c.w_i.xyz, c.n_i.xyz)));
 }

@@ -119,12 +119,15 @@ glm::vec3 map_mean(const MapImage& image) {
   return glm::vec3(sum / std::max<double>(1.0, static_cast<double>(image.texels.size())));
 }
 
-std::shared_ptr<const MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
+std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
                                                        const MapImage* mfp_scale, const std::string& where) {
   auto maps = std::make_shared<MaterialMaps>();
   const glm::vec3 sigma_t = base.sigma_t();
   maps->base_alpha = base.sigma_s / sigma_t;
   maps->base_mfp_mm = 1.0f / sigma_t;
+  maps->made_with_g = base.g;
+  maps->made_with_eta = base.eta;
+  maps->made_with_model = base.model;
   if (albedo) {
     maps->albedo_file = albedo->file;
     maps->alpha_size = albedo->size;
@@ -175,7 +178,19 @@ std::shared_ptr<const MaterialMaps> make_material_maps(const Material& base, con
       maps->mfp_mm[i] = mfp;
     }
   }
+  maps->min_alpha = maps->alpha.empty() ? maps->base_alpha : glm::vec3(1.0f);
+  for (const glm::vec3& a : maps->alpha) maps->min_alpha = glm::min(maps->min_alpha, a);
+  maps->min_mfp_mm = maps->mfp_mm.empty() ? maps->base_mfp_mm : glm::vec3(3.0e38f);
+  for (const glm::vec3& l : maps->mfp_mm) maps->min_mfp_mm = glm::min(maps->min_mfp_mm, l);
   return maps;
+}
+
+Material densest_darkest(const Material& material) {
+  if (!material.maps) return material;
+  Material m = material;
+  m.sigma_s = material.maps->min_alpha / material.maps->min_mfp_mm;
+  m.sigma_a = (1.0f - material.maps->min_alpha) / material.maps->min_mfp_mm;
+  return m;
 }
 
 }  // namespace lucent

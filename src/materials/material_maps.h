@@ -55,12 +55,18 @@ MapImage read_material_map(const std::string& file, bool colour, const std::stri
 // The mean of a map's texels per band.
 glm::vec3 map_mean(const MapImage& image);
 
+// The material at its texels' extremes: the smallest alpha with the shortest mean free path (the shortest
+// scattering length and the lowest albedo anywhere), for warnings that a mean would hide. The material itself when
+// untextured.
+Material densest_darkest(const Material& material);
+
 // The maps of a material whose coefficients, g, eta and model are `base` (for an albedo map, `base` is the
 // inversion of its mean albedo): alpha per texel from `albedo` (null: base's alpha everywhere), the mean free path
 // per texel from `mfp_scale` times base's (null: base's everywhere). `where` names the material's JSON location;
 // messages say "<where>/albedo_map: <file>: ...". Throws for an mfp texel <= 0 and for coefficients beyond a
-// float; warns once per map about clamped albedos.
-std::shared_ptr<const MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
+// float; warns once per map about clamped albedos. Records base's g, eta and model in made_with_*; the caller
+// records the material's final coefficients (made_with_sigma_*).
+std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
                                                        const MapImage* mfp_scale, const std::string& where);
 
 }  // namespace lucent

@@ -33,6 +33,11 @@ LUCENT_INLINE MapTaps material_map_taps(vec2 uv, ivec2 size) {
   if (y0 < 0) y0 += size.y;
   if (x1 >= size.x) x1 -= size.x;
   if (y1 >= size.y) y1 -= size.y;
+  // In range already; the clamps keep a NaN that a driver's fast math let through inside the map.
+  x0 = clamp(x0, 0, size.x - 1);
+  x1 = clamp(x1, 0, size.x - 1);
+  y0 = clamp(y0, 0, size.y - 1);
+  y1 = clamp(y1, 0, size.y - 1);
   MapTaps taps;
   taps.index = ivec4(y0 * size.x + x0, y0 * size.x + x1, y1 * size.x + x0, y1 * size.x + x1);
   taps.weight = vec4((1.0f - t.x) * (1.0f - t.y), t.x * (1.0f - t.y), (1.0f - t.x) * t.y, t.x * t.y);

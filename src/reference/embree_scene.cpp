@@ -47,7 +47,7 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     d.mesh_lower = d.lower, d.mesh_upper = d.upper;
     if (m.field.has_bounds) d.lower = m.field.bounds_lower, d.upper = m.field.bounds_upper;
     d.majorant = static_cast<double>(m.field.max_multiplier()) * (d.sigma_a + d.sigma_s);
-    if (m.maps && !object.mesh.uvs.empty()) {
+    if (m.maps) {  // check_material_maps: the mesh has texture coordinates
       d.maps = m.maps;
       d.corner_uvs.reserve(d.corners.size());
       for (std::size_t t = 0; t + 2 < d.indices.size(); t += 3)
@@ -74,6 +74,7 @@ MediumCoefficients ObjectData::medium_at(glm::dvec2 uv) const {
 }
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
+  check_material_maps(scene);
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw Error("Embree: cannot create a device");
   scene_ = rtcNewScene(device_);

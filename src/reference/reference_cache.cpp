@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -27,11 +29,24 @@ std::vector<std::string> strings(const json& j, const char* key) {
 
 }  // namespace
 
-std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator) {
+bool model_sets_coefficients(const std::string& scene_path, const std::vector<std::string>& sets) {
+  auto mentions = [](const std::string& text) {
+    return text.find("mfp_mm") != std::string::npos || text.find("from_mesh") != std::string::npos;
+  };
+  if (std::any_of(sets.begin(), sets.end(), mentions)) return true;
+  std::ifstream file(scene_path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return mentions(text.str());
+}
+
+std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator,
+                                            const std::string& scene_path) {
+  const bool model_matters = integrator != "volpath" || (!scene_path.empty() && model_sets_coefficients(scene_path, sets));
   std::vector<std::string> relevant;
   for (const std::string& s : sets) {
     bool method = s.rfind("method.", 0) == 0 || s.rfind("method=", 0) == 0 || s.rfind("render.frames", 0) == 0;
-    bool model = integrator == "volpath" && s.find(".model=") != std::string::npos;
+    bool model = !model_matters && s.find(".model=") != std::string::npos;
     if (!method && !model) relevant.push_back(s);
   }
   std::sort(relevant.begin(), relevant.end());
@@ -40,7 +55,7 @@ std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets
 
 std::string reference_key(const std::string& scene, const std::vector<std::string>& sets, const std::string& integrator) {
   std::string text = scene + "|" + integrator;
-  for (const std::string& s : relevant_overrides(sets, integrator)) text += "|" + s;
+  for (const std::string& s : relevant_overrides(sets, integrator, scene)) text += "|" + s;
   return fmt::format("{}_{:016x}", integrator, std::hash<std::string>{}(text));
 }
 
@@ -59,7 +74,9 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
       const std::optional<json> m = read_reference_metadata(files);
       auto text = [&](const char* key) { return m->contains(key) && (*m)[key].is_string() ? (*m)[key].get<std::string>() : ""; };
       if (!m || text("scene") != scene_path || text("integrator") != integrator) continue;
-      if (relevant_overrides(strings(*m, "overrides"), integrator) != relevant_overrides(sets, integrator)) continue;
+      if (relevant_overrides(strings(*m, "overrides"), integrator, scene_path) !=
+          relevant_overrides(sets, integrator, scene_path))
+        continue;
       if (cached && cached->samples_per_pixel >= (*m)["samples_per_pixel"].get<int>()) continue;  // keep the best
       cached = load_reference(files).image;
       exr = entry.path();

@@ -11,8 +11,15 @@
 namespace lucent::reference {
 
 // The overrides ("key=value") that change a reference's image: not "method.*", "method=" or "render.frames", and for
-// volpath not the diffusion model ("*.model=") either (the physics does not use it). Sorted.
-std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator);
+// volpath not the diffusion model ("*.model=") either (the physics does not use it), unless the scene at
+// `scene_path` gives a material by its surface albedo (model_sets_coefficients). Sorted.
+std::vector<std::string> relevant_overrides(const std::vector<std::string>& sets, const std::string& integrator,
+                                            const std::string& scene_path = "");
+// Whether the diffusion model can change what volpath renders of the scene: a material given by its surface albedo
+// (with mfp_mm, by an albedo_map, or a glTF material through "from_mesh") has the coefficients of the model's
+// inversion. Judged from the scene file's text and the overrides, conservatively: a mention of "mfp_mm" or
+// "from_mesh" anywhere counts (a needless new reference at worst, never a wrong reuse).
+bool model_sets_coefficients(const std::string& scene_path, const std::vector<std::string>& sets);
 // "<integrator>_<16 hex digits>": the cache entry's file stem for the scene, integrator and relevant overrides.
 std::string reference_key(const std::string& scene, const std::vector<std::string>& sets, const std::string& integrator);
 

@@ -43,7 +43,8 @@ std::vector<std::string> overrides_of(const json& meta) {
   const std::string integrator = meta.contains("integrator") && meta["integrator"].is_string()
                                      ? meta["integrator"].get<std::string>()
                                      : std::string();
-  return relevant_overrides(sets, integrator);
+  const std::string scene = meta.contains("scene") && meta["scene"].is_string() ? meta["scene"].get<std::string>() : "";
+  return relevant_overrides(sets, integrator, scene);
 }
 
 }  // namespace

@@ -198,6 +198,7 @@ struct Renderer::Impl {
     if (scene.method.empty()) scene.method = std::string(methods::default_method().name);
     const methods::MethodInfo* info = methods::find_method(scene.method);
     if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
+    check_material_maps(scene);
     if (!info->reads_material_maps) methods::refuse_material_maps(scene, *info);
     method.reset();
     atlas.reset();
@@ -226,6 +227,7 @@ struct Renderer::Impl {
   // (and recompiling its shaders) when it accepts them, anything else by rebuilding.
   void scene_changed() {
     SceneChange change = classify_change(built, scene);
+    if (change == SceneChange::Materials) check_material_maps(scene);  // an edit of a textured material's fields
     if (change != SceneChange::Rebuild) refresh_atlas_scene();
     switch (change) {
       case SceneChange::None:
@@ -297,9 +299,10 @@ struct Renderer::Impl {
       t.total_ms += ms;
     }
     const shader::CountersGPU& c = profiled.counters;
-    // Output images: RGBA32F radiance, RGBA8 display, camera G-buffer (RGBA32F + RGBA16F + DEPTH32F).
+    // Output images: RGBA32F radiance, RGBA8 display, camera G-buffer (RGBA32F + RGBA16F + DEPTH32F, + RG32F
+    // texture coordinates with material maps).
     std::size_t pixels = static_cast<std::size_t>(output.width) * static_cast<std::size_t>(output.height);
-    t.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4);
+    t.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4 + (output.with_uv ? 8 : 0));
     t.stats.push_back({"translucent_pixels", static_cast<double>(c.translucent_pixels), ""});
     t.stats.push_back({"coverage", c.translucent_pixels > 0 ? static_cast<double>(c.covered_pixels) / c.translucent_pixels : 1.0, ""});
     t.stats.push_back({"gpu_memory", static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0), "MiB"});

@@ -11,6 +11,8 @@
 #include "gpu/frame_profiler.h"
 #include "gpu/vertex_layout.h"
 #include "lucent/error.h"
+#include <fmt/format.h>
+
 #include "materials/tabulated_bssrdf.h"
 #include "shared/shader_io.h"
 
@@ -145,7 +147,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
   material_buffer_ = make_buffer(materials, "materials", GL_DYNAMIC_STORAGE_BIT);
   object_buffer_ = make_buffer(objects, "objects", GL_DYNAMIC_STORAGE_BIT);
   material_count_ = materials.size();
-  upload_material_maps(map_texels);
+  upload_material_maps(map_texels, scene.source);
   for (const SceneObject& object : scene.objects)
     if (object.translucent()) prepare_bssrdf_tables(*object.material);
   upload_bssrdf_tables();
@@ -169,7 +171,16 @@ void SceneGpu::upload_bssrdf_tables() {
   bssrdf_table_buffer_ = make_buffer(bssrdf_table_array(), "bssrdf tables");
 }
 
-void SceneGpu::upload_material_maps(const std::vector<glm::vec4>& texels) {
+void SceneGpu::upload_material_maps(const std::vector<glm::vec4>& texels, const std::string& source) {
+  const std::uint64_t bytes = texels.size() * sizeof(glm::vec4);
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (bytes > static_cast<std::uint64_t>(max_block))
+    throw Error(fmt::format("{}: the material maps' {} texels take {:.1f} MiB on the GPU, more than this driver's "
+                            "largest storage block ({:.1f} MiB); use smaller maps",
+                            source, texels.size(), static_cast<double>(bytes) / 1048576.0,
+                            static_cast<double>(max_block) / 1048576.0));
+  material_map_bytes_ = bytes;
   if (material_map_buffer_ != 0) glDeleteBuffers(1, &material_map_buffer_);
   material_map_buffer_ = make_buffer(texels, "material maps");  // one unused texel when no material has maps
 }
@@ -225,7 +236,7 @@ void SceneGpu::update_materials(const Scene& scene) {
   for (const SceneObject& object : scene.objects)
     if (object.translucent()) prepare_bssrdf_tables(*object.material);
   upload_bssrdf_tables();  // callers bind the buffers again before drawing
-  upload_material_maps(map_texels);
+  upload_material_maps(map_texels, scene.source);
   if (!materials.empty())
     glNamedBufferSubData(material_buffer_, 0, static_cast<GLsizeiptr>(materials.size() * sizeof(MaterialGPU)),
                          materials.data());
@@ -234,7 +245,7 @@ void SceneGpu::update_materials(const Scene& scene) {
 }
 
 std::size_t SceneGpu::gpu_memory_bytes() const {
-  std::size_t bytes = vertex_bytes_ + static_cast<std::size_t>(index_count_) * 4;
+  std::size_t bytes = vertex_bytes_ + static_cast<std::size_t>(index_count_) * 4 + material_map_bytes_;
   for (const auto& blob : blobs_) bytes += blob->gpu_memory_bytes();
   return bytes;
 }

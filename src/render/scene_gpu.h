@@ -79,7 +79,9 @@ class SceneGpu {
   void upload_bssrdf_tables();
   GLuint bssrdf_table_buffer_ = 0;
   GLuint material_map_buffer_ = 0;  // textured materials' texels (media/material_map.h)
-  void upload_material_maps(const std::vector<glm::vec4>& texels);
+  std::size_t material_map_bytes_ = 0;
+  // Throws lucent::Error naming `source` when the texels exceed the driver's largest storage block.
+  void upload_material_maps(const std::vector<glm::vec4>& texels, const std::string& source);
   std::uint64_t bssrdf_table_generation_ = 0;
 
   GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0, material_buffer_ = 0, object_buffer_ = 0;

@@ -346,12 +346,15 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
       fail(where.child("model"), fmt::format("tabulated takes no {}: its tables hold one medium each, a texture has "
                                              "a medium per texel", map_key));
     validate_material(m, where.str());
-    m.maps = make_material_maps(m, albedo_map ? &*albedo_map : nullptr, mfp_map ? &*mfp_map : nullptr, where.str());
+    std::shared_ptr<MaterialMaps> maps =
+        make_material_maps(m, albedo_map ? &*albedo_map : nullptr, mfp_map ? &*mfp_map : nullptr, where.str());
     if (mfp_map) {  // the material's own coefficients: those at the map's mean factor
       const glm::vec3 scale = map_mean(*mfp_map);
       for (int c = 0; c < 3; ++c)
         if (scale[c] > 0.0f) m.sigma_a[c] /= scale[c], m.sigma_s[c] /= scale[c];
     }
+    maps->made_with_sigma_a = m.sigma_a, maps->made_with_sigma_s = m.sigma_s;
+    m.maps = std::move(maps);
   }
   validate_material(m, where.str());
   return m;
@@ -638,6 +641,28 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 bool has_material_maps(const Scene& scene) {
   return std::any_of(scene.objects.begin(), scene.objects.end(),
                      [](const SceneObject& o) { return o.material && o.material->textured(); });
+}
+
+void check_material_maps(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    if (!object.material || !object.material->maps) continue;
+    const Material& m = *object.material;
+    const MaterialMaps& maps = *m.maps;
+    const std::string where = fmt::format("{}: /objects/{}/material", scene.source, i);
+    const char* key = maps.albedo_file.empty() ? "mfp_map" : "albedo_map";
+    if (object.blob_resolution > 0 || object.mesh.uvs.empty())
+      throw Error(fmt::format("{}/{}: a texture needs the mesh's texture coordinates; {} has none", where, key,
+                              object.blob_resolution > 0 ? "a blob surface"
+                              : object.mesh_file.empty() ? "the shape" : object.mesh_file));
+    if (m.model == BssrdfModel::Tabulated)
+      throw Error(fmt::format("{}/model: tabulated takes no {}: its tables hold one medium each, a texture has a "
+                              "medium per texel", where, key));
+    if (m.g != maps.made_with_g || m.eta != maps.made_with_eta || m.model != maps.made_with_model ||
+        m.sigma_a != maps.made_with_sigma_a || m.sigma_s != maps.made_with_sigma_s)
+      throw Error(fmt::format("{}: the coefficients, g, eta and model of a textured material are those its {} was "
+                              "made with (its texels are inverted at load); change them in the scene file", where, key));
+  }
 }
 
 std::vector<std::string> scene_input_files(const Scene& scene) {

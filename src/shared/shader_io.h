@@ -104,16 +104,18 @@ struct ProbeGPU {
   vec4 radiosity;  // out: rgb B(x) (Algorithm 1), w: 1 when a map sees x, else 0
 };
 
-// One configuration of the GPU parity test (std430, 128 bytes): shaders/tests/bssrdf_parity.comp evaluates
-// the shared BSSRDF code for it and writes `result`; the C++ test evaluates the same code and compares.
+// One configuration of the GPU parity test (std430, 144 bytes), in one read-write buffer at
+// LUCENT_BINDING_PARITY: shaders/tests/bssrdf_parity.comp evaluates the shared BSSRDF code for it and writes
+// `result`; the C++ test evaluates the same code and compares.
+struct ParityResultGPU {
+  vec4 S_d;  // rgb: S_d [mm^-2]; w: T12(w_i)
+};
 struct ParityCaseGPU {
   vec4 x_i, w_i, n_i, x_o, n_o;  // xyz used [mm]
   vec4 sigma_a;                  // xyz [mm^-1]; w: eta
   vec4 sigma_s;                  // xyz [mm^-1]; w: model id
   vec4 g;                        // xyz
-};
-struct ParityResultGPU {
-  vec4 S_d;  // rgb: S_d [mm^-2]; w: T12(w_i)
+  ParityResultGPU result;        // written by the shader
 };
 
 LUCENT_SHADER_END
@@ -124,7 +126,7 @@ static_assert(sizeof(lucent::shader::MaterialGPU) == 80);
 static_assert(sizeof(lucent::shader::ObjectGPU) == 32);
 static_assert(sizeof(lucent::shader::ViewGPU) == 96);
 static_assert(sizeof(lucent::shader::VertexGPU) == 48);
-static_assert(sizeof(lucent::shader::ParityCaseGPU) == 128);
+static_assert(sizeof(lucent::shader::ParityCaseGPU) == 144);
 static_assert(offsetof(lucent::shader::FrameGPU, output_size) == 96);
 static_assert(sizeof(lucent::shader::LightGPU) == 64);
 static_assert(sizeof(lucent::shader::VplGPU) == 48);

@@ -69,12 +69,25 @@ bool material_editor(Material& m) {
     }
     ImGui::EndCombo();
   }
+  // A textured material's coefficients, g, eta and model are what its maps' texels were inverted with: they are
+  // shown, not edited (the scene file changes them; a preset above replaces the textured material).
+  const bool textured = m.textured();
+  if (textured) {
+    ImGui::TextDisabled("textured: %s%s%s", m.maps->albedo_file.empty() ? "" : "albedo_map",
+                        !m.maps->albedo_file.empty() && !m.maps->mfp_file.empty() ? ", " : "",
+                        m.maps->mfp_file.empty() ? "" : "mfp_map");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("the maps' mean is shown; edit the material in the scene file (its texels are made at load)");
+    ImGui::BeginDisabled();
+  }
   bool coefficients = scene_vec3("objects[].material", "sigma_a", m.sigma_a, 1e-3f);
   coefficients |= scene_vec3("objects[].material", "sigma_s", m.sigma_s, 1e-2f);
   coefficients |= scene_vec3("objects[].material", "g", m.g, 1e-3f);
-  m.sigma_a = glm::max(m.sigma_a, glm::vec3(0.0f));
-  m.sigma_s = glm::max(m.sigma_s, glm::vec3(0.0f));
-  m.g = glm::clamp(m.g, glm::vec3(-0.99f), glm::vec3(0.99f));
+  if (!textured) {
+    m.sigma_a = glm::max(m.sigma_a, glm::vec3(0.0f));
+    m.sigma_s = glm::max(m.sigma_s, glm::vec3(0.0f));
+    m.g = glm::clamp(m.g, glm::vec3(-0.99f), glm::vec3(0.99f));
+  }
   if (coefficients) m.name = "custom";
   changed |= coefficients;
   changed |= scene_float("objects[].material", "eta", m.eta, 0.002f);
@@ -87,6 +100,7 @@ bool material_editor(Material& m) {
       changed = true;
     }
   }
+  if (textured) ImGui::EndDisabled();
   // Heterogeneous medium (voxel-paths and volpath; the diffusion models ignore it): the field's type, feature size
   // and contrast from the same declarations as the scene parser; a volume keeps the file it was loaded from.
   if (const ParamDecl* type = find_scene_param("objects[].material.field", "type")) {

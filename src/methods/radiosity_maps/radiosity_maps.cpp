@@ -16,6 +16,7 @@
 #include "methods/radiosity_maps/radiosity_maps_io.h"
 #include "platform/gl_capabilities.h"
 #include "lucent/error.h"
+#include "materials/material_maps.h"
 #include "render/light_gbuffer.h"
 
 namespace lucent::methods {
@@ -241,7 +242,7 @@ class RadiosityMaps final : public Method {
     float texel_mm = light_gbuffer_.views().views[0].direction.w / static_cast<float>(light_map_size_) * scene.scale_mm;
     for (const SceneObject& object : scene.objects) {
       if (!object.material) continue;
-      glm::vec3 sigma_tr = object.material->sigma_tr();
+      glm::vec3 sigma_tr = densest_darkest(*object.material).sigma_tr();  // a textured material's densest texel
       float length_mm = 1.0f / std::max({sigma_tr.x, sigma_tr.y, sigma_tr.z});
       if (length_mm >= 2.0f * texel_mm) continue;
       std::fprintf(stderr,
@@ -257,8 +258,9 @@ class RadiosityMaps final : public Method {
   static void warn_about_low_albedo(const Scene& scene) {
     for (const SceneObject& object : scene.objects) {
       if (!object.material) continue;
-      glm::vec3 s = object.material->sigma_s_prime();
-      glm::vec3 alpha_prime = s / (s + object.material->sigma_a);
+      const Material m = densest_darkest(*object.material);  // a textured material's darkest texel
+      glm::vec3 s = m.sigma_s_prime();
+      glm::vec3 alpha_prime = s / (s + m.sigma_a);
       float lowest = std::min({alpha_prime.x, alpha_prime.y, alpha_prime.z});
       if (lowest >= 0.3f) continue;
       std::fprintf(stderr,
