@@ -18,6 +18,10 @@ struct TriangleMesh {
   // bottom left of an image. Procedural shapes lay out [0, 1]^2 without overlap (vertices are duplicated along
   // seams); a loaded mesh has what its file has (channel 0, any range).
   std::vector<glm::vec2> uvs;
+  // The texture coordinates a textured material's maps are read through, where `uvs` hold another
+  // parametrization (a texture atlas: texture_space::with_atlas_meshes); empty: `uvs` are the material's too.
+  std::vector<glm::vec2> material_uvs;
+  const std::vector<glm::vec2>& map_uvs() const { return material_uvs.empty() ? uvs : material_uvs; }
 };
 
 // Loads every mesh of a file (OBJ, PLY, glTF 2.0, STL, 3DS and the other formats assimp reads) into one mesh,

@@ -8,7 +8,8 @@
 
 layout(location = 0) in vec4 in_position;  // xyz world [scene units], w: object index
 layout(location = 1) in vec4 in_normal;    // xyz world unit normal
-layout(location = 2) in vec4 in_uv;        // xy: texture coordinates (0 where the mesh has none)
+layout(location = 2) in vec4 in_uv;        // xy: texture coordinates (0 where the mesh has none); zw: those of the
+                                           // material's maps (render/scene_gpu.cpp)
 
 #if defined(LAYERED_VIEWS)
 layout(std430, binding = LUCENT_BINDING_LAYER_VIEWS) readonly buffer LayerViewBlock { ViewGPU layer_views[]; };
@@ -24,7 +25,7 @@ out VertexData {
 void main() {
   v_out.position = in_position.xyz;
   v_out.normal = in_normal.xyz;
-  v_out.uv = in_uv.xy;
+  v_out.uv = in_uv.zw;
   v_out.object_id = in_position.w + 1.0f;
 #if defined(CAMERA_VIEW)
   gl_Position = frame.clip_from_world * vec4(in_position.xyz, 1.0f);

@@ -54,11 +54,13 @@ MaterialGPU to_gpu(const Material& m, float scale_mm, std::vector<glm::vec4>& ma
   return out;
 }
 
-// Vertex v of a world-space mesh (texture coordinates 0 where it has none).
+// Vertex v of a world-space mesh (texture coordinates 0 where it has none): xy the mesh's texture coordinates
+// (an atlas's, for texture-space methods), zw those a textured material's maps are read through.
 VertexGPU to_gpu(const TriangleMesh& world, std::size_t v, std::size_t object) {
   glm::vec2 uv = world.uvs.empty() ? glm::vec2(0.0f) : world.uvs[v];
+  glm::vec2 map_uv = world.map_uvs().empty() ? glm::vec2(0.0f) : world.map_uvs()[v];
   return {glm::vec4(world.positions[v], static_cast<float>(object)), glm::vec4(world.normals[v], 0.0f),
-          glm::vec4(uv, 0.0f, 0.0f)};
+          glm::vec4(uv, map_uv)};
 }
 
 template <typename T>

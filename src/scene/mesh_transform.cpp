@@ -8,6 +8,7 @@ TriangleMesh transformed(const TriangleMesh& mesh, const glm::mat4& world_from_o
   TriangleMesh out;
   out.indices = mesh.indices;
   out.uvs = mesh.uvs;  // texture space does not move with the object
+  out.material_uvs = mesh.material_uvs;
   out.positions.reserve(mesh.positions.size());
   out.normals.reserve(mesh.normals.size());
   for (const glm::vec3& p : mesh.positions) out.positions.push_back(glm::vec3(world_from_object * glm::vec4(p, 1.0f)));

@@ -62,7 +62,8 @@ struct LightGPU {
 struct VertexGPU {
   vec4 position;  // xyz world [scene units]; w: object index
   vec4 normal;    // xyz world unit normal; w: unused
-  vec4 uv;        // xy: texture coordinates (0 where the mesh has none); zw: unused
+  vec4 uv;        // xy: texture coordinates (0 where the mesh has none); zw: those of a textured material's maps
+                  // (TriangleMesh::map_uvs: the same, or the mesh's own under an atlas)
 };
 
 // What every pass of a frame may read, whatever the method (std140). A method's own per-frame data lives in

@@ -55,7 +55,19 @@ SceneAtlas build_scene_atlas(const Scene& scene, const AtlasOptions& options) {
 
 Scene with_atlas_meshes(const Scene& scene, const SceneAtlas& atlas) {
   Scene out = scene;
-  for (std::size_t k = 0; k < atlas.object_index.size(); ++k) out.objects[atlas.object_index[k]].mesh = atlas.atlas.objects[k].mesh;
+  for (std::size_t k = 0; k < atlas.object_index.size(); ++k) {
+    const AtlasObject& object = atlas.atlas.objects[k];
+    TriangleMesh& mesh = out.objects[atlas.object_index[k]].mesh;
+    const std::vector<glm::vec2>& own = mesh.uvs;
+    // A textured material keeps reading its maps through the mesh's own texture coordinates.
+    std::vector<glm::vec2> material_uvs;
+    if (!own.empty() && out.objects[atlas.object_index[k]].material && out.objects[atlas.object_index[k]].material->textured()) {
+      material_uvs.reserve(object.source_vertex.size());
+      for (std::uint32_t v : object.source_vertex) material_uvs.push_back(own[v]);
+    }
+    mesh = object.mesh;
+    mesh.material_uvs = std::move(material_uvs);
+  }
   return out;
 }
 

@@ -208,7 +208,7 @@ TEST(MaterialMaps, MethodsThatDoNotReadMapsAreRefused) {
     if (method->reads_material_maps) continue;
     EXPECT_EQ(error_message([&] { methods::refuse_material_maps(scene, *method); }),
               fmt::format("maps-test: /objects/0/material/albedo_map: method '{}' does not read textured materials "
-                          "(methods that do: radiosity-maps, per-pixel; the references lucent reference "
+                          "(methods that do: radiosity-maps, per-pixel, texture-space-is; the references lucent reference "
                           "--integrator volpath|bssrdf do)",
                           method->name));
   }

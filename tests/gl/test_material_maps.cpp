@@ -66,16 +66,22 @@ Split mfp_split() {
 
 
 // The sphere seen from +x, across the seam of its texture (u = 0 | 1 along +x; u < 0.5 toward +z).
-lucent::Scene sphere(const std::string& material, const std::string& method) {
+// A second translucent sphere behind the camera, out of view and out of the light's way: with two translucent
+// objects the texture-space methods pack a chart atlas instead of using the sphere's own coordinates, so the
+// material's coordinates must travel beside the atlas's (TriangleMesh::material_uvs).
+constexpr const char* kHiddenSecondObject =
+    R"(, { "shape": "sphere", "radius": 0.5, "translate": [12, 0, 0], "material": "Marble" })";
+
+lucent::Scene sphere(const std::string& material, const std::string& method, const char* more_objects = "") {
   return lucent::parse_scene(fmt::format(R"({{
     "scale_mm": 10,
     "camera": {{ "eye": [6, 1, 0], "target": [0, 0, 0], "fov_y_deg": 22 }},
     "lights": [{{ "direction": [-1, -0.4, 0.2], "radiance": [1, 1, 1] }}],
     "objects": [{{ "shape": "sphere", "radius": 1, "segments": 96,
-                   "material": {{ {}, "model": "standard" }} }}],
+                   "material": {{ {}, "model": "standard" }} }}{}],
     "method": {},
     "render": {{ "width": {}, "height": {}, "frames": 4 }} }})",
-                                         material, method, kSize, kSize),
+                                         material, more_objects, method, kSize, kSize),
                              "textured sphere", "/");
 }
 
@@ -86,11 +92,14 @@ ImageRGBA32F render(const lucent::Scene& scene) {
   return renderer.read_radiance();
 }
 
-void expect_each_half_renders_as_its_material(const std::string& method, const Split& split) {
+// Each pixel's label: 0 matches neither half's material, 1 the left's only, 2 the right's only, 3 both.
+std::vector<int> expect_each_half_renders_as_its_material(const std::string& method, const Split& split,
+                                                          const char* more_objects = "") {
   lucent::test::ensure_gl_context();
-  const ImageRGBA32F textured = render(sphere(split.textured, method));
-  const ImageRGBA32F left = render(sphere(split.left, method));
-  const ImageRGBA32F right = render(sphere(split.right, method));
+  const ImageRGBA32F textured = render(sphere(split.textured, method, more_objects));
+  const ImageRGBA32F left = render(sphere(split.left, method, more_objects));
+  const ImageRGBA32F right = render(sphere(split.right, method, more_objects));
+  std::vector<int> labels;
   int covered = 0, as_left = 0, as_right = 0, as_both = 0;
   double sum_textured = 0.0, sum_matched = 0.0;
   for (std::size_t i = 0; i < textured.pixels.size(); i += 4) {
@@ -103,6 +112,7 @@ void expect_each_half_renders_as_its_material(const std::string& method, const S
     // mean free path at the same albedo, lit head-on) a pixel matches both.
     const bool is_left = std::abs(t - l) <= 0.01 * l + 1e-4, is_right = std::abs(t - r) <= 0.01 * r + 1e-4;
     as_left += is_left && !is_right, as_right += is_right && !is_left, as_both += is_left && is_right;
+    labels.push_back((is_left ? 1 : 0) + (is_right ? 2 : 0));
     if (is_left || is_right) sum_textured += t, sum_matched += is_left ? l : r;
   }
   const double f_left = double(as_left) / covered, f_right = double(as_right) / covered;
@@ -117,6 +127,7 @@ void expect_each_half_renders_as_its_material(const std::string& method, const S
   EXPECT_GT(f_right, 0.2);
   EXPECT_LT(f_neither, 0.15);
   EXPECT_NEAR(sum_textured / sum_matched, 1.0, 2e-3);
+  return labels;
 }
 
 constexpr const char* kPerPixel = R"({"name": "per-pixel", "N": 16, "light_map_size": 128, "specular": false})";
@@ -126,6 +137,24 @@ constexpr const char* kRadiosityMaps =
 TEST(MaterialMapsGpu, PerPixelTakesTheCoefficientsAtEachPixel) {
   expect_each_half_renders_as_its_material(kPerPixel, albedo_split());
   expect_each_half_renders_as_its_material(kPerPixel, mfp_split());
+}
+
+// Texture space: the atlas mesh replaces the sphere's, and the material's coordinates travel beside the atlas's.
+constexpr const char* kTextureSpaceIs = R"({"name": "texture-space-is", "atlas_size": 256, "N": 256, "specular": false})";
+
+TEST(MaterialMapsGpu, TextureSpaceIsTakesTheCoefficientsAtEachPixel) {
+  for (const Split& split : {albedo_split(), mfp_split()}) {
+    const std::vector<int> atlas = expect_each_half_renders_as_its_material(kTextureSpaceIs, split, kHiddenSecondObject);
+    // The same pixels show the same half as per-pixel, which reads the sphere's own coordinates: an atlas's
+    // coordinates in their place split the sphere elsewhere (charts packed side by side may even split it in
+    // halves, so the fractions alone would not tell).
+    const std::vector<int> own = expect_each_half_renders_as_its_material(kPerPixel, split, kHiddenSecondObject);
+    ASSERT_EQ(atlas.size(), own.size());
+    int disagree = 0;
+    for (std::size_t i = 0; i < own.size(); ++i) disagree += (own[i] == 1 || own[i] == 2) && (atlas[i] == 1 || atlas[i] == 2) && own[i] != atlas[i];
+    std::printf("pixels showing the other half than per-pixel: %d of %zu\n", disagree, own.size());
+    EXPECT_LT(disagree, static_cast<int>(own.size()) / 100);
+  }
 }
 
 TEST(MaterialMapsGpu, RadiosityMapsTakeTheCoefficientsAtEachMapTexel) {
@@ -143,7 +172,7 @@ TEST(MaterialMapsGpu, OtherMethodsRefuseTexturedMaterials) {
     message = e.what();
   }
   EXPECT_EQ(message, "textured sphere: /objects/0/material/albedo_map: method 'diffuse-wrap' does not read textured "
-                     "materials (methods that do: radiosity-maps, per-pixel; the references lucent reference "
+                     "materials (methods that do: radiosity-maps, per-pixel, texture-space-is; the references lucent reference "
                      "--integrator volpath|bssrdf do)");
 }
 

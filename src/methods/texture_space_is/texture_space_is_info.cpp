@@ -51,6 +51,9 @@ const MethodInfo texture_space_is_info{
            // radial profile (normal incidence, bssrdf_radial_Rd) drops the oblique light; standard dipole: -0.2%
     true,
     atlas_options,
+    nullptr,
+    true,  // textured materials: R_d with the coefficients at the pixel's texture coordinates (the mesh's own, kept
+           // beside the atlas's: TriangleMesh::material_uvs)
 };
 
 }  // namespace lucent::methods

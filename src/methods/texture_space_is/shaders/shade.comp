@@ -5,6 +5,7 @@
 #include "common/frame.glsl"
 #include "common/lights.glsl"
 #include "bssrdf/model.h"
+#include "media/material_map.h"
 #include "methods/texture_space_is/texture_space_is_io.h"
 #include "common/camera_pixel.glsl"
 
@@ -17,6 +18,9 @@ layout(std430, binding = LUCENT_BINDING_TSIS_SAMPLES) readonly buffer Samples {
 layout(rgba32f, binding = LUCENT_IMAGE_TSIS_SUM) uniform image2D accumulated;  // rgb: sum of L / F_t, a: frames
 
 vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o, MaterialGPU material) {
+#if defined(LUCENT_MATERIAL_MAPS)
+  material = material_at(material, camera_uv(pixel));  // R_d with the exit point's coefficients
+#endif
   float eta = material.sigma_a.w;
   int model = int(material.sigma_s.w);
   BandMedium m[3];
