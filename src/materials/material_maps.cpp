@@ -120,7 +120,7 @@ glm::vec3 map_mean(const MapImage& image) {
 }
 
 std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
-                                                       const MapImage* mfp_scale, const std::string& where) {
+                                                 const MapImage* mfp_scale, const std::string& where) {
   auto maps = std::make_shared<MaterialMaps>();
   const glm::vec3 sigma_t = base.sigma_t();
   maps->base_alpha = base.sigma_s / sigma_t;

@@ -67,6 +67,6 @@ Material densest_darkest(const Material& material);
 // float; warns once per map about clamped albedos. Records base's g, eta and model in made_with_*; the caller
 // records the material's final coefficients (made_with_sigma_*).
 std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
-                                                       const MapImage* mfp_scale, const std::string& where);
+                                                 const MapImage* mfp_scale, const std::string& where);
 
 }  // namespace lucent
