@@ -3,13 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 
 #include <fmt/format.h>
 
 #include "lucent/error.h"
 #include "lucent/image.h"
+#include "lucent/output_file.h"
 #include "materials/artist_parameters.h"
 #include "media/material_map.h"
 #include "shared/tonemap.h"
@@ -31,11 +31,6 @@ double alpha_of_node(int k) {
   return -std::expm1(u);
 }
 
-std::string lower_extension(const std::string& file) {
-  std::string ext = std::filesystem::path(file).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 }  // namespace
 
@@ -73,7 +68,7 @@ double AlbedoCurve::alpha(double albedo) const {
 MapImage read_material_map(const std::string& file, bool colour, const std::string& where) {
   MapImage out;
   out.file = file;
-  const std::string ext = lower_extension(file);
+  const std::string ext = lowercase_extension(file);
   ImageRGBA32F image;
   try {
     if (ext == ".png") {

@@ -155,6 +155,7 @@ struct Renderer::Impl {
   GLuint frame_buffer = 0;
   OutputImages output;
   bool restart = true;
+  bool material_maps = false;  // the scene has textured materials: the camera G-buffer keeps texture coordinates
   double time_seconds = 0.0;
   bool geometry_dirty = true;  // animated geometry must be brought to time_seconds before the next frame
   std::uint64_t frame_counter = 0;
@@ -200,6 +201,7 @@ struct Renderer::Impl {
     if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
     check_material_maps(scene);
     if (!info->reads_material_maps) methods::refuse_material_maps(scene, *info);
+    material_maps = has_material_maps(scene);  // a change of maps always rebuilds (classify_change)
     method.reset();
     atlas.reset();
     atlas_scene.reset();
@@ -321,7 +323,7 @@ struct Renderer::Impl {
   void render(const Camera& camera, const RenderTarget& target) {
     if (target.width <= 0 || target.height <= 0)
       throw Error(fmt::format("render target size {}x{} is empty", target.width, target.height));
-    output.resize(target.width, target.height, has_material_maps(scene));
+    output.resize(target.width, target.height, material_maps);
     profiler.begin_frame(++frame_counter);
     shader::FrameGPU frame = frame_block(camera);
     restart = false;

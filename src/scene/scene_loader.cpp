@@ -214,6 +214,19 @@ void read_environment(const json& j, const JsonLocation& where, const std::strin
   scene.environment = std::move(env);
 }
 
+// What the loader and check_material_maps refuse about a textured material, worded once: the map key it names and
+// the problem ("" for none).
+const char* map_key(const MaterialMaps& maps) { return maps.albedo_file.empty() ? "mfp_map" : "albedo_map"; }
+std::string tabulated_maps_problem(const char* key) {
+  return fmt::format("tabulated takes no {}: its tables hold one medium each, a texture has a medium per texel", key);
+}
+std::string texture_coordinates_problem(const SceneObject& object) {
+  if (object.blob_resolution == 0 && !object.mesh.uvs.empty()) return "";
+  return fmt::format("a texture needs the mesh's texture coordinates; {} has none",
+                     object.blob_resolution > 0 ? "a blob surface"
+                     : object.mesh_file.empty() ? "the shape" : object.mesh_file);
+}
+
 json normalized_material(const json& j) {
   json copy = j;
   for (const char* key : {"g", "albedo", "mfp_mm"})
@@ -339,12 +352,10 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
   m.model = *parse_bssrdf_model(v.text("model"));
   if (j.contains("field")) m.field = read_field(j.at("field"), where.child("field"), base_dir);
   if (albedo_map || mfp_map) {
-    const char* map_key = albedo_map ? "albedo_map" : "mfp_map";
+    const char* key = albedo_map ? "albedo_map" : "mfp_map";
     if (m.field.heterogeneous())
-      fail(where.child("field"), fmt::format("not with {}: a material is textured or has a 3D field, not both", map_key));
-    if (m.model == BssrdfModel::Tabulated)
-      fail(where.child("model"), fmt::format("tabulated takes no {}: its tables hold one medium each, a texture has "
-                                             "a medium per texel", map_key));
+      fail(where.child("field"), fmt::format("not with {}: a material is textured or has a 3D field, not both", key));
+    if (m.model == BssrdfModel::Tabulated) fail(where.child("model"), tabulated_maps_problem(key));
     validate_material(m, where.str());
     std::shared_ptr<MaterialMaps> maps =
         make_material_maps(m, albedo_map ? &*albedo_map : nullptr, mfp_map ? &*mfp_map : nullptr, where.str());
@@ -504,12 +515,9 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
     if (j.at("material") == kFromMesh) read_mesh_material(object, where);
     else object.material = read_material(j.at("material"), where.child("material"), base_dir);
     if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
-    if (object.material && object.material->textured() && object.mesh.uvs.empty()) {
-      const MaterialMaps& maps = *object.material->maps;
-      fail(where.child("material").child(maps.albedo_file.empty() ? "mfp_map" : "albedo_map"),
-           fmt::format("a texture needs the mesh's texture coordinates; {} has none",
-                       object.blob_resolution > 0 ? "a blob surface" : object.mesh_file.empty() ? "the shape" : object.mesh_file));
-    }
+    if (object.material && object.material->textured())
+      if (const std::string problem = texture_coordinates_problem(object); !problem.empty())
+        fail(where.child("material").child(map_key(*object.material->maps)), problem);
   }
   return object;
 }
@@ -650,14 +658,10 @@ void check_material_maps(const Scene& scene) {
     const Material& m = *object.material;
     const MaterialMaps& maps = *m.maps;
     const std::string where = fmt::format("{}: /objects/{}/material", scene.source, i);
-    const char* key = maps.albedo_file.empty() ? "mfp_map" : "albedo_map";
-    if (object.blob_resolution > 0 || object.mesh.uvs.empty())
-      throw Error(fmt::format("{}/{}: a texture needs the mesh's texture coordinates; {} has none", where, key,
-                              object.blob_resolution > 0 ? "a blob surface"
-                              : object.mesh_file.empty() ? "the shape" : object.mesh_file));
-    if (m.model == BssrdfModel::Tabulated)
-      throw Error(fmt::format("{}/model: tabulated takes no {}: its tables hold one medium each, a texture has a "
-                              "medium per texel", where, key));
+    const char* key = map_key(maps);
+    if (const std::string problem = texture_coordinates_problem(object); !problem.empty())
+      throw Error(fmt::format("{}/{}: {}", where, key, problem));
+    if (m.model == BssrdfModel::Tabulated) throw Error(fmt::format("{}/model: {}", where, tabulated_maps_problem(key)));
     if (m.g != maps.made_with_g || m.eta != maps.made_with_eta || m.model != maps.made_with_model ||
         m.sigma_a != maps.made_with_sigma_a || m.sigma_s != maps.made_with_sigma_s)
       throw Error(fmt::format("{}: the coefficients, g, eta and model of a textured material are those its {} was "
