@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config git
+  # compiler cache (cmake/compiler_cache.cmake): a rebuild of unchanged sources, in any clone, is a cache lookup
+  ccache
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime (libclang-rt-14-dev is only recommended by clang)
   clang libclang-rt-14-dev
   # OpenGL 4.5 through EGL (surfaceless) and GLFW; Mesa llvmpipe for machines without a GPU

@@ -15,6 +15,8 @@
 
 namespace lucent::test {
 
+inline std::size_t triangle_count(const TriangleMesh& m) { return m.indices.size() / 3; }
+
 struct MeshTopology {
   std::size_t vertices = 0;          // after welding by exact position
   std::size_t edges = 0;             // undirected

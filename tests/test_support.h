@@ -1,7 +1,9 @@
-// test_support.h: small helpers shared by the CPU tests: a temporary file named after the running test, and
-// the message of the lucent::Error a call throws.
+// test_support.h: small helpers shared by the CPU tests: a temporary file named after the running test, a file's
+// text, and the message of the lucent::Error a call throws.
 #pragma once
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -34,6 +36,14 @@ class TempFile {
  private:
   std::filesystem::path path_;
 };
+
+// A file's bytes ("" when it cannot be read).
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // The Error message a call throws, or "" when it does not throw.
 template <class Call>

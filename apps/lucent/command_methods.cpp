@@ -10,8 +10,8 @@
 namespace lucent::cli {
 namespace {
 
-void run(bool json) {
-  if (json) {
+void run(bool as_json) {
+  if (as_json) {
     fmt::print("{}\n", methods::method_catalog_json().dump(1));
     return;
   }
@@ -31,10 +31,10 @@ void run(bool json) {
 }  // namespace
 
 void add_methods_command(CLI::App& app) {
-  auto json = std::make_shared<bool>(false);
+  auto as_json = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("methods", "list the rendering methods: parameters, passes and statistics");
-  cmd->add_flag("--json", *json, "print them as JSON");
-  cmd->callback([json] { run(*json); });
+  cmd->add_flag("--json", *as_json, "print them as JSON");
+  cmd->callback([as_json] { run(*as_json); });
 }
 
 }  // namespace lucent::cli

@@ -23,7 +23,7 @@ using nlohmann::json;
 
 constexpr double kRoundTripTolerance = 1e-3;
 
-struct Case {
+struct InversionCase {
   BssrdfModel model;
   glm::vec3 albedo;
   float g, eta;
@@ -31,7 +31,7 @@ struct Case {
 
 // Albedos 0.05 to 0.95 inside the range each model reaches (docs/materials.md): photon beam diffusion stays below
 // 0.94-0.96; the directional dipole's total does not fall below 0.21 at eta 1, 0.14 at 1.3, 0.10 at 1.5.
-const Case kCases[] = {
+const InversionCase kCases[] = {
     {BssrdfModel::StandardDipole, {0.05f, 0.5f, 0.95f}, 0.0f, 1.0f},
     {BssrdfModel::StandardDipole, {0.1f, 0.6f, 0.9f}, 0.8f, 1.3f},
     {BssrdfModel::StandardDipole, {0.3f, 0.7f, 0.85f}, -0.3f, 1.5f},
@@ -44,7 +44,7 @@ const Case kCases[] = {
     {BssrdfModel::BetterDipole, {0.08f, 0.35f, 0.75f}, -0.3f, 1.5f},
 };
 
-ArtistParameters artist(const Case& c) {
+ArtistParameters artist(const InversionCase& c) {
   ArtistParameters a;
   a.albedo = c.albedo;
   a.mfp_mm = {2.0f, 0.7f, 0.05f};
@@ -55,7 +55,7 @@ ArtistParameters artist(const Case& c) {
 }
 
 TEST(ArtistParameters, FlatTotalOfTheInvertedMaterialIsTheAlbedo) {
-  for (const Case& c : kCases) {
+  for (const InversionCase& c : kCases) {
     const ArtistInversion inv = invert_artist_parameters(artist(c), "test");
     const glm::dvec3 total = model_total_reflectance(inv.material, 0.0).total;
     for (int b = 0; b < 3; ++b) {

@@ -20,7 +20,7 @@ namespace {
 using namespace lucent::texture_space;
 using lucent::test::TempCacheDir;
 
-lucent::Scene two_object_scene() {
+lucent::Scene ball_floor_ring_scene() {
   return lucent::parse_scene(R"({
     "objects": [
       { "name": "ball", "shape": "sphere", "radius": 0.5, "material": "Marble" },
@@ -58,7 +58,7 @@ void expect_same_atlas(const SceneAtlas& a, const SceneAtlas& b) {
 }
 
 TEST(AtlasCache, BytesRoundTripExactly) {
-  SceneAtlas built = build_scene_atlas(two_object_scene(), {.size = 256});
+  SceneAtlas built = build_scene_atlas(ball_floor_ring_scene(), {.size = 256});
   ASSERT_EQ(built.atlas.objects.size(), 2u);
   SceneAtlas back = decode_scene_atlas(encode_scene_atlas(built));
   expect_same_atlas(built, back);
@@ -81,7 +81,7 @@ TEST(AtlasCache, BytesRoundTripExactly) {
 }
 
 TEST(AtlasCache, BytesThatAreNotAnAtlasAreRefused) {
-  std::vector<std::byte> bytes = encode_scene_atlas(build_scene_atlas(two_object_scene(), {.size = 128}));
+  std::vector<std::byte> bytes = encode_scene_atlas(build_scene_atlas(ball_floor_ring_scene(), {.size = 128}));
   for (std::size_t cut : {std::size_t{0}, std::size_t{3}, bytes.size() / 2, bytes.size() - 1}) {
     std::string message = lucent::test::error_message([&] { decode_scene_atlas(std::span(bytes).first(cut)); });
     EXPECT_EQ(message.rfind("scene atlas: ", 0), 0u) << "cut at " << cut << ": " << message;
@@ -98,7 +98,7 @@ TEST(AtlasCache, BytesThatAreNotAnAtlasAreRefused) {
 
 TEST(AtlasCache, SecondLoadComesFromTheCacheAndEqualsTheFirst) {
   TempCacheDir dir;
-  lucent::Scene scene = two_object_scene();
+  lucent::Scene scene = ball_floor_ring_scene();
   std::vector<double> fractions;
   CachedSceneAtlas first = load_or_build_scene_atlas(scene, {.size = 256}, [&](double f) { fractions.push_back(f); });
   EXPECT_FALSE(first.from_cache);
@@ -113,7 +113,7 @@ TEST(AtlasCache, SecondLoadComesFromTheCacheAndEqualsTheFirst) {
 
 TEST(AtlasCache, ChangedMeshTransformOrOptionMisses) {
   TempCacheDir dir;
-  lucent::Scene scene = two_object_scene();
+  lucent::Scene scene = ball_floor_ring_scene();
   ASSERT_FALSE(load_or_build_scene_atlas(scene, {.size = 256}).from_cache);
   ASSERT_TRUE(load_or_build_scene_atlas(scene, {.size = 256}).from_cache);
   EXPECT_FALSE(load_or_build_scene_atlas(scene, {.size = 512}).from_cache);
@@ -135,7 +135,7 @@ TEST(AtlasCache, ChangedMeshTransformOrOptionMisses) {
 
 TEST(AtlasCache, DisabledCacheBuildsAndWritesNothing) {
   TempCacheDir dir;
-  lucent::Scene scene = two_object_scene();
+  lucent::Scene scene = ball_floor_ring_scene();
   lucent::cache::set_enabled(false);
   EXPECT_FALSE(load_or_build_scene_atlas(scene, {.size = 256}).from_cache);
   EXPECT_FALSE(load_or_build_scene_atlas(scene, {.size = 256}).from_cache);

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "shared/bindings.h"
+#include "../test_support.h"
 
 namespace {
 
@@ -30,12 +31,7 @@ const char* kind_name(SlotKind kind) {
   return "?";
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using lucent::test::read_text;
 
 // A slot found in a source file.
 struct Found {

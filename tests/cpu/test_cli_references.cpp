@@ -19,7 +19,7 @@ using Result = lucent::test::CliResult;
 
 Result run(const std::string& arguments) { return lucent::test::run_cli(arguments); }
 
-std::filesystem::path temp_dir() {
+std::filesystem::path references_dir() {
   auto dir = std::filesystem::temp_directory_path() / "lucent_cli_references";
   std::filesystem::create_directories(dir);
   return dir;
@@ -54,7 +54,7 @@ TEST(CliReferences, BssrdfTotalPrintsTheModelsFlatReflectance) {
 }
 
 TEST(CliReferences, ReferenceWritesMeanErrorAndMetadataAndResumes) {
-  auto dir = temp_dir();
+  auto dir = references_dir();
   std::string scene = (dir / "sphere.json").string(), exr = (dir / "ref.exr").string();
   std::ofstream(scene) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
     "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
@@ -84,7 +84,7 @@ TEST(CliReferences, BadInputsNameTheInput) {
 // A bad override in the last variant is reported before anything renders (no GL context is needed to see it),
 // naming the configuration, the variant and the override.
 TEST(CliReferences, BenchChecksEveryVariantsSceneFirst) {
-  auto dir = temp_dir();
+  auto dir = references_dir();
   std::string scene = (dir / "bench_sphere.json").string(), config = (dir / "bench_bad_variant.json").string();
   std::ofstream(scene) << R"({"lights": [{"direction": [0, -1, 0]}],
                               "objects": [{"shape": "sphere", "material": "Skin1"}]})";

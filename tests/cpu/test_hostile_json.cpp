@@ -60,14 +60,14 @@ std::string deep_pointer_excerpt(const std::string& prefix, std::size_t levels) 
   return pointer.substr(0, 57) + "...";
 }
 
-std::filesystem::path temp_dir() {
+std::filesystem::path hostile_dir() {
   auto dir = std::filesystem::path(::testing::TempDir()) / "lucent_hostile_json";
   std::filesystem::create_directories(dir);
   return dir;
 }
 
 std::string write_file(const std::string& name, const std::string& text) {
-  std::string path = (temp_dir() / name).string();
+  std::string path = (hostile_dir() / name).string();
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }
@@ -291,7 +291,7 @@ TEST(HostileJson, VolumeHeaderDuplicateKeyIsAnError) {
 
 TEST(HostileJson, BenchConfigurationMalformedNamesLineAndColumn) {
   const std::string config = write_file("bench_malformed.json", "{\"runs\": [\n  {\"scene\": \"a.json\"\n]}");
-  auto r = test::run_cli("bench " + config + " -o " + (temp_dir() / "bench_out").string());
+  auto r = test::run_cli("bench " + config + " -o " + (hostile_dir() / "bench_out").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output, "lucent: " + config +
                           ": malformed JSON: line 3, column 1: syntax error while parsing object - unexpected ']'; "
@@ -301,11 +301,11 @@ TEST(HostileJson, BenchConfigurationMalformedNamesLineAndColumn) {
 TEST(HostileJson, BenchConfigurationDuplicateKeyAndDepth) {
   const std::string duplicate =
       write_file("bench_duplicate.json", R"({"runs": [{"scene": "/nonexistent/a.json", "scene": "/nonexistent/b.json"}]})");
-  auto r = test::run_cli("bench " + duplicate + " -o " + (temp_dir() / "bench_out").string());
+  auto r = test::run_cli("bench " + duplicate + " -o " + (hostile_dir() / "bench_out").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output, "lucent: " + duplicate + ": /runs/0/scene: duplicate key (each key may appear once in an object)\n");
   const std::string deep = write_file("bench_deep.json", R"({"description": )" + deep_array(kDeep) + "}");
-  r = test::run_cli("bench " + deep + " -o " + (temp_dir() / "bench_out").string());
+  r = test::run_cli("bench " + deep + " -o " + (hostile_dir() / "bench_out").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output, "lucent: " + deep + ": " + deep_pointer_excerpt("/description", 127) +
                           ": nested deeper than 128 levels\n");
@@ -329,7 +329,7 @@ TEST(HostileJson, SceneFileAndSetThroughTheCli) {
 TEST(HostileJson, ReferenceMetadataDuplicateKeyIsAnError) {
   const std::string scene = write_file("ref_scene.json", minimal_scene().dump());
   const std::string meta = write_file("ref_resume.meta.json", R"({"samples_per_pixel": 2, "samples_per_pixel": 3})");
-  const std::string exr = (temp_dir() / "ref_resume.exr").string();
+  const std::string exr = (hostile_dir() / "ref_resume.exr").string();
   auto r = test::run_cli("reference " + scene + " --resume -q -o " + exr);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output, "lucent: " + meta + ": /samples_per_pixel: duplicate key (each key may appear once in an object)\n");

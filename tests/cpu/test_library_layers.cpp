@@ -12,16 +12,13 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using lucent::test::read_text;
 
 // The src/... files listed in add_library(<name> ...) of the top-level CMakeLists.txt.
 std::vector<std::string> library_sources(const std::string& name) {

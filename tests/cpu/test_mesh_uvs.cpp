@@ -17,6 +17,7 @@
 #include "lucent/scene.h"
 #include "lucent/scene_writer.h"
 #include "scene/import_guard.h"
+#include "../mesh_topology.h"
 #include "../test_support.h"
 
 namespace {
@@ -24,8 +25,7 @@ namespace {
 using lucent::TriangleMesh;
 using lucent::test::error_message;
 using lucent::test::TempFile;
-
-std::size_t triangle_count(const TriangleMesh& m) { return m.indices.size() / 3; }
+using lucent::test::triangle_count;
 
 std::array<glm::vec2, 3> uv_triangle(const TriangleMesh& m, std::size_t t) {
   return {m.uvs[m.indices[3 * t]], m.uvs[m.indices[3 * t + 1]], m.uvs[m.indices[3 * t + 2]]};

@@ -14,18 +14,18 @@
 
 #include "lucent/error.h"
 #include "lucent/mesh.h"
+#include "../mesh_topology.h"
 
 namespace {
 
 using lucent::TriangleMesh;
+using lucent::test::triangle_count;
 
 constexpr float kPi = glm::pi<float>();
 
 glm::vec3 corner(const TriangleMesh& m, std::size_t t, std::size_t k) {
   return m.positions[m.indices[3 * t + k]];
 }
-
-std::size_t triangle_count(const TriangleMesh& m) { return m.indices.size() / 3; }
 
 // Geometric normal of triangle t by the counter-clockwise rule (not normalized).
 glm::vec3 geometric_normal(const TriangleMesh& m, std::size_t t) {
@@ -133,14 +133,15 @@ TEST(ProceduralShapes, LathesAreWatertightWithOutwardWinding) {
       {lucent::make_lathe(shade, 256), 0.0},  // Pappus below
       {lucent::make_shell(1.0f, 0.85f, 256), 4.0 / 3.0 * kPi * (1.0 - 0.85 * 0.85 * 0.85)},
   };
-  // Pappus: the profile's area times the distance its centroid travels.
-  double area = 0.0, centroid_r = 0.0;
+  // Pappus: the profile's area times the distance its centroid travels, 2 pi times the area's first moment about
+  // the axis (the shoelace sum of (x_a + x_b) cross / 6).
+  double first_moment_r = 0.0;
   for (std::size_t i = 0; i < shade.size(); ++i) {
     glm::dvec2 a = shade[i], b = shade[(i + 1) % shade.size()];
     double cross = a.x * b.y - b.x * a.y;
-    area += 0.5 * cross, centroid_r += (a.x + b.x) * cross / 6.0;
+    first_moment_r += (a.x + b.x) * cross / 6.0;
   }
-  cases[2].volume = 2.0 * kPi * std::abs(centroid_r);
+  cases[2].volume = 2.0 * kPi * std::abs(first_moment_r);
   for (const Case& c : cases) {
     expect_watertight(c.mesh);
     EXPECT_NO_THROW(lucent::validate_mesh(c.mesh, "lathe"));

@@ -23,13 +23,13 @@ using lucent::test::CliResult;
 using lucent::test::run_cli;
 using nlohmann::json;
 
-fs::path temp_dir() {
+fs::path merge_dir() {
   auto dir = fs::temp_directory_path() / "lucent_reference_merge";
   fs::create_directories(dir);
   return dir;
 }
 
-std::string path(const std::string& name) { return (temp_dir() / name).string(); }
+std::string path(const std::string& name) { return (merge_dir() / name).string(); }
 
 // A small translucent sphere: 16x12, most pixels on the sphere, some on the black background.
 std::string write_scene(const std::string& name, const std::string& material = "Skin1") {

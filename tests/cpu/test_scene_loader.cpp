@@ -63,18 +63,18 @@ std::string material_error(const json& material) {
 }
 
 // A file under the system temporary folder, removed when the test ends.
-class TempFile {
+class WrittenFile {
  public:
-  TempFile(const std::string& name, const std::string& text)
+  WrittenFile(const std::string& name, const std::string& text)
       : path_(std::filesystem::temp_directory_path() / ("lucent_test_" + name)) {
     std::ofstream(path_) << text;
   }
-  ~TempFile() {
+  ~WrittenFile() {
     std::error_code ec;
     std::filesystem::remove(path_, ec);
   }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
+  WrittenFile(const WrittenFile&) = delete;
+  WrittenFile& operator=(const WrittenFile&) = delete;
   std::string path() const { return path_.string(); }
 
  private:
@@ -178,7 +178,7 @@ TEST(SceneLoader, MeshScene) {
   if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << kBunny << " is not installed";
   json doc = minimal_scene();
   doc["objects"][0] = {{"name", "bunny"}, {"mesh", kBunny}, {"material", {{"preset", "Skin1"}}}};
-  TempFile file("mesh_scene.json", doc.dump(2));
+  WrittenFile file("mesh_scene.json", doc.dump(2));
   Scene scene = load_scene(file.path());
   EXPECT_EQ(scene.source, file.path());
   ASSERT_EQ(scene.objects.size(), 1u);

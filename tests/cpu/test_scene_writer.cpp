@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
+fs::path test_dir() {
   const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
   fs::path dir = fs::path(::testing::TempDir()) / (std::string("lucent_") + test->test_suite_name() + "_" + test->name());
   fs::remove_all(dir);
@@ -112,7 +112,7 @@ void expect_equal_scenes(const Scene& a, const Scene& b) {
 }
 
 Scene round_trip(const Scene& scene) {
-  fs::path path = temp_dir() / "saved.json";
+  fs::path path = test_dir() / "saved.json";
   save_scene(scene, path.string());
   return load_scene(path.string());
 }

@@ -28,7 +28,7 @@ namespace {
 using namespace lucent;
 using namespace lucent::reference;
 
-constexpr double kIrradiance = 2.0, kPlateSigmaA = 0.7, kPlateSigmaS = 1e-4, kPlateThickness = 1.0;  // mm^-1, mm
+constexpr double kSunIrradiance = 2.0, kPlateSigmaA = 0.7, kPlateSigmaS = 1e-4, kPlateThickness = 1.0;  // mm^-1, mm
 
 std::string plate(bool with_plate) {
   if (!with_plate) return "";
@@ -42,7 +42,7 @@ Scene scene_with(const std::string& receiver, bool with_plate) {
     "scale_mm": 1,
     "lights": [{{ "direction": [0, -1, 0], "radiance": [{0}, {0}, {0}] }}],
     "objects": [{1}{2}] }})",
-                                 kIrradiance, receiver, plate(with_plate)),
+                                 kSunIrradiance, receiver, plate(with_plate)),
                      "index-matched", ".");
 }
 
@@ -86,7 +86,7 @@ TEST(Volpath, IndexMatchedMediumInTheLightsWayAttenuatesTheLightToAnOpaqueSurfac
     acc.add(volpath_radiance(rs, target - 5.0 * down, down, rng).x);
   }
   const Estimate e = acc.estimate();
-  const double expected = 0.5 / M_PI * kIrradiance * std::exp(-(kPlateSigmaA + kPlateSigmaS) * kPlateThickness);
+  const double expected = 0.5 / M_PI * kSunIrradiance * std::exp(-(kPlateSigmaA + kPlateSigmaS) * kPlateThickness);
   std::printf("floor under an index-matched plate: %.6f +- %.6f, expected %.6f\n", e.mean, e.standard_error, expected);
   EXPECT_NEAR(e.mean, expected, 3.0 * e.standard_error + 1e-3 * expected);
 }
