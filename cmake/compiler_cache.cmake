@@ -3,8 +3,8 @@
 # as before. LUCENT_CCACHE=OFF, or a launcher given on the command line, leaves the compiler alone.
 #
 # The settings travel in the launcher's environment rather than in a user's ccache.conf:
-# - sloppiness pch_defines,time_macros,include_file_mtime,include_file_ctime: what ccache needs to cache
-#   translation units built with a precompiled header (cmake/precompiled_headers.cmake);
+# - sloppiness include_file_mtime,include_file_ctime: a fresh clone's headers are seconds old when its build
+#   starts, which ccache otherwise takes for files still being written and neither caches nor hits;
 # - base_dir: the checkout's path is rewritten to a relative one, so a fresh clone in another folder hits the
 #   entries that an earlier clone wrote;
 # - hash_dir false: the build folder is not part of the key, so the sanitizer tree's line tables (-g) do not
@@ -16,7 +16,7 @@ if(LUCENT_CCACHE AND NOT CMAKE_CXX_COMPILER_LAUNCHER)
   if(LUCENT_CCACHE_PROGRAM)
     set(lucent_ccache_launcher
         "${CMAKE_COMMAND}" -E env
-        "CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime"
+        "CCACHE_SLOPPINESS=include_file_mtime,include_file_ctime"
         "CCACHE_BASEDIR=${CMAKE_SOURCE_DIR}"
         "CCACHE_NOHASHDIR=1"
         "CCACHE_MAXSIZE=2G"

@@ -10,6 +10,7 @@
 #include "texture_space/dilate.h"
 #include "texture_space/scene_atlas.h"
 #include "texture_space/uv_raster.h"
+#include "../test_paths.h"
 
 namespace {
 

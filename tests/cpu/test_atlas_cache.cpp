@@ -14,6 +14,7 @@
 #include "lucent/lucent.h"
 #include "texture_space/atlas_encoding.h"
 #include "texture_space/scene_atlas_cache.h"
+#include "../test_paths.h"
 
 namespace {
 

@@ -11,6 +11,7 @@
 #include "bench_config.h"
 #include "params/param_json.h"
 #include "../test_support.h"
+#include "../test_paths.h"
 
 namespace {
 

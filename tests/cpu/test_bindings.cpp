@@ -14,6 +14,7 @@
 
 #include "shared/bindings.h"
 #include "../test_support.h"
+#include "../test_paths.h"
 
 namespace {
 

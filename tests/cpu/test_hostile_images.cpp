@@ -20,6 +20,7 @@
 #include "lucent/environment.h"
 #include "lucent/error.h"
 #include "lucent/image.h"
+#include "../test_paths.h"
 
 namespace lucent {
 namespace {

@@ -20,6 +20,7 @@
 #include "lucent/scene.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
+#include "../test_paths.h"
 
 namespace lucent {
 namespace {

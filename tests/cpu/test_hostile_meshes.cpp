@@ -21,6 +21,7 @@
 #include "lucent/error.h"
 #include "lucent/mesh.h"
 #include "scene/import_guard.h"
+#include "../test_paths.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define LUCENT_TEST_ASAN 1

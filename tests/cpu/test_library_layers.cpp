@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "../test_support.h"
+#include "../test_paths.h"
 
 namespace {
 

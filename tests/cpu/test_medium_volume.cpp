@@ -11,6 +11,7 @@
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
 #include "../test_support.h"
+#include "../test_paths.h"
 
 namespace lucent {
 namespace {

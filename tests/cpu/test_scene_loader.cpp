@@ -15,6 +15,7 @@
 #include "lucent/scene.h"
 #include "methods/method_info.h"
 #include "render/light_views.h"
+#include "../test_paths.h"
 
 namespace lucent {
 namespace {

@@ -9,6 +9,7 @@
 
 #include "lucent/scene_writer.h"
 #include "../test_support.h"
+#include "../test_paths.h"
 
 namespace lucent {
 namespace {

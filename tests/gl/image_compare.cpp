@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lucent/context.h"
+#include "../test_paths.h"
 
 namespace lucent::test {
 

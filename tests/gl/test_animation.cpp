@@ -4,6 +4,7 @@
 
 #include "image_compare.h"
 #include "lucent/lucent.h"
+#include "../test_paths.h"
 
 namespace {
 

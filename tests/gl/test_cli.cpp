@@ -19,6 +19,7 @@
 #include "lucent/image.h"
 #include "methods/method_info.h"
 #include "platform/gl_capabilities.h"
+#include "../test_paths.h"
 
 namespace {
 

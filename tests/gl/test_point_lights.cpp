@@ -18,6 +18,7 @@
 #include "lucent/lucent.h"
 #include "reference/image_region.h"
 #include "reference/reference_renderer.h"
+#include "../test_paths.h"
 
 namespace {
 

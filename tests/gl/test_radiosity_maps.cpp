@@ -14,6 +14,7 @@
 #include "bssrdf/model.h"
 #include "image_compare.h"
 #include "lucent/lucent.h"
+#include "../test_paths.h"
 
 namespace {
 

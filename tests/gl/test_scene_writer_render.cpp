@@ -9,6 +9,7 @@
 #include "image_compare.h"
 #include "lucent/lucent.h"
 #include "lucent/scene_writer.h"
+#include "../test_paths.h"
 
 namespace {
 

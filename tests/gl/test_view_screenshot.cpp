@@ -11,6 +11,7 @@
 
 #include "cli_runner.h"
 #include "gl/image_compare.h"
+#include "../test_paths.h"
 
 namespace lucent::test {
 namespace {

@@ -16,6 +16,7 @@
 #include "methods/voxel_paths/voxel_dijkstra.h"
 #include "methods/voxel_paths/voxelizer.h"
 #include "render/scene_gpu.h"
+#include "../test_paths.h"
 
 namespace {
 
