@@ -9,6 +9,8 @@
 #   entries that an earlier clone wrote;
 # - hash_dir false: the build folder is not part of the key, so the sanitizer tree's line tables (-g) do not
 #   keep a fresh clone from hitting; a hit's debug information names the folder of the clone that compiled it;
+# - -fmacro-prefix-map (every build, with or without ccache): __FILE__, which GoogleTest's assertions expand, is
+#   the path from the checkout's root, so a unity batch's preprocessed text is the same in every clone;
 # - max_size 2G: both configurations of .ci/run with their sanitizer and fuzzing flags fit about five times.
 option(LUCENT_CCACHE "Compile through ccache when it is installed" ON)
 if(LUCENT_CCACHE AND NOT CMAKE_CXX_COMPILER_LAUNCHER)
@@ -26,3 +28,4 @@ if(LUCENT_CCACHE AND NOT CMAKE_CXX_COMPILER_LAUNCHER)
     message(STATUS "lucent: compiling through ${LUCENT_CCACHE_PROGRAM}")
   endif()
 endif()
+add_compile_options("-fmacro-prefix-map=${CMAKE_SOURCE_DIR}/=")
