@@ -11,9 +11,26 @@
 
 namespace lucent {
 
+void check_metric_input(const ImageRGBA32F& image, const std::string& what, bool negative_allowed) {
+  static constexpr const char* kBands[3] = {"red", "green", "blue"};
+  const std::size_t n = image.pixels.size() / 4;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const float v = image.pixels[4 * i + c];
+      if (std::isfinite(v) && (negative_allowed || v >= 0.0f)) continue;
+      const std::size_t width = static_cast<std::size_t>(std::max(image.width, 1));
+      throw Error(fmt::format("{} has {} {} at pixel ({}, {}), {}; no error metric is computed over it", what,
+                              std::isfinite(v) ? "a negative value" : "a non-finite value", v, i % width, i / width,
+                              kBands[c]));
+    }
+}
+
 ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error) {
   if (a.width != b.width || a.height != b.height)
     throw Error(fmt::format("images differ in size: {}x{} and {}x{}", a.width, a.height, b.width, b.height));
+  check_metric_input(a, "the image");
+  check_metric_input(b, "the reference");
+  if (standard_error) check_metric_input(*standard_error, "the reference's standard error", false);
   ImageError e;
   double sum_sq[3] = {0, 0, 0}, sum_rel = 0.0, sum_err = 0.0, sum_var = 0.0, peak = 0.0;
   std::size_t n = a.pixels.size() / 4;
@@ -43,9 +60,12 @@ ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const Image
 ImageRGBA32F tonemapped(const ImageRGBA32F& image, float exposure) {
   ImageRGBA32F out = image;
   float scale = std::exp2(exposure);
+  // The ACES curve squares its input: past about 1e19 that overflows float to inf / inf = NaN. Its value at 1e6 is
+  // already white, so larger inputs are held there.
+  const float largest = 1e6f / scale;
   for (std::size_t i = 0; i < out.pixels.size(); i += 4) {
-    glm::vec3 v = shader::tonemap(glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]), scale,
-                                  LUCENT_TONEMAP_ACES);
+    const glm::vec3 linear(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
+    glm::vec3 v = shader::tonemap(glm::min(linear, glm::vec3(largest)), scale, LUCENT_TONEMAP_ACES);
     out.pixels[i] = v.x, out.pixels[i + 1] = v.y, out.pixels[i + 2] = v.z, out.pixels[i + 3] = 1.0f;
   }
   return out;

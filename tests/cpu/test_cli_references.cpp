@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "../cli_runner.h"
+#include "lucent/image.h"
 #include <nlohmann/json.hpp>
 
 namespace {
@@ -79,6 +80,23 @@ TEST(CliReferences, BadInputsNameTheInput) {
   Result compare = run("compare /nonexistent/a.exr /nonexistent/b.exr");
   EXPECT_NE(compare.exit_code, 0);
   EXPECT_EQ(compare.output.rfind("lucent: /nonexistent/a.exr: cannot read EXR:", 0), 0u) << compare.output;
+}
+
+// `compare` over an image with a NaN printed RMSE nan and PSNR 1e9 with exit 0: now one line naming the file,
+// the pixel and the band, and a non-zero exit.
+TEST(CliReferences, CompareRefusesNonFiniteImages) {
+  auto dir = references_dir();
+  const std::string good = (dir / "finite.exr").string(), bad = (dir / "nan.exr").string();
+  lucent::ImageRGBA32F image{3, 2, std::vector<float>(3 * 2 * 4, 0.5f)};
+  lucent::write_exr(good, image);
+  image.pixels[4 * (1 * 3 + 2)] = std::nanf("");  // pixel (2, 1), red
+  lucent::write_exr(bad, image);
+  Result compare = run("compare " + bad + " " + good);
+  EXPECT_NE(compare.exit_code, 0);
+  EXPECT_EQ(compare.output, "lucent: " + bad + " has a non-finite value nan at pixel (2, 1), red; no error metric "
+                            "is computed over it\n");
+  EXPECT_NE(run("compare " + good + " " + bad).exit_code, 0);
+  EXPECT_EQ(run("compare " + good + " " + good).exit_code, 0);
 }
 
 // A bad override in the last variant is reported before anything renders (no GL context is needed to see it),

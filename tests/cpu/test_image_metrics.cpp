@@ -1,11 +1,14 @@
 // test_image_metrics.cpp: the comparison metrics of `lucent compare` and `lucent bench` on images with known
 // differences, and the reference renderer's resume (2 + 2 samples equal 4 samples).
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "image/image_metrics.h"
+#include "lucent/error.h"
 #include "lucent/scene.h"
 #include "reference/embree_scene.h"
 #include "reference/integrators.h"
@@ -44,6 +47,46 @@ TEST(ImageMetrics, ReferenceNoiseAndMeanErrorStandardError) {
 
 TEST(ImageMetrics, SizeMismatchIsAnError) {
   EXPECT_THROW(lucent::image_error(constant(2, 2, 0, 0, 0), constant(3, 2, 0, 0, 0)), std::exception);
+}
+
+// A NaN compared as no error at all (RMSE nan, PSNR 1e9 and a noise-corrected RMSE of 0 in bench): every metric
+// refuses non-finite values, naming the image, the pixel and the band.
+TEST(ImageMetrics, NonFiniteValuesAreErrorsNamingThePixel) {
+  const ImageRGBA32F good = constant(4, 3, 0.5f, 0.5f, 0.5f), se = constant(4, 3, 0.01f, 0.01f, 0.01f);
+  auto message = [&](const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* s) {
+    try {
+      lucent::image_error(a, b, s);
+    } catch (const lucent::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  ImageRGBA32F nan_image = good;
+  nan_image.pixels[4 * (2 * 4 + 1) + 1] = std::nanf("");  // pixel (1, 2), green
+  EXPECT_EQ(message(nan_image, good, nullptr),
+            "the image has a non-finite value nan at pixel (1, 2), green; no error metric is computed over it");
+  ImageRGBA32F inf_reference = good;
+  inf_reference.pixels[2] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(message(good, inf_reference, nullptr),
+            "the reference has a non-finite value inf at pixel (0, 0), blue; no error metric is computed over it");
+  ImageRGBA32F bad_se = se;
+  bad_se.pixels[4 * 3] = -0.5f;
+  EXPECT_EQ(message(good, good, &bad_se), "the reference's standard error has a negative value -0.5 at pixel (3, 0), "
+                                          "red; no error metric is computed over it");
+  bad_se.pixels[4 * 3] = std::nanf("");
+  EXPECT_NE(message(good, good, &bad_se).find("non-finite value nan at pixel (3, 0), red"), std::string::npos);
+  EXPECT_THROW(lucent::display_error(nan_image, good, 0.0f), lucent::Error);
+  EXPECT_EQ(message(good, good, &se), "no error");
+}
+
+// Values too large for the tone curve's float arithmetic display as white, not as NaN.
+TEST(ImageMetrics, HugeValuesDisplayAsWhite) {
+  const ImageRGBA32F huge = constant(2, 2, 1e38f, 3e30f, 1e7f), white = constant(2, 2, 1.0f, 1.0f, 1.0f);
+  const ImageRGBA32F shown = lucent::tonemapped(huge, 0.0f);
+  for (float v : shown.pixels) EXPECT_TRUE(std::isfinite(v));
+  EXPECT_NEAR(shown.pixels[0], lucent::tonemapped(constant(1, 1, 1e6f, 1e6f, 1e6f), 0.0f).pixels[0], 1e-6f);
+  const lucent::ImageError e = lucent::display_error(huge, white, 0.0f);
+  EXPECT_TRUE(std::isfinite(e.rmse_rgb));
 }
 
 TEST(ReferenceRenderer, ResumingAddsSamplesExactly) {
