@@ -222,11 +222,11 @@ struct Bench {
         double smallest = 1e30, noise = 0.0;
         for (Rendered* r : group) {
           // A non-finite pixel in a method's image or the reference is an error naming the image, not a score.
-          check_metric_input(r->image, fmt::format("run {}'s image {}.exr", run_name, r->stem));
-          check_metric_input(ref.mean, fmt::format("the {} reference of run {}", integrator, run_name));
-          check_metric_input(ref.standard_error,
-                             fmt::format("the {} reference's standard error of run {}", integrator, run_name), false);
-          errors.push_back(image_error(r->image, ref.mean, &ref.standard_error));
+          errors.push_back(image_error(
+              r->image, ref.mean, &ref.standard_error,
+              {fmt::format("run {}'s image {}.exr", run_name, r->stem),
+               fmt::format("the {} reference of run {}", integrator, run_name),
+               fmt::format("the {} reference's standard error of run {}", integrator, run_name)}));
           smallest = std::min(smallest, corrected_rmse(errors.back()));
           noise = noise_rgb(errors.back());
         }

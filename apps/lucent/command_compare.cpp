@@ -35,10 +35,7 @@ void run(const CompareOptions& o) {
   if (se && (se->width != b.width || se->height != b.height))
     throw Error(fmt::format("{} is {}x{} but its reference {} is {}x{}", se_path, se->width, se->height, o.b, b.width,
                             b.height));
-  check_metric_input(a, o.a);
-  check_metric_input(b, o.b);
-  if (se) check_metric_input(*se, se_path, false);
-  ImageError linear = image_error(a, b, se ? &*se : nullptr);
+  ImageError linear = image_error(a, b, se ? &*se : nullptr, {o.a, o.b, se_path});
   ImageError display = display_error(a, b, o.exposure);
   if (!o.diff.empty()) {
     double scale = o.scale > 0.0 ? o.scale : std::max(1e-6, 4.0 * linear.rmse_rgb);

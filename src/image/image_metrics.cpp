@@ -11,6 +11,8 @@
 
 namespace lucent {
 
+namespace {
+
 void check_metric_input(const ImageRGBA32F& image, const std::string& what, bool negative_allowed) {
   static constexpr const char* kBands[3] = {"red", "green", "blue"};
   const std::size_t n = image.pixels.size() / 4;
@@ -25,12 +27,15 @@ void check_metric_input(const ImageRGBA32F& image, const std::string& what, bool
     }
 }
 
-ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error) {
+}  // namespace
+
+ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error,
+                       const MetricInputNames& names) {
   if (a.width != b.width || a.height != b.height)
     throw Error(fmt::format("images differ in size: {}x{} and {}x{}", a.width, a.height, b.width, b.height));
-  check_metric_input(a, "the image");
-  check_metric_input(b, "the reference");
-  if (standard_error) check_metric_input(*standard_error, "the reference's standard error", false);
+  check_metric_input(a, names.image, true);
+  check_metric_input(b, names.reference, true);
+  if (standard_error) check_metric_input(*standard_error, names.standard_error, false);
   ImageError e;
   double sum_sq[3] = {0, 0, 0}, sum_rel = 0.0, sum_err = 0.0, sum_var = 0.0, peak = 0.0;
   std::size_t n = a.pixels.size() / 4;

@@ -23,14 +23,16 @@ struct ImageError {
 double noise_rgb(const ImageError& e);
 double corrected_rmse(const ImageError& e);
 
-// Throws lucent::Error naming `what`, the first pixel (x, y from the top left) and band when a red, green or blue
-// value is NaN or infinite, or (with `negative_allowed` false, for a standard error) negative: a metric over such
-// an image would be NaN, or a NaN would compare as no error at all.
-void check_metric_input(const ImageRGBA32F& image, const std::string& what, bool negative_allowed = true);
+// How image_error's messages name its inputs (file names in `compare`, runs in `bench`).
+struct MetricInputNames {
+  std::string image = "the image", reference = "the reference", standard_error = "the reference's standard error";
+};
 
-// `standard_error` may be null. Both images must have the same size and every value finite (throws lucent::Error
-// otherwise, through check_metric_input).
-ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error = nullptr);
+// `standard_error` may be null. Both images must have the same size, and every red, green and blue value finite
+// (and the standard error's not negative): otherwise throws lucent::Error naming the input, the first such pixel
+// (x, y from the top left) and its band, since a metric over it would be NaN, or a NaN would compare as no error.
+ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const ImageRGBA32F* standard_error = nullptr,
+                       const MetricInputNames& names = {});
 // The same on tone-mapped values in [0, 1] (exposure in stops, ACES, sRGB); values too large for the tone curve's
 // float arithmetic (beyond 1e6 after exposure) display as white.
 ImageError display_error(const ImageRGBA32F& a, const ImageRGBA32F& b, float exposure);
