@@ -54,6 +54,11 @@ AlbedoCurve::AlbedoCurve(BssrdfModel model, float g, float eta) : g_(g) {
   for (int k = 1; k < kAlbedoCurveNodes; ++k) totals_[k] = std::max(totals_[k], totals_[k - 1]);  // rising
 }
 
+double AlbedoCurve::reachable(double albedo) const {
+  const double lo = lowest(), hi = std::min(1.0, highest()), margin = 1e-3 * (hi - lo);
+  return std::clamp(albedo, lo + margin, hi - margin);
+}
+
 double AlbedoCurve::alpha(double albedo) const {
   if (!(albedo > totals_.front())) return alpha_of_node(0);
   if (!(albedo < totals_.back())) return alpha_of_node(kAlbedoCurveNodes - 1);
@@ -140,8 +145,18 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
       for (int c = 0; c < 3; ++c) {
         const AlbedoCurve& curve = curves[static_cast<std::size_t>(band_curve[c])];
         const double a = albedo->texels[i][c];
+        if (a > 1.0) {
+          const int w = std::max(1, albedo->size.x);
+          const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
+          throw Error(fmt::format("{}/albedo_map: {}: texel ({}, {}) band {} = {}; a surface albedo is at most 1 (a "
+                                  "surface reflects at most the light that reaches it)",
+                                  where, albedo->file, x, albedo->size.y - 1 - y, c, a));
+        }
+        // Clamped a thousandth of the range inside it, as the material's mean albedo is: alpha at the range's
+        // ends is 1 - 1e-7, which float texels and their bilinear blend round to 1 (no absorption, an unbounded
+        // diffusion length).
         if (a <= curve.lowest() || a >= curve.highest()) ++clamped;
-        maps->alpha[i][c] = static_cast<float>(curve.alpha(a));
+        maps->alpha[i][c] = static_cast<float>(curve.alpha(curve.reachable(a)));
       }
     }
     if (clamped > 0) {

@@ -34,6 +34,8 @@ class AlbedoCurve {
   double highest() const { return totals_.back(); }    // total at kArtistAlphaMax
   // alpha with total(alpha) = albedo, for albedo in [lowest(), highest()] (clamped to them).
   double alpha(double albedo) const;
+  // `albedo` clamped a thousandth of the reachable range inside [lowest(), min(highest(), 1)].
+  double reachable(double albedo) const;
   double g() const { return g_; }
 
  private:

@@ -86,13 +86,14 @@ bool sample_probe(const ReferenceScene& s, const Probe& p, int object, Rng& rng,
 }
 
 // E * integral of S_d T12 cos over the lit surface for one x_i (the integrand, before dividing by the pdf).
+// `offset_i`: x_i's self-intersection offset (SurfaceHit::offset).
 glm::dvec3 integrand(const ReferenceScene& s, const ObjectData& o, const shader::BandMedium* media, glm::dvec3 x_i,
-                     glm::dvec3 n_i, glm::dvec3 x_o, glm::dvec3 n_o) {
+                     glm::dvec3 n_i, double offset_i, glm::dvec3 x_o, glm::dvec3 n_o) {
   glm::dvec3 sum(0.0);
   for (const DirectionalLight& light : s.scene.lights) {
     glm::dvec3 w_i = -glm::dvec3(light.direction);
     double cos_i = glm::dot(n_i, w_i);
-    if (cos_i <= 0.0 || s.rt.occluded(x_i + s.rt.ray_epsilon() * n_i, w_i)) continue;
+    if (cos_i <= 0.0 || s.rt.occluded(x_i + offset_i * n_i, w_i)) continue;
     double T12 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_i));
     for (int c = 0; c < 3; ++c) {
       double S_d = shader::bssrdf_Sd(o.model, media[c], static_cast<float>(o.eta), glm::vec3(x_i), glm::vec3(w_i),
@@ -105,7 +106,7 @@ glm::dvec3 integrand(const ReferenceScene& s, const ObjectData& o, const shader:
     double d = glm::length(w_i);
     w_i /= d;
     double cos_i = glm::dot(n_i, w_i);
-    if (cos_i <= 0.0 || s.rt.occluded(x_i + s.rt.ray_epsilon() * n_i, w_i, d - 2.0 * s.rt.ray_epsilon())) continue;
+    if (cos_i <= 0.0 || s.rt.occluded(x_i + offset_i * n_i, w_i, d - offset_i - EmbreeScene::offset_at(glm::dvec3(light.position)))) continue;
     double T12 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_i));
     glm::dvec3 E = point_light_intensity(s, light, -w_i) * cos_i / (d * d);
     for (int c = 0; c < 3; ++c) {
@@ -132,20 +133,26 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
     probe.sigma_tr[c] = media[c].sigma_tr;
   }
   orthonormal_basis(n_o, probe.t1, probe.t2);
-  probe.half_length = 10.0 / std::min({probe.sigma_tr.x, probe.sigma_tr.y, probe.sigma_tr.z});
+  // Probes reach no farther than the object: a medium without absorption (sigma_tr 0, or rounded to 0 from an
+  // albedo near 1) would otherwise spread them over an infinite plane and send rays from infinity. Any rate
+  // keeps the estimate unbiased, as the area technique covers the whole surface.
+  const double diameter = std::max(1e-30, glm::length(glm::dvec3(o.mesh_upper - o.mesh_lower)));
+  probe.sigma_tr = glm::max(probe.sigma_tr, glm::dvec3(1e-3 / diameter));
+  probe.half_length = std::min(diameter, 10.0 / std::min({probe.sigma_tr.x, probe.sigma_tr.y, probe.sigma_tr.z}));
 
   glm::dvec3 x_i, n_i;
+  double offset_i = 0.0;
   const bool by_area = rng.uniform() < kAreaFraction;
   std::size_t hits_on_line = 0;
   if (by_area) {
     SurfaceSample a = s.rt.sample_surface(object, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
-    x_i = a.position, n_i = a.normal;
+    x_i = a.position, n_i = a.normal, offset_i = a.offset;
   } else {
     SurfaceHit hit;
     if (!sample_probe(s, probe, object, rng, hit, hits_on_line)) return glm::dvec3(0.0);
-    x_i = hit.position, n_i = hit.normal;
+    x_i = hit.position, n_i = hit.normal, offset_i = hit.offset;
   }
-  glm::dvec3 f = integrand(s, o, media, x_i, n_i, x_o, n_o);
+  glm::dvec3 f = integrand(s, o, media, x_i, n_i, offset_i, x_o, n_o);
   if (f == glm::dvec3(0.0)) return f;
   const double probe_density =
       by_area ? probe_pdf(s, probe, object, x_i, n_i) : probe_pdf(probe, x_i, n_i, hits_on_line);
@@ -170,8 +177,7 @@ glm::dvec3 emergent_irradiance(const ReferenceScene& s, const SurfaceHit& hit, g
   glm::dvec3 w = to_v / d;
   double cos_x = glm::dot(n, w), cos_v = -glm::dot(v.normal, w);
   if (cos_x <= 0.0 || cos_v <= 0.0) return glm::dvec3(0.0);
-  double eps = s.rt.ray_epsilon();
-  if (s.rt.occluded(hit.position + eps * n, w, d - 3.0 * eps)) return glm::dvec3(0.0);
+  if (s.rt.occluded(hit.position + hit.offset * n, w, d - 2.0 * (hit.offset + v.offset))) return glm::dvec3(0.0);
   double T21 = shader::fresnel_transmittance(static_cast<float>(o.eta), static_cast<float>(cos_v));
   glm::dvec3 L_v = T21 * scattered_radiosity_over_pi(s, object, v.position, v.normal, v.uv, rng);
   double pdf = 1.0 / (o.area * static_cast<double>(translucent.size()));

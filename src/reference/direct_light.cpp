@@ -27,7 +27,7 @@ glm::dvec3 point_light_intensity(const ReferenceScene& s, const PointLight& ligh
 glm::dvec3 direct_light_lambertian(const ReferenceScene& s, const SurfaceHit& hit, glm::dvec3 normal, Rng* rng) {
   const ObjectData& object = s.rt.object(hit.object);
   glm::dvec3 L(0.0);
-  glm::dvec3 origin = hit.position + s.rt.ray_epsilon() * normal;
+  glm::dvec3 origin = hit.position + hit.offset * normal;
   for (const DirectionalLight& light : s.scene.lights) {
     glm::dvec3 to_light = -glm::dvec3(light.direction);
     double cos_l = glm::dot(normal, to_light);
@@ -41,7 +41,7 @@ glm::dvec3 direct_light_lambertian(const ReferenceScene& s, const SurfaceHit& hi
     to_light /= d;
     double cos_l = glm::dot(normal, to_light);
     if (cos_l <= 0.0) continue;
-    const glm::dvec3 T = visibility(s, origin, to_light, d - s.rt.ray_epsilon(), rng);
+    const glm::dvec3 T = visibility(s, origin, to_light, d - EmbreeScene::offset_at(glm::dvec3(light.position)), rng);
     L += object.albedo / M_PI * point_light_intensity(s, light, -to_light) * cos_l / (d * d) * T;
   }
   return L;

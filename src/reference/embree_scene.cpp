@@ -12,6 +12,12 @@
 namespace lucent::reference {
 namespace {
 
+template <typename Vec>
+double largest_abs(const Vec& v) {
+  return std::max({std::abs(static_cast<double>(v.x)), std::abs(static_cast<double>(v.y)),
+                   std::abs(static_cast<double>(v.z))});
+}
+
 ObjectData object_data(const SceneObject& object, float scale_mm) {
   ObjectData d;
   TriangleMesh world = transformed(object.mesh, object.world_from_object);
@@ -22,8 +28,11 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
   std::vector<double> areas;
   for (std::size_t t = 0; t + 2 < d.indices.size(); t += 3) {
     ObjectData::Corners c;
-    for (std::size_t k = 0; k < 3; ++k)
+    c.magnitude = 0.0f;
+    for (std::size_t k = 0; k < 3; ++k) {
       c.position[k] = d.positions[d.indices[t + k]], c.normal[k] = d.normals[d.indices[t + k]];
+      c.magnitude = std::max(c.magnitude, static_cast<float>(largest_abs(c.position[k])));
+    }
     glm::dvec3 a = c.position[0], b = c.position[1], e = c.position[2];
     areas.push_back(0.5 * glm::length(glm::cross(b - a, e - a)));
     total += areas.back();
@@ -78,17 +87,14 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw Error("Embree: cannot create a device");
   scene_ = rtcNewScene(device_);
-  glm::dvec3 lo(1e30), hi(-1e30);
   for (const SceneObject& object : scene.objects) {
     objects_.push_back(object_data(object, scene.scale_mm));
     const ObjectData& d = objects_.back();
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                  3 * sizeof(float), d.positions.size()));
-    for (std::size_t i = 0; i < d.positions.size(); ++i) {
+    for (std::size_t i = 0; i < d.positions.size(); ++i)
       for (int k = 0; k < 3; ++k) vertices[3 * i + static_cast<std::size_t>(k)] = d.positions[i][k];
-      lo = glm::min(lo, glm::dvec3(d.positions[i])), hi = glm::max(hi, glm::dvec3(d.positions[i]));
-    }
     auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), d.indices.size() / 3));
     std::copy(d.indices.begin(), d.indices.end(), indices);
@@ -99,9 +105,28 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     object_of_geometry_[id] = static_cast<int>(objects_.size() - 1);
   }
   rtcCommitScene(scene_);
-  radius_ = 0.5 * glm::length(hi - lo);
-  epsilon_ = 1e-5 * radius_;
 }
+
+double EmbreeScene::offset_at(const glm::dvec3& p) {
+  return kRelativeOffset * std::max(largest_abs(p), 1e-30);
+}
+
+namespace {
+
+// Embree's ray check (RayK::valid): finite origin and direction below FLT_LARGE, 0 <= tnear <= tfar.
+void check_ray(const glm::dvec3& origin, const glm::dvec3& direction, double t_min, double t_max) {
+  constexpr double kLargest = 1.8e18;
+  const bool valid = glm::all(glm::lessThan(glm::abs(origin), glm::dvec3(kLargest))) &&
+                     glm::all(glm::lessThan(glm::abs(direction), glm::dvec3(kLargest))) && t_min >= 0.0 &&
+                     t_min <= t_max;  // false for NaN
+  if (!valid)
+    throw Error(fmt::format("internal error: a reference ray from ({}, {}, {}) along ({}, {}, {}) over [{}, {}] is "
+                            "not finite; the scene's numbers are too large for single-precision ray tracing",
+                            origin.x, origin.y, origin.z, direction.x, direction.y, direction.z, t_min, t_max));
+}
+
+}  // namespace
+
 
 EmbreeScene::~EmbreeScene() {
   if (scene_) rtcReleaseScene(scene_);
@@ -117,8 +142,10 @@ SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& di
   rh.ray.org_z = static_cast<float>(origin.z);
   rh.ray.dir_x = static_cast<float>(direction.x), rh.ray.dir_y = static_cast<float>(direction.y);
   rh.ray.dir_z = static_cast<float>(direction.z);
-  rh.ray.tnear = static_cast<float>(t_min < 0.0 ? epsilon_ : t_min);
-  rh.ray.tfar = static_cast<float>(std::min(t_max, 1e30));
+  const double t_near = t_min < 0.0 ? offset_at(origin) : t_min, t_far = std::min(t_max, 1e30);
+  check_ray(origin, direction, t_near, t_far);
+  rh.ray.tnear = static_cast<float>(t_near);
+  rh.ray.tfar = static_cast<float>(t_far);
   rh.ray.mask = 0xffffffffu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rh);
@@ -126,9 +153,12 @@ SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& di
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.object = object_of_geometry_[rh.hit.geomID];
   hit.t = rh.ray.tfar;
-  hit.position = origin + hit.t * direction;
   const ObjectData::Corners& c = objects_[static_cast<std::size_t>(hit.object)].corners[rh.hit.primID];
   double u = rh.hit.u, v = rh.hit.v;
+  // The point from its barycentrics, in double: on the triangle's plane up to double rounding whatever the
+  // ray's length (origin + t direction is off the plane by t's float rounding, which grows with the distance).
+  hit.position = (1.0 - u - v) * glm::dvec3(c.position[0]) + u * glm::dvec3(c.position[1]) + v * glm::dvec3(c.position[2]);
+  hit.offset = kRelativeOffset * std::max<double>(largest_abs(hit.position), c.magnitude);
   glm::dvec3 n = (1.0 - u - v) * glm::dvec3(c.normal[0]) + u * glm::dvec3(c.normal[1]) + v * glm::dvec3(c.normal[2]);
   hit.normal = glm::normalize(n);
   glm::dvec3 ng = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
@@ -145,8 +175,11 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
   ray.org_z = static_cast<float>(origin.z);
   ray.dir_x = static_cast<float>(direction.x), ray.dir_y = static_cast<float>(direction.y);
   ray.dir_z = static_cast<float>(direction.z);
-  ray.tnear = static_cast<float>(epsilon_);
-  ray.tfar = static_cast<float>(std::min(t_max, 1e30));
+  const double t_near = offset_at(origin), t_far = std::min(t_max, 1e30);
+  if (!(t_far >= t_near)) return false;  // a shadow segment shorter than the offset: nothing in between
+  check_ray(origin, direction, t_near, t_far);
+  ray.tnear = static_cast<float>(t_near);
+  ray.tfar = static_cast<float>(t_far);
   ray.mask = 0xffffffffu;
   rtcOccluded1(scene_, &context, &ray);
   return ray.tfar < 0.0f;
@@ -160,7 +193,8 @@ SurfaceSample EmbreeScene::sample_surface(int object, double u0, double u1, doub
   double s = std::sqrt(u2), b0 = 1.0 - s, b1 = u3 * s, b2 = 1.0 - b0 - b1;
   glm::dvec3 p = b0 * glm::dvec3(c.position[0]) + b1 * glm::dvec3(c.position[1]) + b2 * glm::dvec3(c.position[2]);
   glm::dvec3 n = b0 * glm::dvec3(c.normal[0]) + b1 * glm::dvec3(c.normal[1]) + b2 * glm::dvec3(c.normal[2]);
-  return {p, glm::normalize(n), 1.0 / d.area, corner_uv(d, static_cast<unsigned>(triangle), b1, b2)};
+  const double offset = kRelativeOffset * std::max<double>(largest_abs(p), c.magnitude);
+  return {p, glm::normalize(n), 1.0 / d.area, corner_uv(d, static_cast<unsigned>(triangle), b1, b2), offset};
 }
 
 }  // namespace lucent::reference

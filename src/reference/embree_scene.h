@@ -21,6 +21,10 @@ struct SurfaceHit {
   glm::dvec3 normal{0.0};    // interpolated shading normal, unit, pointing out of the object
   glm::dvec3 geometric_normal{0.0};  // unit, on the same side as `normal`
   glm::dvec2 uv{0.0};        // texture coordinates (only for objects with a textured material; else 0)
+  // How far a ray leaving this point starts from it, along the geometric normal, to not hit the surface again
+  // [scene units]: EmbreeScene::kRelativeOffset of the largest coordinate of the point and of its triangle's
+  // corners, i.e. a few float rounding steps of the numbers the intersection was computed from.
+  double offset = 0.0;
   bool hit() const { return object >= 0; }
 };
 
@@ -63,6 +67,7 @@ struct ObjectData {
   // the index load.
   struct Corners {
     glm::vec3 position[3], normal[3];
+    float magnitude;  // the largest |coordinate| of the three positions
   };
   std::vector<Corners> corners;
 };
@@ -71,6 +76,7 @@ struct SurfaceSample {
   glm::dvec3 position, normal;
   double pdf_area;  // 1 / area
   glm::dvec2 uv{0.0};  // texture coordinates (textured objects only)
+  double offset = 0.0;  // as SurfaceHit::offset
 };
 
 class EmbreeScene {
@@ -80,8 +86,17 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  // The closest hit in (t_min, t_max]; t_min defaults to ray_epsilon() (rays leaving a surface point). Rays from
-  // a medium's interior pass 0: a vertex within epsilon of the boundary must not skip it.
+  // Self-intersection offsets are relative to the magnitude of the coordinates involved, never to the scene's
+  // size: a reference must not change when a large object is added far away, or when the whole scene is
+  // expressed in other units. 1e-6 is about 8 float rounding steps (Embree intersects in float); an offset of
+  // 1e-5 of the scene's radius put rays a mean free path deep into dense media beside a large floor.
+  static constexpr double kRelativeOffset = 1e-6;
+  // The offset for a ray leaving `p` when no hit is known: kRelativeOffset of p's largest |coordinate|.
+  static double offset_at(const glm::dvec3& p);
+
+  // The closest hit in (t_min, t_max]; t_min defaults to offset_at(origin) (rays leaving a surface point). Rays
+  // from a medium's interior pass 0: a vertex within the offset of the boundary must not skip it. A ray with a
+  // non-finite or out-of-range origin, direction or t_max is a lucent::Error (Embree's own check aborts).
   SurfaceHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30,
                        double t_min = -1.0) const;
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
@@ -90,15 +105,12 @@ class EmbreeScene {
   int object_count() const { return static_cast<int>(objects_.size()); }
   // A point uniform over the object's area from four uniforms (triangle: u0, u1; point in it: u2, u3).
   SurfaceSample sample_surface(int object, double u0, double u1, double u2, double u3) const;
-  double ray_epsilon() const { return epsilon_; }  // self-intersection offset [scene units]
-  double radius() const { return radius_; }        // bounding radius of the scene [scene units]
 
  private:
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<ObjectData> objects_;
   std::vector<int> object_of_geometry_;
-  double epsilon_ = 1e-4, radius_ = 1.0;
 };
 
 }  // namespace lucent::reference

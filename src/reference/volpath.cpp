@@ -31,6 +31,7 @@ struct RefractedBeam {
   glm::dvec3 entry, direction;  // direction: the way the light travels inside
   double irradiance_factor = 0.0;
   double distance = 0.0;
+  double offset = 0.0;  // the entry point's self-intersection offset (SurfaceHit::offset)
 };
 
 RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 light_dir) {
@@ -59,6 +60,7 @@ RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec
   beam.entry = hit.position;
   beam.direction = inside;
   beam.distance = hit.t;
+  beam.offset = hit.offset;
   double cos_i = -glm::dot(light_dir, hit.normal);
   double T12 = 1.0 - dielectric_reflectance(light_dir, hit.normal, o.eta);
   // Beam compression of a locally flat boundary: power through area A arrives on cos(theta_i) A and leaves on
@@ -105,6 +107,7 @@ RefractedBeam find_refracted_point_beam(const ReferenceScene& s, int object, glm
   beam.entry = hit.position;
   beam.direction = inside;
   beam.distance = hit.t;
+  beam.offset = hit.offset;
   beam.irradiance_factor = (1.0 - dielectric_reflectance(light_dir, hit.normal, o.eta)) *
                           refracted_point_irradiance(D, d, cos_i, cos_t, o.eta);
   beam.found = true;
@@ -164,7 +167,7 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, const MediumCo
     glm::dvec3 light_dir = glm::normalize(glm::dvec3(light.direction));
     RefractedBeam beam = find_refracted_beam(s, object, x, light_dir);
     if (!beam.found) continue;
-    glm::dvec3 entry_outside = beam.entry - s.rt.ray_epsilon() * light_dir * 2.0;
+    glm::dvec3 entry_outside = beam.entry - beam.offset * light_dir * 2.0;
     const glm::dvec3 outside = shadow_transmittance(s, entry_outside, -light_dir, 1e30, rng);
     if (max_component(outside) <= 0.0) continue;
     glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
@@ -175,9 +178,9 @@ glm::dvec3 medium_next_event(const ReferenceScene& s, int object, const MediumCo
     RefractedBeam beam = find_refracted_point_beam(s, object, x, x_l);
     if (!beam.found) continue;
     glm::dvec3 light_dir = glm::normalize(beam.entry - x_l);
-    glm::dvec3 entry_outside = beam.entry - s.rt.ray_epsilon() * light_dir * 2.0;
+    glm::dvec3 entry_outside = beam.entry - beam.offset * light_dir * 2.0;
     double to_light = glm::length(x_l - entry_outside);
-    const glm::dvec3 outside = shadow_transmittance(s, entry_outside, -light_dir, to_light - s.rt.ray_epsilon(), rng);
+    const glm::dvec3 outside = shadow_transmittance(s, entry_outside, -light_dir, to_light - EmbreeScene::offset_at(x_l), rng);
     if (max_component(outside) <= 0.0) continue;
     glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
     L += point_light_intensity(s, light, light_dir) * beam.irradiance_factor * outside *
@@ -227,11 +230,11 @@ bool leave_or_reflect(const ReferenceScene& s, PathState& p, Rng& rng, const Sur
   p.origin = boundary.position;
   if (rng.uniform() < F) {
     p.direction = reflect(p.direction, n);
-    p.origin -= s.rt.ray_epsilon() * boundary.geometric_normal;
+    p.origin -= boundary.offset * boundary.geometric_normal;
   } else {
     p.direction = refract(p.direction, n, 1.0 / o.eta);
     p.throughput *= o.eta * o.eta;  // radiance leaving the denser medium: L_out = L_in / eta^2 seen backward
-    p.origin += s.rt.ray_epsilon() * boundary.geometric_normal;
+    p.origin += boundary.offset * boundary.geometric_normal;
     p.medium = -1;
   }
   return roulette(p, rng);
@@ -350,7 +353,7 @@ bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce, c
     orthonormal_basis(n, u, v);
     double r = std::sqrt(rng.uniform()), phi = 2.0 * M_PI * rng.uniform();
     p.direction = r * std::cos(phi) * u + r * std::sin(phi) * v + std::sqrt(std::max(0.0, 1.0 - r * r)) * n;
-    p.origin = hit.position + s.rt.ray_epsilon() * ng;
+    p.origin = hit.position + hit.offset * ng;
     p.throughput *= o.albedo;  // cosine sampling cancels cos/pi
     return roulette(p, rng);
   }
@@ -358,11 +361,11 @@ bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce, c
   double F = dielectric_reflectance(p.direction, n, o.eta);
   if (rng.uniform() < F) {
     p.direction = reflect(p.direction, n);
-    p.origin = hit.position + s.rt.ray_epsilon() * ng;
+    p.origin = hit.position + hit.offset * ng;
   } else {
     p.direction = refract(p.direction, n, o.eta);
     p.throughput /= o.eta * o.eta;
-    p.origin = hit.position - s.rt.ray_epsilon() * ng;
+    p.origin = hit.position - hit.offset * ng;
     p.medium = hit.object;
     p.medium_k = o.medium_at(hit.uv);
   }

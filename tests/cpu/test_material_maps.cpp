@@ -27,6 +27,7 @@
 #include "reference/embree_scene.h"
 #include "reference/integrators.h"
 #include "reference/reference_cache.h"
+#include "reference/reference_renderer.h"
 #include "shared/tonemap.h"
 #include "transport/estimate.h"
 
@@ -197,7 +198,52 @@ TEST(MaterialMaps, AlbedosOutsideTheModelsRangeAreClampedWithOneWarning) {
                          ": 6 of 12 texel values are outside the surface albedos the standard model reaches"),
             std::string::npos)
       << warning;
-  EXPECT_NEAR(scene.objects[0].material->maps->alpha_at({0.125f, 0.5f}).x, kArtistAlphaMin, 1e-9);
+  // Clamped a thousandth of the reachable range inside it, as the material's mean is.
+  const AlbedoCurve curve(BssrdfModel::StandardDipole, 0.0f, ArtistParameters{}.eta);
+  EXPECT_GT(scene.objects[0].material->maps->alpha_at({0.125f, 0.5f}).x, kArtistAlphaMin);
+  EXPECT_NEAR(scene.objects[0].material->maps->alpha_at({0.125f, 0.5f}).x,
+              curve.alpha(curve.lowest() + 1e-3 * (std::min(1.0, curve.highest()) - curve.lowest())), 1e-6);
+}
+
+// A surface albedo above 1 is a mistake in the map (e.g. an unnormalized HDR export), not a value to clamp.
+TEST(MaterialMaps, AlbedosAboveOneAreRefusedNamingTheTexel) {
+  TempFile exr(".bright.exr");
+  write_exr(exr.path(), ImageRGBA32F{2, 1, {0.5f, 0.5f, 0.5f, 1, 0.5f, 2, 0.5f, 1}});
+  EXPECT_EQ(error_message([&] { sphere_scene(fmt::format(R"({{ "albedo_map": "{}", "mfp_mm": 1 }})", exr.path())); }),
+            fmt::format("maps-test: /objects/0/material/albedo_map: {}: texel (1, 0) band 1 = 2; a surface albedo is "
+                        "at most 1 (a surface reflects at most the light that reaches it)",
+                        exr.path()));
+}
+
+// A white map (albedo 1 everywhere, beyond the 0.998 the standard dipole reaches) over a floor: both references
+// stay finite.
+// Texels at the range's very end (alpha 1 - 1e-7) rounded to no absorption in float; the bssrdf reference's
+// probes then spread over an infinite plane and sent Embree rays from infinity (an abort, not an error).
+TEST(MaterialMaps, AWhiteMapOverAFloorRendersFiniteInBothReferences) {
+  TempFile png(".white.png");
+  write_halves_png(png.path(), 8, 8, {255, 255, 255}, {255, 255, 255});
+  ::testing::internal::CaptureStderr();
+  const Scene scene = parse_scene(fmt::format(R"({{
+    "scale_mm": 20,
+    "camera": {{ "eye": [0, 1.2, 4.6], "target": [0, 0.75, 0], "fov_y_deg": 34 }},
+    "lights": [{{ "direction": [0.75, -0.5, -0.45], "radiance": [3, 2.9, 2.7] }}],
+    "objects": [{{ "shape": "sphere", "radius": 0.75, "segments": 32, "translate": [0, 0.75, 0],
+                   "material": {{ "albedo_map": "{}", "mfp_mm": [1.2, 0.8, 0.55], "eta": 1.5, "model": "standard" }} }},
+                 {{ "shape": "plane", "extent": [12, 12], "albedo": [0.45, 0.45, 0.48] }}],
+    "render": {{ "width": 24, "height": 16 }} }})", png.path()), "white-map", "/");
+  ::testing::internal::GetCapturedStderr();
+  for (auto integrator : {reference::Integrator::Bssrdf, reference::Integrator::Volpath}) {
+    reference::ReferenceSettings settings;
+    settings.integrator = integrator;
+    settings.samples_per_pixel = 4;
+    const reference::ReferenceImage image = reference::render_reference(scene, settings);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < image.mean.pixels.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(image.mean.pixels[i])) << i;
+      if (i % 4 != 3) sum += image.mean.pixels[i];
+    }
+    EXPECT_GT(sum, 0.0) << reference::to_string(integrator);
+  }
 }
 
 TEST(MaterialMaps, MethodsThatDoNotReadMapsAreRefused) {

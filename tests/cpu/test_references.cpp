@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "bssrdf/model.h"
+#include "lucent/error.h"
 #include "lucent/scene.h"
 #include "reference/embree_scene.h"
 #include "transport/estimate.h"
@@ -23,13 +24,16 @@ namespace {
 using namespace lucent;
 using namespace lucent::reference;
 
-Scene slab_scene(const std::string& material, glm::vec3 light_direction, float width_mm, float depth_mm) {
+// A box of `width` x `depth` x `width` scene units with its top face at y = 0; `more_objects`: JSON objects
+// appended to the scene's list (each with a leading comma).
+Scene slab_scene(const std::string& material, glm::vec3 light_direction, float width, float depth,
+                 double scale_mm = 1.0, const std::string& more_objects = "") {
   return parse_scene(fmt::format(R"({{
-    "scale_mm": 1,
+    "scale_mm": {},
     "lights": [{{ "direction": [{}, {}, {}], "radiance": [1, 1, 1] }}],
-    "objects": [{{ "shape": "box", "size": [{}, {}, {}], "translate": [0, {}, 0], "material": {} }}] }})",
-                                 light_direction.x, light_direction.y, light_direction.z, width_mm, depth_mm,
-                                 width_mm, -0.5f * depth_mm, material),
+    "objects": [{{ "shape": "box", "size": [{}, {}, {}], "translate": [0, {}, 0], "material": {} }}{}] }})",
+                                 scale_mm, light_direction.x, light_direction.y, light_direction.z, width, depth,
+                                 width, -0.5f * depth, material, more_objects),
                      "slab", ".");
 }
 
@@ -65,6 +69,38 @@ TEST(Volpath, SlabReflectanceIndexMatched) {
   // 300 mean free paths wide and deep: a half-space to within e^-300.
   Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 300, 300);
   expect_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "a 0.9, n 1, normal");
+}
+
+// Ground truth does not depend on what else is in the scene, nor on the unit of length. A black floor 1e5 wide
+// far below changes no light path that reaches the camera; an offset from the scene's size (1e-5 of its radius)
+// started every refracted path 0.7 mean free paths deep and lost a third of the reflectance.
+TEST(Volpath, SlabReflectanceIsIndependentOfAHugeFloorFarAway) {
+  Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 300, 300, 1.0,
+                           R"(, { "shape": "plane", "extent": [100000, 100000], "translate": [0, -2000, 0],
+                                  "albedo": [0, 0, 0] })");
+  expect_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "beside a floor of extent 1e5");
+}
+
+// The same half-space in units of 10 m (scale_mm 1e4): the mean free path is 1e-4 scene units, 3e-5 of the
+// box's size.
+TEST(Volpath, SlabReflectanceIsIndependentOfTheUnitOfLength) {
+  Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 3, 1.5, 1e4);
+  expect_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "scale_mm 1e4");
+}
+
+// A ray Embree cannot take (NaN, or beyond float's range) is an error, not Embree's abort.
+TEST(EmbreeScene, ARayThatIsNotFiniteIsAnError) {
+  Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 2, 1);
+  EmbreeScene rt(scene);
+  for (glm::dvec3 origin : {glm::dvec3(NAN, 0, 0), glm::dvec3(0, 1e30, 0)}) {
+    try {
+      rt.intersect(origin, {0, -1, 0});
+      ADD_FAILURE() << "no error";
+    } catch (const lucent::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("is not finite"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(rt.intersect({0, 1, 0}, {0, -1, 0}).hit());
 }
 
 TEST(Volpath, SlabReflectanceObliqueIndexMatched) {
