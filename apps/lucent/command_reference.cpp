@@ -38,7 +38,14 @@ void check_resumable(const nlohmann::json& meta, const ReferenceOptions& o, cons
                                                          {"jitter", o.settings.jitter},
                                                          {"max_scatter", o.settings.max_scatter},
                                                          {"width", scene.render.width},
-                                                         {"height", scene.render.height}};
+                                                         {"height", scene.render.height},
+                                                         {"scene_hash", reference::scene_content_hash(scene)}};
+  const int version = reference::reference_version(meta);
+  if (version != reference::kReferenceVersion)
+    throw Error(fmt::format("{}: cannot resume: the reference was rendered by version {} of the references' "
+                            "estimators, this lucent renders version {}; its samples estimate another image: render "
+                            "it anew",
+                            path, version, reference::kReferenceVersion));
   for (const auto& [key, now] : keys)
     if (differs(key, now))
       throw Error(fmt::format("{}: cannot resume: the reference has {} {}, this run {}", path, key, meta[key].dump(),
@@ -79,6 +86,7 @@ void run(ReferenceOptions o) {
   double paths = static_cast<double>(scene.render.width) * scene.render.height * image.samples_per_pixel;
   nlohmann::json metadata = {{"scene", o.scene_path},
                              {"scene_hash", scene_hash},
+                             {"reference_version", reference::kReferenceVersion},
                              {"integrator", o.integrator},
                              {"seed", o.settings.seed},
                              {"jitter", o.settings.jitter},

@@ -12,6 +12,7 @@
 
 #include "lucent/scene.h"
 #include "reference/reference_files.h"
+#include "reference/reference_merge.h"
 
 namespace lucent::reference {
 namespace {
@@ -63,6 +64,10 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
                                 const std::vector<std::string>& sets, const std::string& integrator, int spp,
                                 const std::function<void(double)>& progress) {
   fs::path exr = fs::path(folder) / (reference_key(scene_path, sets, integrator) + ".exr");
+  // An entry is reused only for the same scene content (a scene file edited since, or a mesh or map it reads,
+  // makes it stale) and the same version of the estimators.
+  const Scene scene = load_scene(scene_path, sets);
+  const std::string scene_hash = scene_content_hash(scene);
   std::optional<ReferenceImage> cached;
   std::error_code listing;
   for (const auto& entry : fs::directory_iterator(exr.parent_path(), listing)) {
@@ -74,6 +79,7 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
       const std::optional<json> m = read_reference_metadata(files);
       auto text = [&](const char* key) { return m->contains(key) && (*m)[key].is_string() ? (*m)[key].get<std::string>() : ""; };
       if (!m || text("scene") != scene_path || text("integrator") != integrator) continue;
+      if (text("scene_hash") != scene_hash || reference_version(*m) != kReferenceVersion) continue;
       if (relevant_overrides(strings(*m, "overrides"), integrator, scene_path) !=
           relevant_overrides(sets, integrator, scene_path))
         continue;
@@ -85,7 +91,6 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
     }
   }
   if (cached && cached->samples_per_pixel >= spp) return *cached;
-  Scene scene = load_scene(scene_path, sets);
   ReferenceSettings settings;
   settings.integrator = integrator == "volpath" ? Integrator::Volpath : Integrator::Bssrdf;
   settings.samples_per_pixel = spp - (cached ? cached->samples_per_pixel : 0);
@@ -94,7 +99,12 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
   settings.progress = progress;
   ReferenceImage image = render_reference(scene, settings, cached ? &*cached : nullptr);
   if (cached) image.seconds += cached->seconds;
-  save_reference(reference_files(exr.string()), image, {{"scene", scene_path}, {"overrides", sets}, {"integrator", integrator}});
+  save_reference(reference_files(exr.string()), image,
+                 {{"scene", scene_path},
+                  {"scene_hash", scene_hash},
+                  {"reference_version", kReferenceVersion},
+                  {"overrides", sets},
+                  {"integrator", integrator}});
   return image;
 }
 

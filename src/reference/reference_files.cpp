@@ -1,6 +1,8 @@
 // reference_files.cpp: see reference_files.h.
 #include "reference/reference_files.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <fstream>
@@ -95,6 +97,19 @@ StoredReference load_reference(const ReferenceFiles& files) {
     throw Error(fmt::format("{}: is {}x{} but {} is {}x{}", files.standard_error, stored.image.standard_error.width,
                             stored.image.standard_error.height, files.mean, stored.image.mean.width,
                             stored.image.mean.height));
+  // Every pixel a reference: a finite, non-negative mean and standard error in each colour band. Resuming,
+  // merging or comparing against anything else would carry NaN on, or report a standard error of 0 as if exact.
+  const int width = stored.image.mean.width;
+  for (std::size_t k = 0; k < stored.image.mean.pixels.size(); ++k) {
+    if (k % 4 == 3) continue;
+    const float m = stored.image.mean.pixels[k], se = stored.image.standard_error.pixels[k];
+    if (!(std::isfinite(m) && m >= 0.0f && std::isfinite(se) && se >= 0.0f)) {
+      const std::size_t pixel = k / 4, w = static_cast<std::size_t>(std::max(1, width));
+      throw Error(fmt::format("{}: pixel ({}, {}) {} has mean {} and standard error {}; a reference's are finite and "
+                              ">= 0 (see {})",
+                              files.mean, pixel % w, pixel / w, "rgb"[k % 4], m, se, files.standard_error));
+    }
+  }
   stored.image.samples_per_pixel = (*meta)["samples_per_pixel"].get<int>();
   const json seconds = meta->contains("seconds") ? (*meta)["seconds"] : json(0.0);
   stored.image.seconds = seconds.is_number() ? seconds.get<double>() : 0.0;

@@ -17,6 +17,11 @@
 
 namespace lucent::reference {
 
+int reference_version(const nlohmann::json& metadata) {
+  const auto found = metadata.find("reference_version");
+  return found != metadata.end() && found->is_number_integer() ? found->get<int>() : 1;
+}
+
 std::string_view to_string(Integrator integrator) { return integrator == Integrator::Volpath ? "volpath" : "bssrdf"; }
 
 void camera_ray(const Camera& camera, int width, int height, double px, double py, glm::dvec3& origin,
@@ -99,7 +104,7 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
         }
       }
       for (int sample = first_sample; sample < total_samples; ++sample) {
-        Rng rng(settings.seed, (static_cast<std::uint64_t>(pixel) << 24) ^ static_cast<std::uint64_t>(sample));
+        Rng rng = Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
         glm::dvec3 L;
         if (settings.jitter) {
           glm::dvec3 origin, direction;

@@ -5,10 +5,22 @@
 #include <functional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "lucent/image.h"
 #include "lucent/scene.h"
 
 namespace lucent::reference {
+
+// The version of the references' estimators, recorded in every reference's metadata ("reference_version"; files
+// without it are version 1). It is raised whenever a scene, seed and sample count render a different image: a
+// reference of another version is never resumed, merged or reused from the cache, since its samples estimate
+// something else. 2: self-intersection offsets relative to each hit (references no longer depend on the scene's
+// size), every path's random numbers hashed from (seed, pixel, sample).
+inline constexpr int kReferenceVersion = 2;
+
+// A reference's version from its metadata (1 when absent).
+int reference_version(const nlohmann::json& metadata);
 
 enum class Integrator { Volpath, Bssrdf };
 std::string_view to_string(Integrator integrator);

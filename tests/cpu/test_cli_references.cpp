@@ -8,6 +8,7 @@
 #include <string>
 #include <sys/wait.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "../cli_runner.h"
@@ -70,6 +71,60 @@ TEST(CliReferences, ReferenceWritesMeanErrorAndMetadataAndResumes) {
   Result self = run("compare " + exr + " " + exr + " --json");
   ASSERT_EQ(self.exit_code, 0) << self.output;
   EXPECT_EQ(nlohmann::json::parse(self.output)["linear"]["rmse_rgb"].get<double>(), 0.0);
+}
+
+// --resume makes the checks merge makes: a reference whose mean or standard error is not finite and >= 0 anywhere
+// (a NaN standard error resumed as 0 everywhere; a NaN or negative mean was carried on), one of another scene or
+// one from another version of the estimators is refused, naming the file, and left as it was.
+TEST(CliReferences, ResumeRefusesAnythingButTheSameReference) {
+  auto dir = references_dir();
+  const std::string scene = (dir / "resume_sphere.json").string(), exr = (dir / "resume.exr").string(),
+                    stderr_exr = (dir / "resume.stderr.exr").string(), meta = (dir / "resume.meta.json").string();
+  const std::string text = R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
+    "render": {"width": 12, "height": 8}})";
+  std::ofstream(scene) << text;
+  const std::string render = "reference " + scene + " --integrator bssrdf --spp 2 -q -o " + exr;
+  const std::string resume = "reference " + scene + " --integrator bssrdf --spp 2 -q --resume -o " + exr;
+  auto damaged = [&](const std::string& file, std::size_t index, float value) {
+    EXPECT_EQ(run(render).exit_code, 0);
+    lucent::ImageRGBA32F image = lucent::read_exr(file);
+    image.pixels[index] = value;
+    lucent::write_exr(file, image);
+    return run(resume);
+  };
+  const std::size_t green_of_1_0 = 4 * 1 + 1;
+  Result nan_se = damaged(stderr_exr, green_of_1_0, std::nanf(""));
+  EXPECT_NE(nan_se.exit_code, 0);
+  const float mean = lucent::read_exr(exr).pixels[green_of_1_0];
+  EXPECT_EQ(nan_se.output, fmt::format("lucent: {}: pixel (1, 0) g has mean {} and standard error nan; a reference's "
+                                       "are finite and >= 0 (see {})\n",
+                                       exr, mean, stderr_exr));
+  Result negative = damaged(exr, green_of_1_0, -0.25f);
+  EXPECT_NE(negative.exit_code, 0);
+  EXPECT_NE(negative.output.find("pixel (1, 0) g has mean -0.25 and standard error"), std::string::npos)
+      << negative.output;
+  Result nan_mean = damaged(exr, 0, std::nanf(""));
+  EXPECT_NE(nan_mean.output.find("pixel (0, 0) r has mean nan"), std::string::npos) << nan_mean.output;
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(meta))["samples_per_pixel"].get<int>(), 2);  // left as it was
+
+  // Version 1 (no "reference_version"): its samples estimate another image.
+  ASSERT_EQ(run(render).exit_code, 0);
+  nlohmann::json m = nlohmann::json::parse(std::ifstream(meta));
+  EXPECT_EQ(m["reference_version"].get<int>(), 2);
+  m.erase("reference_version");
+  std::ofstream(meta) << m.dump();
+  Result old = run(resume);
+  EXPECT_NE(old.exit_code, 0);
+  EXPECT_EQ(old.output, "lucent: " + meta + ": cannot resume: the reference was rendered by version 1 of the "
+                        "references' estimators, this lucent renders version 2; its samples estimate another image: "
+                        "render it anew\n");
+  // Another scene under the same file name.
+  ASSERT_EQ(run(render).exit_code, 0);
+  std::ofstream(scene) << std::string(text).replace(text.find("Skin1"), 5, "Marble");
+  Result edited = run(resume);
+  EXPECT_NE(edited.exit_code, 0);
+  EXPECT_NE(edited.output.find("cannot resume: the reference has scene_hash"), std::string::npos) << edited.output;
 }
 
 TEST(CliReferences, BadInputsNameTheInput) {

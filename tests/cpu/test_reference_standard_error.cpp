@@ -1,0 +1,79 @@
+// test_reference_standard_error.cpp: the standard error a reference reports is the spread its mean really has.
+// Independent renders with different seeds are draws of the mean: per band, the variance of the per-pixel mean
+// over the seeds must agree with the mean of the claimed variances (standard error squared). Everything built on
+// the standard error depends on it: compare's noise correction, reference merge, the refinement criterion.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "lucent/scene.h"
+#include "reference/reference_renderer.h"
+
+namespace {
+
+using namespace lucent;
+using namespace lucent::reference;
+
+// A chromatic, forward-scattering sphere on a grey floor, lit from the side: paths of every length, three bands
+// of different noise, no fireflies (a heavy tail would make 16 seeds too few for any estimator).
+Scene seeds_scene() {
+  return parse_scene(R"({
+    "scale_mm": 10,
+    "camera": { "eye": [0, 1.0, 4.0], "target": [0, 0.6, 0], "fov_y_deg": 30 },
+    "lights": [{ "direction": [0.6, -0.6, -0.5], "radiance": [2, 2, 2] }],
+    "objects": [{ "shape": "sphere", "radius": 0.6, "segments": 32, "translate": [0, 0.6, 0],
+                  "material": { "sigma_a": [0.02, 0.05, 0.2], "sigma_s": [1.0, 0.8, 0.6], "g": [0.3, 0.3, 0.3],
+                                "eta": 1.3 } },
+                { "shape": "plane", "extent": [6, 6], "albedo": [0.5, 0.5, 0.5] }],
+    "render": { "width": 24, "height": 24, "background": [0, 0, 0] } })",
+                     "seeds", "/");
+}
+
+void expect_honest_standard_error(Integrator integrator, int spp) {
+  const Scene scene = seeds_scene();
+  constexpr int kSeeds = 16;
+  std::vector<ReferenceImage> renders;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    ReferenceSettings settings;
+    settings.integrator = integrator;
+    settings.samples_per_pixel = spp;
+    settings.seed = static_cast<std::uint64_t>(seed);
+    renders.push_back(render_reference(scene, settings));
+  }
+  const std::size_t pixels = renders[0].mean.pixels.size() / 4;
+  for (int band = 0; band < 3; ++band) {
+    double observed = 0.0, claimed = 0.0;  // summed over pixels: variance of the mean over seeds, mean of se^2
+    for (std::size_t p = 0; p < pixels; ++p) {
+      const std::size_t i = 4 * p + static_cast<std::size_t>(band);
+      double sum = 0.0, sum2 = 0.0, se2 = 0.0;
+      for (const ReferenceImage& r : renders) {
+        sum += r.mean.pixels[i], sum2 += double(r.mean.pixels[i]) * r.mean.pixels[i];
+        se2 += double(r.standard_error.pixels[i]) * r.standard_error.pixels[i];
+      }
+      const double mean = sum / kSeeds;
+      observed += std::max(0.0, (sum2 - kSeeds * mean * mean) / (kSeeds - 1));
+      claimed += se2 / kSeeds;
+    }
+    ASSERT_GT(claimed, 0.0);
+    std::printf("%s %d spp, band %d: variance of the mean over seeds / claimed %.3f\n",
+                std::string(to_string(integrator)).c_str(), spp, band, observed / claimed);
+    // Over 576 pixels the ratio's own spread is about sqrt(2 / 15 / 576) = 1.5% (somewhat more: neighbouring
+    // pixels are not independent samples of the ratio); 10% is the acceptance bound.
+    EXPECT_NEAR(observed / claimed, 1.0, 0.10)
+        << fmt::format("{} {} spp, band {}: variance of the mean over {} seeds {:.4g}, claimed {:.4g}",
+                       to_string(integrator), spp, band, kSeeds, observed, claimed);
+  }
+}
+
+TEST(ReferenceStandardError, VolpathClaimsTheSpreadOfItsMeanOverSeeds) {
+  expect_honest_standard_error(Integrator::Volpath, 16);
+}
+
+TEST(ReferenceStandardError, BssrdfClaimsTheSpreadOfItsMeanOverSeeds) {
+  expect_honest_standard_error(Integrator::Bssrdf, 16);
+}
+
+}  // namespace
