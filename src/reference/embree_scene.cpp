@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "lucent/error.h"
+#include "scene/mesh_enclosure.h"
 
 namespace lucent::reference {
 namespace {
@@ -105,6 +106,17 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     object_of_geometry_[id] = static_cast<int>(objects_.size() - 1);
   }
   rtcCommitScene(scene_);
+  for (const PointLight& light : scene.point_lights) {
+    int medium = -1;
+    for (std::size_t i = 0; i < objects_.size() && medium < 0; ++i) {
+      const ObjectData& d = objects_[i];
+      if (!d.translucent || d.indices.empty()) continue;
+      TriangleMesh world;
+      world.positions = d.positions, world.indices = d.indices;
+      if (open_edge_count(world) == 0 && encloses(world, glm::dvec3(light.position))) medium = static_cast<int>(i);
+    }
+    point_light_medium_.push_back(medium);
+  }
 }
 
 double EmbreeScene::offset_at(const glm::dvec3& p) {

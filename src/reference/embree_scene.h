@@ -101,6 +101,10 @@ class EmbreeScene {
                        double t_min = -1.0) const;
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
 
+  // The translucent object whose closed surface encloses point light `light` (an index into Scene::point_lights),
+  // or -1 when it is in air.
+  int medium_of_point_light(std::size_t light) const { return point_light_medium_[light]; }
+
   const ObjectData& object(int index) const { return objects_[static_cast<std::size_t>(index)]; }
   int object_count() const { return static_cast<int>(objects_.size()); }
   // A point uniform over the object's area from four uniforms (triangle: u0, u1; point in it: u2, u3).
@@ -111,6 +115,7 @@ class EmbreeScene {
   RTCScene scene_ = nullptr;
   std::vector<ObjectData> objects_;
   std::vector<int> object_of_geometry_;
+  std::vector<int> point_light_medium_;
 };
 
 }  // namespace lucent::reference

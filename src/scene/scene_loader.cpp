@@ -20,6 +20,7 @@
 #include "materials/artist_parameters.h"
 #include "materials/material_maps.h"
 #include "scene/gltf_material.h"
+#include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
 
@@ -610,6 +611,31 @@ void warn_if_unlit(const Scene& scene) {
               << ": translucent objects but no light (lights, environment); the image will be black\n";
 }
 
+// A translucent object is a medium only inside a closed surface, and a point light inside one lights it only in
+// volpath: say so where the image would silently miss the light.
+void warn_about_enclosures(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    if (!object.translucent() || object.mesh.indices.empty()) continue;
+    const TriangleMesh world = transformed(object.mesh, object.world_from_object);
+    const std::string what = fmt::format("{}: /objects/{}{}", scene.source, i,
+                                         object.name.empty() || object.name[0] == '/' ? "" : fmt::format(" ('{}')", object.name));
+    if (const std::size_t open = open_edge_count(world); open > 0)
+      std::cerr << fmt::format("lucent: warning: {}: a translucent object with an open surface ({} edges border "
+                               "one triangle only) encloses no medium: paths that enter it in volpath may never "
+                               "leave (dark), while the real-time methods treat its surface as closed\n",
+                               what, open);
+    else
+      for (const PointLight& light : scene.point_lights)
+        if (encloses(world, glm::dvec3(light.position)))
+          std::cerr << fmt::format("lucent: warning: {}: the point light at ({}, {}, {}) is inside this translucent "
+                                   "object; only the volpath reference renders light from inside a medium (the "
+                                   "real-time methods and the bssrdf reference light surfaces from outside, where "
+                                   "it lights nothing)\n",
+                                   what, light.position.x, light.position.y, light.position.z);
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir,
@@ -634,6 +660,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   read_method(doc.value("method", json::object()), root.child("method"), scene);
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
   warn_if_unlit(scene);
+  warn_about_enclosures(scene);
   return scene;
 }
 

@@ -103,6 +103,39 @@ TEST(EmbreeScene, ARayThatIsNotFiniteIsAnError) {
   EXPECT_TRUE(rt.intersect({0, 1, 0}, {0, -1, 0}).hit());
 }
 
+// A point light inside a medium lights it from within: single scattering (max_scatter 1) in an index-matched
+// sphere with the light at its centre, against the integral along the camera ray of sigma_s I e^(-sigma_t r) / r^2
+// / (4 pi) e^(-sigma_t (h - t)) (r: distance to the light, h - t: to the exit). It rendered black before.
+TEST(Volpath, PointLightInsideAMediumSingleScattering) {
+  const Scene scene = parse_scene(R"({
+    "scale_mm": 1,
+    "lights": [{ "type": "point", "position": [0, 0, 0], "intensity": [1e-6, 1e-6, 1e-6] }],
+    "objects": [{ "shape": "sphere", "radius": 1, "segments": 256,
+                  "material": { "sigma_a": [0.5, 0.5, 0.5], "sigma_s": [1, 1, 1], "g": 0, "eta": 1 } }] })",
+                                  "inside", ".");
+  EmbreeScene rt(scene);
+  ASSERT_EQ(rt.medium_of_point_light(0), 0);  // (1e-6 W/sr is 1 in scene units of 1 mm)
+  ReferenceScene rs{scene, rt, 1};
+  const double I = intensity_in_scene_units(scene.point_lights[0], scene.scale_mm).x, sigma_s = 1.0, sigma_t = 1.5;
+  for (double b : {0.3, 0.7}) {
+    const double h = std::sqrt(1.0 - b * b);
+    double exact = 0.0;
+    constexpr int kSteps = 20000;
+    for (int i = 0; i < kSteps; ++i) {  // midpoint rule; the integrand is smooth (b > 0)
+      const double t = -h + (i + 0.5) * 2.0 * h / kSteps, r = std::hypot(b, t);
+      exact += sigma_s * I * std::exp(-sigma_t * r) / (r * r) / (4.0 * M_PI) * std::exp(-sigma_t * (h - t));
+    }
+    exact *= 2.0 * h / kSteps;
+    Accumulator acc;
+    for (int i = 0; i < 40000; ++i) {
+      Rng rng(5, static_cast<std::uint64_t>(i));
+      acc.add(volpath_radiance(rs, {b, 0.0, 10.0}, {0.0, 0.0, -1.0}, rng).x);
+    }
+    // The sphere's 256 segments put its surface within 1e-4 of the radius: a relative bias below 1e-3.
+    expect_within_3_se(acc.estimate(), exact, 2e-3 * exact, fmt::format("impact parameter {}", b));
+  }
+}
+
 TEST(Volpath, SlabReflectanceObliqueIndexMatched) {
   Scene scene = slab_scene(coefficients(0.9, 1.0), {std::sin(glm::radians(60.0f)), -0.5f, 0}, 300, 300);
   expect_within_3_se(volpath_reflectance(scene, 20000), 0.507939, 1e-6, "a 0.9, n 1, 60 degrees");

@@ -84,6 +84,36 @@ class WrittenFile {
 
 // ---- valid scenes -------------------------------------------------------------------------------
 
+// A point light inside a translucent object and a translucent object without a closed surface render what the
+// user does not expect in some renderers (black, or lit in one and dark in the other): one warning each.
+TEST(SceneLoader, LightsInsideMediaAndOpenMediaAreWarnedAbout) {
+  auto warnings = [](const std::string& text) {
+    ::testing::internal::CaptureStderr();
+    parse_scene(text, "enclosure", "/");
+    return ::testing::internal::GetCapturedStderr();
+  };
+  const std::string inside = warnings(R"({
+    "lights": [{ "type": "point", "position": [0.1, 0.2, 0], "intensity": [1, 1, 1] },
+               { "type": "point", "position": [5, 0, 0], "intensity": [1, 1, 1] }],
+    "objects": [{ "name": "ball", "shape": "sphere", "material": "Skin1" }] })");
+  EXPECT_EQ(inside, "lucent: warning: enclosure: /objects/0 ('ball'): the point light at (0.1, 0.2, 0) is inside this "
+                    "translucent object; only the volpath reference renders light from inside a medium (the "
+                    "real-time methods and the bssrdf reference light surfaces from outside, where it lights "
+                    "nothing)\n");
+  const std::string open = warnings(R"({
+    "lights": [{ "direction": [0, -1, 0] }],
+    "objects": [{ "shape": "plane", "extent": [2, 2], "material": "Skin1" }] })");
+  EXPECT_EQ(open.rfind("lucent: warning: enclosure: /objects/0: a translucent object with an open surface (4 edges "
+                       "border one triangle only) encloses no medium",
+                       0),
+            0u)
+      << open;
+  EXPECT_EQ(warnings(R"({ "lights": [{ "type": "point", "position": [5, 0, 0] }],
+                          "objects": [{ "shape": "sphere", "material": "Skin1" }, { "shape": "box", "material": "Skin1" },
+                                      { "shape": "torus", "material": "Skin1" }] })"),
+            "");
+}
+
 TEST(SceneLoader, DefaultSceneParses) {
   Scene scene = default_scene();
   EXPECT_EQ(scene.source, "<built-in default scene>");
