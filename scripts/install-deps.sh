@@ -24,6 +24,8 @@ packages=(
   libimgui-dev xvfb xauth
   # example assets: the Stanford bunny at /usr/share/glmark2/models/bunny.obj
   glmark2-data
+  # references rendered in batches (docs/references.md: GNU parallel, tested locally)
+  parallel
   # benchmark plots
   gnuplot-nox
   # the Python module (python/) and its tests; Debian's /usr/bin/python3

@@ -84,7 +84,9 @@ void add_tonemap_command(CLI::App& app) {
       ->capture_default_str();
   cmd->callback([input, output, exposure] {
     check_outputs({{*output, "--output", {".png"}}}, {*input});
-    write_png(*output, to_display(read_exr(*input), *exposure));
+    const ImageRGBA32F image = read_exr(*input);
+    check_displayable(image, *input);
+    write_png(*output, to_display(image, *exposure));
   });
 }
 

@@ -33,6 +33,11 @@ struct VdbField {
 
 // A grid of density multipliers m >= 0 loaded from a file (a heterogeneous medium; lucent/medium_volume.h reads
 // it). Values at voxel centres, x fastest, then y, then z; the grid spans the object's world-space bounds.
+// The largest density multiplier a volume may hold. It shrinks a medium's mean free path a millionfold (0.01 mm
+// becomes 1e-8 mm, far below any voxel): denser changes no image, while values near 1e20 overflowed the
+// real-time methods' single-precision optical depths (a white column instead of an opaque region).
+inline constexpr float kMaxDensityMultiplier = 1e6f;
+
 struct MediumVolume {
   std::string source;           // file it came from, for messages (the JSON header)
   std::string data_file;        // the raw values the header names

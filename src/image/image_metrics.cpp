@@ -76,6 +76,16 @@ ImageRGBA32F tonemapped(const ImageRGBA32F& image, float exposure) {
   return out;
 }
 
+void check_displayable(const ImageRGBA32F& image, const std::string& name) {
+  static constexpr const char* kBands[3] = {"red", "green", "blue"};
+  const std::size_t width = static_cast<std::size_t>(std::max(image.width, 1));
+  for (std::size_t i = 0; i < image.pixels.size() / 4; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      if (std::isnan(image.pixels[4 * i + c]))
+        throw Error(fmt::format("{} has a NaN at pixel ({}, {}), {}: it has no colour to display", name, i % width,
+                                i / width, kBands[c]));
+}
+
 ImageError display_error(const ImageRGBA32F& a, const ImageRGBA32F& b, float exposure) {
   ImageError e = image_error(tonemapped(a, exposure), tonemapped(b, exposure));
   e.psnr_db = e.rmse_rgb > 0.0 ? 10.0 * std::log10(3.0 / (e.rmse_rgb * e.rmse_rgb)) : 1e9;  // peak 1 per channel

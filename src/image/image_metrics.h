@@ -37,6 +37,9 @@ ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const Image
 // float arithmetic (beyond 1e6 after exposure) display as white.
 ImageError display_error(const ImageRGBA32F& a, const ImageRGBA32F& b, float exposure);
 ImageRGBA32F tonemapped(const ImageRGBA32F& image, float exposure);  // display values in [0, 1]
+// Throws lucent::Error naming `name`, the first NaN's pixel and band: a NaN has no colour to display (the tone
+// curve would turn it black without a word). +inf displays as white.
+void check_displayable(const ImageRGBA32F& image, const std::string& name);
 ImageRGBA8 to_display(const ImageRGBA32F& image, float exposure);    // tone-mapped 8-bit
 // |a - b| per pixel (sqrt(dr^2+dg^2+db^2)) as a heat map (black, blue, red, yellow, white) scaled to `scale`.
 ImageRGBA8 heat_map(const ImageRGBA32F& a, const ImageRGBA32F& b, double scale);

@@ -19,18 +19,23 @@
 namespace lucent {
 namespace {
 
-// Throws unless every channel is finite and non-negative; names the first offending pixel.
+// The largest environment radiance accepted. The brightest skies captured with the sun in them reach about 1e9;
+// 3e38 (float's limit) made the sums over a region of the map infinite (NaN pixels, `envmap lights` printing
+// inf). 1e20 over the whole sphere stays far inside float.
+constexpr float kMaxEnvironmentRadiance = 1e20f;
+
+// Throws unless every channel is finite, non-negative and at most kMaxEnvironmentRadiance; names the first
+// offending pixel.
 void check_radiance(const EnvironmentMap& map) {
   constexpr const char* kChannelNames[3] = {"R", "G", "B"};
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x)
       for (int c = 0; c < 3; ++c) {
         const float value = map.at(x, y)[c];
-        if (std::isfinite(value) && value >= 0.0f) continue;
-        throw Error(
-            fmt::format("{}: pixel ({}, {}) has {} = {}; environment radiance must be finite and "
-                        "non-negative",
-                        map.source, x, y, kChannelNames[c], value));
+        if (value >= 0.0f && value <= kMaxEnvironmentRadiance) continue;
+        throw Error(fmt::format("{}: pixel ({}, {}) has {} = {}; environment radiance must be finite, non-negative "
+                                "and at most {:g}",
+                                map.source, x, y, kChannelNames[c], value, kMaxEnvironmentRadiance));
       }
 }
 

@@ -140,8 +140,13 @@ std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header
     } else {
       std::memcpy(&v, bytes.data() + 4 * i, 4);
     }
-    if (!std::isfinite(v) || v < 0.0f)
-      fail(header_path, fmt::format("data: value {} at voxel {} is not a finite m >= 0", v, i));
+    if (!(v >= 0.0f && v <= kMaxDensityMultiplier))
+      fail(header_path, fmt::format("data: value {} at voxel ({}, {}, {}) is outside [0, {:g}]: a density multiplier "
+                                    "m is finite, >= 0 and at most {:g}",
+                                    v, i % static_cast<std::size_t>(volume->size.x),
+                                    i / static_cast<std::size_t>(volume->size.x) % static_cast<std::size_t>(volume->size.y),
+                                    i / (static_cast<std::size_t>(volume->size.x) * static_cast<std::size_t>(volume->size.y)),
+                                    kMaxDensityMultiplier, kMaxDensityMultiplier));
     volume->values[i] = v;
   }
   volume->max_value = *std::max_element(volume->values.begin(), volume->values.end());

@@ -170,9 +170,10 @@ VdbVolume load_medium_vdb(const VdbField& field) {
     out.upper = glm::vec3(static_cast<float>(upper.x()), static_cast<float>(upper.y()), static_cast<float>(upper.z()));
   }
   volume->max_value = *std::max_element(volume->values.begin(), volume->values.end());
-  if (!std::isfinite(volume->max_value))
-    fail(field.file, fmt::format("grid '{}': values times density_scale {} exceed the float range", field.grid,
-                                 field.density_scale));
+  if (!(volume->max_value <= kMaxDensityMultiplier))
+    fail(field.file, fmt::format("grid '{}': values times density_scale {} reach {}; a density multiplier is at most "
+                                 "{:g}",
+                                 field.grid, field.density_scale, volume->max_value, kMaxDensityMultiplier));
   out.volume = std::move(volume);
   return out;
 }

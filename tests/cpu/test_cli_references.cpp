@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <sys/wait.h>
 
@@ -152,6 +153,23 @@ TEST(CliReferences, CompareRefusesNonFiniteImages) {
                             "is computed over it\n");
   EXPECT_NE(run("compare " + good + " " + bad).exit_code, 0);
   EXPECT_EQ(run("compare " + good + " " + good).exit_code, 0);
+}
+
+// `tonemap` turned a NaN into black without a word; +inf is as bright as it gets: white.
+TEST(CliReferences, TonemapRefusesNaNAndShowsInfinityAsWhite) {
+  auto dir = references_dir();
+  const std::string exr = (dir / "tonemap_in.exr").string(), png = (dir / "tonemap_out.png").string();
+  lucent::ImageRGBA32F image{2, 1, {0.5f, 0.5f, 0.5f, 1, std::numeric_limits<float>::infinity(), 1e38f, 3e38f, 1}};
+  lucent::write_exr(exr, image);
+  Result ok = run("tonemap " + exr + " -o " + png);
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  const lucent::ImageRGBA8 shown = lucent::read_png(png);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(shown.at(1, 0)[c], 255) << c;
+  image.pixels[1] = std::nanf("");
+  lucent::write_exr(exr, image);
+  Result nan = run("tonemap " + exr + " -o " + png);
+  EXPECT_NE(nan.exit_code, 0);
+  EXPECT_EQ(nan.output, "lucent: " + exr + " has a NaN at pixel (0, 0), green: it has no colour to display\n");
 }
 
 // A bad override in the last variant is reported before anything renders (no GL context is needed to see it),

@@ -264,15 +264,23 @@ TEST(EnvironmentFiles, BadMapsThrowNamingTheFile) {
   image.at(1, 2)[1] = -0.5f;
   write_exr(negative.path(), image);
   EXPECT_EQ(error_message([&] { load_environment_map(negative.path()); }),
-            negative.path() + ": pixel (1, 2) has G = -0.5; environment radiance must be finite and non-negative");
+            negative.path() + ": pixel (1, 2) has G = -0.5; environment radiance must be finite, non-negative and at most 1e+20");
 
   image = constant_image(8, 4, 1.0f);
   image.at(7, 3)[2] = std::numeric_limits<float>::infinity();
   EXPECT_EQ(error_message([&] { environment_map_from_image(image, "probe.exr"); }),
-            "probe.exr: pixel (7, 3) has B = inf; environment radiance must be finite and non-negative");
+            "probe.exr: pixel (7, 3) has B = inf; environment radiance must be finite, non-negative and at most 1e+20");
   image.at(0, 0)[0] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_EQ(error_message([&] { environment_map_from_image(image, "probe.exr"); }),
-            "probe.exr: pixel (0, 0) has R = nan; environment radiance must be finite and non-negative");
+            "probe.exr: pixel (0, 0) has R = nan; environment radiance must be finite, non-negative and at most 1e+20");
+  // 3e38 made the sums over a region of the map infinite: NaN pixels and `envmap lights` printing inf.
+  image = constant_image(8, 4, 1.0f);
+  image.at(2, 1)[0] = 3e38f;
+  EXPECT_EQ(error_message([&] { environment_map_from_image(image, "probe.exr"); }),
+            "probe.exr: pixel (2, 1) has R = 3e+38; environment radiance must be finite, non-negative and at most 1e+20");
+  image.at(2, 1)[0] = 1e20f;  // the largest accepted: its directional lights stay finite
+  for (const DirectionalLight& light : environment_to_directional_lights(environment_map_from_image(image, "probe.exr"), 4))
+    EXPECT_TRUE(std::isfinite(light.radiance.r + light.radiance.g + light.radiance.b));
 
   const TempFile garbage(".hdr");
   std::ofstream(garbage.path()) << "not an image";

@@ -82,7 +82,7 @@ TEST(MediumVolume, BadFilesNameTheFileAndTheProblem) {
   write_bytes(raw.path(), values, 8);
   EXPECT_EQ(test::error_message([] { load_medium_volume("/nonexistent/volume.json"); }),
             "/nonexistent/volume.json: cannot open the volume header");
-  EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}}), h + ": data: value nan at voxel 1 is not a finite m >= 0");
+  EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}}), h + ": data: value nan at voxel (1, 0, 0) is outside [0, 1e+06]: a density multiplier m is finite, >= 0 and at most 1e+06");
   EXPECT_EQ(error_for({{"size", {3, 1, 1}}, {"data", data}}),
             h + ": data: '" + raw.path() + "' has 8 bytes, size 3x1x1 float32 needs 12");
   EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}, {"spacing", 1}}),
@@ -95,7 +95,13 @@ TEST(MediumVolume, BadFilesNameTheFileAndTheProblem) {
   EXPECT_EQ(error_for({{"size", {2, 1, 1}}}), h + ": missing key \"data\" (the raw file)");
   const float negative[2] = {1.0f, -0.5f};
   write_bytes(raw.path(), negative, 8);
-  EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}}), h + ": data: value -0.5 at voxel 1 is not a finite m >= 0");
+  EXPECT_EQ(error_for({{"size", {2, 1, 1}}, {"data", data}}),
+            h + ": data: value -0.5 at voxel (1, 0, 0) is outside [0, 1e+06]: a density multiplier m is finite, >= 0 and at most 1e+06");
+  // 1e20 overflowed the real-time methods' single-precision optical depths: a white column, not an opaque one.
+  const float dense[4] = {1.0f, 1.0f, 1.0f, 1e20f};
+  write_bytes(raw.path(), dense, 16);
+  EXPECT_EQ(error_for({{"size", {2, 2, 1}}, {"data", data}}),
+            h + ": data: value 1e+20 at voxel (1, 1, 0) is outside [0, 1e+06]: a density multiplier m is finite, >= 0 and at most 1e+06");
 }
 
 json scene_with_field(const json& field) {

@@ -2,12 +2,14 @@
 // run of all their samples reports (exactly, from known samples; statistically, against a real render), and every
 // merge that would not be one reference is refused with one line naming the input.
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -115,6 +117,10 @@ TEST(ReferenceMerge, KnownSamplesMergeIntoTheEstimatorOfAllSamples) {
 // path tracing, and the image mean averages ~400 of them; a merge that pooled the batches' standard errors as
 // sqrt(SE1^2 + SE2^2) would be 1.6x too large, one that took the weighted mean of SEs 1.15-1.3x). Background
 // pixels are exact in every render and must match exactly.
+// Two renders of one image with independent samples (a merge and one run): per pixel and channel the difference
+// over its combined standard error has a mean square near 1, and the two standard errors agree.
+void expect_same_image_within_noise(const std::string& merged, const std::string& one);
+
 TEST(ReferenceMerge, MergedBatchesMatchOneRenderOfAllSamples) {
   const std::string scene = write_scene("stat.json");
   const std::string a = path("stat_a.exr"), b = path("stat_b.exr"), one = path("stat_one.exr"),
@@ -133,8 +139,36 @@ TEST(ReferenceMerge, MergedBatchesMatchOneRenderOfAllSamples) {
   EXPECT_EQ(meta["inputs"][0]["path"], a);
   EXPECT_EQ(meta["inputs"][1]["path"], b);
 
-  const lucent::ImageRGBA32F m = lucent::read_exr(merged), m_se = lucent::read_exr(path("stat_merged.stderr.exr"));
-  const lucent::ImageRGBA32F o = lucent::read_exr(one), o_se = lucent::read_exr(path("stat_one.stderr.exr"));
+  expect_same_image_within_noise(merged, one);
+}
+
+// The batch recipe of docs/references.md run for real, with GNU parallel on this host instead of over ssh: four
+// batches of 16 samples in two parallel jobs, merged, against one render of 64 samples.
+TEST(ReferenceMerge, GnuParallelBatchesMergeIntoOneRender) {
+  ASSERT_EQ(std::system("parallel --version > /dev/null 2>&1"), 0)
+      << "GNU parallel is not installed (scripts/install-deps.sh installs it)";
+  const std::string scene = write_scene("parallel.json");
+  const std::string batch = path("parallel_batch.{}.exr");
+  const std::string command =
+      fmt::format("seq 1 4 | parallel -j 2 --halt now,fail=1 '{} reference {} --integrator volpath --spp 16 --seed {{}} "
+                  "-q -o {}' 2>&1",
+                  LUCENT_CLI, scene, batch);
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::string inputs;
+  for (int i = 1; i <= 4; ++i) inputs += " " + path(fmt::format("parallel_batch.{}.exr", i));
+  const std::string merged = path("parallel_merged.exr"), one = path("parallel_one.exr");
+  const CliResult r = run_cli("reference merge" + inputs + " -q -o " + merged);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(metadata(merged)["seeds"], json({1, 2, 3, 4}));
+  render(scene, one, "--integrator volpath --spp 64 --seed 9");
+  expect_same_image_within_noise(merged, one);
+}
+
+void expect_same_image_within_noise(const std::string& merged, const std::string& one) {
+  const lucent::ImageRGBA32F m = lucent::read_exr(merged),
+                             m_se = lucent::read_exr(lucent::reference::reference_files(merged).standard_error);
+  const lucent::ImageRGBA32F o = lucent::read_exr(one),
+                             o_se = lucent::read_exr(lucent::reference::reference_files(one).standard_error);
   ASSERT_EQ(m.width, 16);
   ASSERT_EQ(m.height, 12);
   double z2 = 0.0, se_merged = 0.0, se_one = 0.0;
