@@ -7,7 +7,8 @@
 // point: next-event estimation finds that point by fixed-point iteration on the refraction direction and weights
 // the refracted beam by its Fresnel transmittance, its compression at a locally flat boundary (cos theta_i /
 // cos theta_t; for a point light the pencil's footprint, see volpath.cpp) and the attenuation to the vertex.
-// Point lights must be outside the media (in air, e.g. in a candle's hollow). Russian roulette keeps it unbiased.
+// A point light inside a medium (EmbreeScene::medium_of_point_light) is connected to that medium's vertices
+// straight through it, unless the boundary is in between. Russian roulette keeps it unbiased.
 // Heterogeneous media (a material's "field", media/heterogeneous_field.h): free flights by delta tracking against
 // the majorant max m sigma_t with null collisions, and the next-event segments' transmittance by ratio tracking;
 // both unbiased (volpath.cpp).
