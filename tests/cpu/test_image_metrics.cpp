@@ -135,7 +135,7 @@ TEST(ReferenceRenderer, SharedCentreHitAndBackgroundPixelsEqualPerSampleTracing)
         glm::dvec3 origin, direction, sum(0.0);
         lucent::reference::camera_ray(scene.camera, 8, 6, x + 0.5, y + 0.5, origin, direction);
         for (int sample = 0; sample < 3; ++sample) {
-          lucent::reference::Rng rng(settings.seed, (static_cast<std::uint64_t>(pixel) << 24) ^ static_cast<std::uint64_t>(sample));
+          lucent::reference::Rng rng = lucent::reference::Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
           sum += radiance(rs, origin, direction, rng, nullptr);
         }
         if (!rt.intersect(origin, direction).hit()) ++background_pixels;
