@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "lucent/error.h"
+#include "params/number_range.h"
 
 namespace lucent {
 
@@ -194,13 +195,8 @@ json try_parse_json(std::istream& in, const std::string& source) {
 
 namespace {
 
-std::string allowed_range(const ParamDecl& p) {
-  if (p.min <= -1e29 && p.max >= 1e29) return "any finite number";
-  std::string lo = p.min <= -1e29 ? "-inf" : fmt::format("{:g}", p.min);
-  std::string hi = p.max >= 1e29 ? "inf" : fmt::format("{:g}", p.max);
-  std::string unit = p.unit.empty() ? "" : " " + std::string(p.unit);
-  return fmt::format("allowed range [{}, {}]{}", lo, hi, unit);
-}
+// The bounds the value is checked against, also the default +-1e30 (a float's range with room to spare).
+std::string allowed_range(const ParamDecl& p) { return range_text({p.min, p.max, false, p.unit}); }
 
 double read_number(const nlohmann::json& v, const ParamDecl& p, const JsonLocation& where) {
   if (v.is_string() && (v == "nan" || v == "NaN")) fail(where, "NaN is not allowed; " + allowed_range(p));

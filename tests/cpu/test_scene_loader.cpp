@@ -274,6 +274,12 @@ TEST(SceneLoader, EtaOutOfRange) {
             "test.json: /objects/0/material/eta: 0.5 is out of range; allowed range [1, 3]");
 }
 
+// A value the range check refuses is never called "any finite number": the message states the bounds checked.
+TEST(SceneLoader, HugeCoefficientStatesTheBoundsChecked) {
+  EXPECT_EQ(material_error({{"sigma_a", {1.4427e303, 0.1, 0.1}}, {"sigma_s", {1, 1, 1}}}),
+            "test.json: /objects/0/material/sigma_a/0: 1.4427e+303 is out of range; allowed range [-1e+30, 1e+30] mm^-1");
+}
+
 TEST(SceneLoader, KZero) {
   json doc = minimal_scene();
   doc["method"] = {{"K", 0}};
