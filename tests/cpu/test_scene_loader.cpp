@@ -453,6 +453,18 @@ TEST(SceneLoader, LoadMissingFile) {
   }
 }
 
+TEST(SceneLoader, LoadDirectoryIsNamedADirectory) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lucent_scene_loader_a_directory.json";
+  std::filesystem::create_directories(dir);
+  try {
+    load_scene(dir.string());
+    ADD_FAILURE() << "load_scene accepted a directory";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()), dir.string() + ": is a directory; give a scene file (JSON)");
+  }
+  std::filesystem::remove(dir);
+}
+
 }  // namespace
 }  // namespace lucent
 
