@@ -53,8 +53,8 @@ void bind_reference(py::module_& m) {
       "reference",
       [](const SceneHandle& scene, const std::string& integrator, const py::object& spp, const py::object& seed,
          const py::object& threads, bool jitter, const py::object& max_scatter, const py::object& time,
-         std::optional<int> width, std::optional<int> height) {
-        return render_reference_arrays(scene, {width, height, {}, {}, {}, py::none()},
+         py::object width, py::object height) {
+        return render_reference_arrays(scene, {std::move(width), std::move(height), py::none(), py::none(), {}, py::none()},
                                        settings_of(integrator, spp, seed, threads, jitter, max_scatter, time));
       },
       py::arg("scene"), py::kw_only(), py::arg("integrator") = "volpath", py::arg("spp") = 16, py::arg("seed") = 1,

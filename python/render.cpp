@@ -87,9 +87,11 @@ py::object render(const SceneHandle& handle, const RenderArguments& arguments, b
 void bind_render(py::module_& m) {
   m.def(
       "render",
-      [](const SceneHandle& scene, std::optional<int> width, std::optional<int> height, std::optional<int> frames,
-         std::optional<std::string> method, py::object params, std::optional<long long> seed, bool timings) {
-        return render(scene, {width, height, frames, seed, std::move(method), std::move(params)}, timings);
+      [](const SceneHandle& scene, py::object width, py::object height, py::object frames,
+         std::optional<std::string> method, py::object params, py::object seed, bool timings) {
+        return render(scene, {std::move(width), std::move(height), std::move(frames), std::move(seed),
+                              std::move(method), std::move(params)},
+                      timings);
       },
       py::arg("scene"), py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
       py::arg("frames") = py::none(), py::arg("method") = py::none(), py::arg("params") = py::none(),

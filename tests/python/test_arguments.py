@@ -88,3 +88,14 @@ def test_numpy_numbers_in_range_are_taken():
     assert mean.shape == (3, 4, 3) and np.isfinite(mean).all()
     xo = np.array([0.7, 0.2, 0.0])
     assert lucent.bssrdf("Skin1", xo=xo)["S_d"] == lucent.bssrdf("Skin1", xo=(0.7, 0.2, 0.0))["S_d"]
+
+
+@pytest.mark.parametrize("keyword, value, text", [("width", 2**40, "1099511627776"), ("frames", 2.5, "2.5"),
+                                                  ("seed", -1, "-1")])
+def test_render_sizes_are_checked_as_render_values(keyword, value, text):
+    # Applied as the overrides render.<keyword>=<value>: the CLI's --set message, not a TypeError for a large int.
+    cli = run_cli("render", "--set", f"render.{keyword}={text}", "-o", "unwritten.png", check=False)
+    assert cli.returncode == 1
+    with pytest.raises(lucent.Error) as error:
+        lucent.render(SCENE, **{keyword: value})
+    assert "lucent: " + str(error.value) == cli.stderr.strip()
