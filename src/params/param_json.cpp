@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 
 #include "lucent/error.h"
-#include "params/number_range.h"
 
 namespace lucent {
 
@@ -196,7 +195,9 @@ json try_parse_json(std::istream& in, const std::string& source) {
 namespace {
 
 // The bounds the value is checked against, also the default +-1e30 (a float's range with room to spare).
-std::string allowed_range(const ParamDecl& p) { return range_text({p.min, p.max, false, p.unit}); }
+std::string allowed_range(const ParamDecl& p) {
+  return fmt::format("allowed range [{:g}, {:g}]{}", p.min, p.max, p.unit.empty() ? "" : " " + std::string(p.unit));
+}
 
 double read_number(const nlohmann::json& v, const ParamDecl& p, const JsonLocation& where) {
   if (v.is_string() && (v == "nan" || v == "NaN")) fail(where, "NaN is not allowed; " + allowed_range(p));
