@@ -227,6 +227,12 @@ TEST(SceneLoader, ParamSectionsForHelp) {
   std::string text = describe(*method);
   EXPECT_NE(text.find("eps_bias"), std::string::npos) << text;
   EXPECT_NE(text.find("map texels"), std::string::npos) << text;
+  // The help states the bounds checked: a coefficient beyond 1e30 is refused, so it does not read [-inf, inf].
+  const ParamSection* material = find("objects[].material");
+  ASSERT_NE(material, nullptr);
+  text = describe(*material);
+  EXPECT_NE(text.find("[-1e+30, 1e+30] mm^-1"), std::string::npos) << text;
+  EXPECT_EQ(text.find("inf]"), std::string::npos) << text;
 }
 
 // ---- bad inputs: exact messages -------------------------------------------------------------------
