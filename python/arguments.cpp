@@ -12,7 +12,8 @@ namespace {
 std::string text_of(const py::handle& value) { return py::repr(value).cast<std::string>(); }
 
 bool is_bool(const py::handle& value) {
-  return py::isinstance<py::bool_>(value) || py::str(py::type::of(value).attr("__name__")).cast<std::string>() == "bool_";
+  return py::isinstance<py::bool_>(value) ||
+         py::str(py::type::of(value).attr("__name__")).cast<std::string>() == "bool_";  // numpy.bool_
 }
 
 }  // namespace

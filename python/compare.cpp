@@ -20,7 +20,8 @@ void check_same_size(const ImageRGBA32F& a, const ImageRGBA32F& b, const char* a
 
 py::object compare(const py::handle& a_array, const py::handle& b_array, const py::handle& se_array,
                    const py::handle& exposure_stops) {
-  const auto exposure = static_cast<float>(number_argument(exposure_stops, argument_ranges::kExposureStops, "exposure"));
+  const auto exposure =
+      static_cast<float>(number_argument(exposure_stops, argument_ranges::kExposureStops, "exposure"));
   const ImageRGBA32F a = from_array(a_array, "a"), b = from_array(b_array, "b");
   check_same_size(a, b, "a", "b");
   std::optional<ImageRGBA32F> se;

@@ -54,7 +54,8 @@ void bind_reference(py::module_& m) {
       [](const SceneHandle& scene, const std::string& integrator, const py::object& spp, const py::object& seed,
          const py::object& threads, bool jitter, const py::object& max_scatter, const py::object& time,
          py::object width, py::object height) {
-        return render_reference_arrays(scene, {std::move(width), std::move(height), py::none(), py::none(), {}, py::none()},
+        return render_reference_arrays(scene,
+                                       {std::move(width), std::move(height), py::none(), py::none(), {}, py::none()},
                                        settings_of(integrator, spp, seed, threads, jitter, max_scatter, time));
       },
       py::arg("scene"), py::kw_only(), py::arg("integrator") = "volpath", py::arg("spp") = 16, py::arg("seed") = 1,
@@ -63,7 +64,8 @@ void bind_reference(py::module_& m) {
       "Renders the CPU reference as `lucent reference` does: integrator \"volpath\" (the physics) or \"bssrdf\" "
       "(the model), spp samples per pixel, threads (0: all cores), jitter (rays jittered inside pixels; default "
       "pixel centres), max_scatter (volpath: end paths after this many scattering events; 0: no limit), time "
-      "[s] for animated scenes, in [0, 1e9]. The numbers have the ranges of `lucent reference`'s options. Returns (mean, standard_error), each float32 (height, width, 3).");
+      "[s] for animated scenes, in [0, 1e9]. The numbers have the ranges of `lucent reference`'s options. "
+      "Returns (mean, standard_error), each float32 (height, width, 3).");
 }
 
 }  // namespace lucent::python

@@ -32,7 +32,8 @@ SCENE = lucent.load_scene(overrides=["render.width=4", "render.height=3"])  # re
 CASES = [
     (lambda: lucent.bssrdf("Skin1", xo=(2000000, 0, 0)), ["bssrdf", "--material", "Skin1", "--xo", "2000000,0,0"]),
     (lambda: lucent.bssrdf("Skin1", xo=(math.nan, 0, 0)), ["bssrdf", "--material", "Skin1", "--xo", "nan,0,0"]),
-    (lambda: lucent.bssrdf("Skin1", xi=np.array([0.0, -math.inf, 0.0])), ["bssrdf", "--material", "Skin1", "--xi", "0,-inf,0"]),
+    (lambda: lucent.bssrdf("Skin1", xi=np.array([0.0, -math.inf, 0.0])),
+     ["bssrdf", "--material", "Skin1", "--xi", "0,-inf,0"]),
     (lambda: lucent.bssrdf("Skin1", ni=(0, 0, 2000000)), ["bssrdf", "--material", "Skin1", "--ni", "0,0,2000000"]),
     (lambda: lucent.bssrdf("Skin1", wi=(0, math.nan, 1)), ["bssrdf", "--material", "Skin1", "--wi", "0,nan,1"]),
     (lambda: lucent.bssrdf("Skin1", no=(0, 0, -2000000)), ["bssrdf", "--material", "Skin1", "--no", "0,0,-2000000"]),
@@ -40,15 +41,18 @@ CASES = [
     (lambda: lucent.bssrdf({"sigma_a": 2000000, "sigma_s": 1}), ["bssrdf", "--sigma-a", "2000000", "--sigma-s", "1"]),
     (lambda: lucent.bssrdf({"sigma_a": 1, "sigma_s_prime": math.nan}),
      ["bssrdf", "--sigma-a", "1", "--sigma-s-prime", "nan"]),
-    (lambda: lucent.bssrdf({"sigma_a": 1, "sigma_s": 1, "g": 2}), ["bssrdf", "--sigma-a", "1", "--sigma-s", "1", "--g", "2"]),
-    (lambda: lucent.bssrdf_total("Skin1", incidence_deg=90), ["bssrdf", "--material", "Skin1", "--total", "--incidence-deg", "90"]),
+    (lambda: lucent.bssrdf({"sigma_a": 1, "sigma_s": 1, "g": 2}),
+     ["bssrdf", "--sigma-a", "1", "--sigma-s", "1", "--g", "2"]),
+    (lambda: lucent.bssrdf_total("Skin1", incidence_deg=90),
+     ["bssrdf", "--material", "Skin1", "--total", "--incidence-deg", "90"]),
     (lambda: lucent.reference(SCENE, threads=100000), ["reference", "s.json", "--threads", "100000"]),
     (lambda: lucent.reference(SCENE, spp=0), ["reference", "s.json", "--spp", "0"]),
     (lambda: lucent.reference(SCENE, seed=-1), ["reference", "s.json", "--seed", "-1"]),
     (lambda: lucent.reference(SCENE, max_scatter=-1), ["reference", "s.json", "--max-scatter", "-1"]),
     (lambda: lucent.compare(np.zeros((2, 2, 3)), np.zeros((2, 2, 3)), exposure=math.nan),
      ["compare", "a.exr", "b.exr", "--exposure", "nan"]),
-    (lambda: lucent.write_png(str(Path(tempfile.gettempdir()) / "unwritten.png"), np.zeros((2, 2, 3)), exposure=31), ["tonemap", "a.exr", "-o", "b.png", "--exposure", "31"]),
+    (lambda: lucent.write_png(str(Path(tempfile.gettempdir()) / "unwritten.png"), np.zeros((2, 2, 3)), exposure=31),
+     ["tonemap", "a.exr", "-o", "b.png", "--exposure", "31"]),
 ]
 
 
@@ -78,7 +82,8 @@ def test_reference_time_is_finite_and_within_the_animation_range():
 
 def test_integers_are_ints():
     assert python_reason(lambda: lucent.reference(SCENE, spp=2.0)) == ["spp", "expected an int, got 2.0"]
-    assert python_reason(lambda: lucent.reference(SCENE, threads="4")) == ["threads", "expected a whole number, got '4'"]
+    assert python_reason(lambda: lucent.reference(SCENE, threads="4")) == [
+        "threads", "expected a whole number, got '4'"]
     assert python_reason(lambda: lucent.bssrdf("Skin1", eta=True)) == ["eta", "expected a number, got True"]
 
 

@@ -248,7 +248,8 @@ class RadiosityMaps final : public Method {
       if (!object.material) continue;
       glm::vec3 sigma_tr = densest_darkest(*object.material).sigma_tr();  // a textured material's densest texel
       float length_mm = 1.0f / std::max({sigma_tr.x, sigma_tr.y, sigma_tr.z});
-      const std::string warning = pearling_warning(object.name, length_mm, texel_mm, light_map_size_, max_light_map_size);
+      const std::string warning =
+          pearling_warning(object.name, length_mm, texel_mm, light_map_size_, max_light_map_size);
       if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
     }
   }
