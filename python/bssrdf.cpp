@@ -4,32 +4,27 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include "arguments.h"
 #include "bindings.h"
 #include "lucent/error.h"
 #include "lucent/material.h"
 #include "materials/bssrdf_evaluation.h"
 #include "materials/model_total_reflectance.h"
+#include "params/argument_ranges.h"
 
 namespace lucent::python {
 namespace {
 
-// A number or three numbers (R, G, B).
-glm::vec3 rgb(const py::handle& value, const std::string& name) {
-  std::vector<float> v;
-  try {
-    v = py::isinstance<py::sequence>(value) || py::hasattr(value, "tolist")
-            ? py::cast<std::vector<float>>(py::hasattr(value, "tolist") ? value.attr("tolist")() : value)
-            : std::vector<float>{py::cast<float>(value)};
-  } catch (const py::cast_error&) {
-    throw Error(fmt::format("{}: expected a number or 3 numbers", name));
-  }
-  if (v.size() == 1) return glm::vec3(v[0]);
+// A number or three numbers (R, G, B; X, Y, Z), each in the range of the CLI's option of that name.
+glm::vec3 rgb(const py::handle& value, const NumberRange& range, const std::string& name) {
+  const std::vector<double> v = numbers_argument(value, range, name);
+  if (v.size() == 1) return glm::vec3(static_cast<float>(v[0]));
   if (v.size() != 3) throw Error(fmt::format("{}: expected a number or 3 numbers, got {}", name, v.size()));
-  return {v[0], v[1], v[2]};
+  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
 }
 
 glm::vec3 unit(const py::handle& value, const std::string& name) {
-  glm::vec3 u = rgb(value, name);
+  glm::vec3 u = rgb(value, argument_ranges::kDirection, name);
   if (!(glm::length(u) > 0.0f)) throw Error(fmt::format("{}: must be a non-zero vector", name));
   return glm::normalize(u);
 }
@@ -44,14 +39,16 @@ Material coefficients(const py::dict& d) {
   if (!d.contains("sigma_a") || d.contains("sigma_s") == d.contains("sigma_s_prime"))
     throw Error("material: give a preset name, or sigma_a with one of sigma_s (and g) or sigma_s_prime");
   Material m;
-  m.sigma_a = rgb(d["sigma_a"], "sigma_a");
-  m.sigma_s = d.contains("sigma_s") ? rgb(d["sigma_s"], "sigma_s") : rgb(d["sigma_s_prime"], "sigma_s_prime");
-  if (d.contains("g")) m.g = rgb(d["g"], "g");
-  if (d.contains("eta")) m.eta = py::cast<float>(d["eta"]);
+  using namespace argument_ranges;
+  m.sigma_a = rgb(d["sigma_a"], kCoefficient, "sigma_a");
+  m.sigma_s = d.contains("sigma_s") ? rgb(d["sigma_s"], kCoefficient, "sigma_s")
+                                    : rgb(d["sigma_s_prime"], kCoefficient, "sigma_s_prime");
+  if (d.contains("g")) m.g = rgb(d["g"], kAnisotropy, "g");
+  if (d.contains("eta")) m.eta = static_cast<float>(number_argument(d["eta"], kEta, "eta"));
   return m;
 }
 
-Material material_of(const py::handle& material, const std::string& model, std::optional<float> eta) {
+Material material_of(const py::handle& material, const std::string& model, const py::handle& eta) {
   Material m;
   if (py::isinstance<py::str>(material)) {
     const std::string name = py::str(material);
@@ -63,7 +60,7 @@ Material material_of(const py::handle& material, const std::string& model, std::
   } else {
     throw Error("material: give a preset name or a dict of coefficients");
   }
-  if (eta) m.eta = *eta;
+  if (!eta.is_none()) m.eta = static_cast<float>(number_argument(eta, argument_ranges::kEta, "eta"));
   const std::optional<BssrdfModel> parsed = parse_bssrdf_model(model);
   if (!parsed)
     throw Error(fmt::format(
@@ -73,22 +70,22 @@ Material material_of(const py::handle& material, const std::string& model, std::
   return m;
 }
 
-py::dict bssrdf(const py::handle& material, const std::string& model, std::optional<float> eta,
+py::dict bssrdf(const py::handle& material, const std::string& model, const py::handle& eta,
                 const py::handle& xi, const py::handle& ni, const py::handle& wi, const py::handle& xo,
                 const py::handle& no) {
   const Material m = material_of(material, model, eta);
-  const BssrdfEvaluation e = evaluate_bssrdf(m, rgb(xi, "xi"), unit(wi, "wi"), unit(ni, "ni"), rgb(xo, "xo"),
-                                             unit(no, "no"));
+  using argument_ranges::kPointMm;
+  const BssrdfEvaluation e = evaluate_bssrdf(m, rgb(xi, kPointMm, "xi"), unit(wi, "wi"), unit(ni, "ni"),
+                                             rgb(xo, kPointMm, "xo"), unit(no, "no"));
   py::dict out;
   out["model"] = std::string(to_string(m.model)), out["material"] = m.name, out["eta"] = m.eta;
   out["S_d"] = py::make_tuple(e.S_d.x, e.S_d.y, e.S_d.z), out["T12"] = e.T12, out["units"] = "mm^-2";
   return out;
 }
 
-py::dict bssrdf_total(const py::handle& material, const std::string& model, std::optional<float> eta,
-                      double incidence_deg) {
-  if (!(incidence_deg >= 0.0 && incidence_deg <= 89.9))
-    throw Error(fmt::format("incidence_deg: {} is out of range; allowed range [0, 89.9] degrees", incidence_deg));
+py::dict bssrdf_total(const py::handle& material, const std::string& model, const py::handle& eta,
+                      const py::handle& incidence) {
+  const double incidence_deg = number_argument(incidence, argument_ranges::kIncidenceDeg, "incidence_deg");
   const Material m = material_of(material, model, eta);
   const ModelTotalReflectance t = model_total_reflectance(m, incidence_deg);
   py::dict out;

@@ -3,9 +3,11 @@
 
 #include <fmt/format.h>
 
+#include "arguments.h"
 #include "bindings.h"
 #include "image/image_metrics.h"
 #include "lucent/error.h"
+#include "params/argument_ranges.h"
 
 namespace lucent::python {
 
@@ -48,10 +50,11 @@ void bind_images(py::module_& m) {
       py::arg("path"), py::arg("image"), "Writes (height, width, 3 or 4) linear values as an RGBA float EXR.");
   m.def(
       "write_png",
-      [](const std::string& path, const py::handle& image, float exposure) {
-        write_png(path, to_display(from_array(image, "image"), exposure));
+      [](const std::string& path, const py::handle& image, const py::handle& exposure) {
+        const double stops = number_argument(exposure, argument_ranges::kExposureStops, "exposure");
+        write_png(path, to_display(from_array(image, "image"), static_cast<float>(stops)));
       },
-      py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
+      py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0,
       "Tone-maps linear radiance (exposure in stops, ACES, sRGB) as lucent render does and writes a PNG.");
 }
 

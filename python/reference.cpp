@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include "arguments.h"
 #include "bindings.h"
 #include "image_arrays.h"
 #include "lucent/error.h"
+#include "params/argument_ranges.h"
 #include "reference/reference_renderer.h"
 #include "render_overrides.h"
 #include "scene_handle.h"
@@ -13,20 +15,23 @@
 namespace lucent::python {
 namespace {
 
-reference::ReferenceSettings settings_of(const std::string& integrator, int spp, unsigned long long seed,
-                                         int threads, bool jitter, int max_scatter, double time_seconds) {
+// The keyword arguments in the ranges of `lucent reference`'s options (argument_ranges.h).
+reference::ReferenceSettings settings_of(const std::string& integrator, const py::handle& spp, const py::handle& seed,
+                                         const py::handle& threads, bool jitter, const py::handle& max_scatter,
+                                         const py::handle& time) {
+  using namespace argument_ranges;
   if (integrator != "volpath" && integrator != "bssrdf")
     throw Error(fmt::format("integrator: '{}' is not one of volpath, bssrdf", integrator));
-  if (spp < 1) throw Error(fmt::format("spp: {} is out of range; allowed range [1, 1000000000]", spp));
-  if (threads < 0) throw Error(fmt::format("threads: {} is out of range; allowed range [0, 4096]", threads));
-  if (max_scatter < 0)
-    throw Error(fmt::format("max_scatter: {} is out of range; allowed range [0, 1000000000]", max_scatter));
   reference::ReferenceSettings s;
   s.integrator = integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
-  if (max_scatter > 0 && s.integrator != reference::Integrator::Volpath)
+  s.samples_per_pixel = static_cast<int>(whole_argument(spp, kSamplesPerPixel, "spp"));
+  s.seed = whole_argument(seed, kReferenceSeed, "seed");
+  s.threads = static_cast<int>(whole_argument(threads, kThreads, "threads"));
+  s.jitter = jitter;
+  s.max_scatter = static_cast<int>(whole_argument(max_scatter, kMaxScatter, "max_scatter"));
+  if (s.max_scatter > 0 && s.integrator != reference::Integrator::Volpath)
     throw Error("max_scatter: only the volpath integrator counts scattering events");
-  s.samples_per_pixel = spp, s.seed = seed, s.threads = threads, s.jitter = jitter;
-  s.max_scatter = max_scatter, s.time_seconds = time_seconds;
+  s.time_seconds = number_argument(time, kTimeSeconds, "time");
   return s;
 }
 
@@ -46,9 +51,11 @@ py::tuple render_reference_arrays(const SceneHandle& handle, const RenderArgumen
 void bind_reference(py::module_& m) {
   m.def(
       "reference",
-      [](const SceneHandle& scene, const std::string& integrator, int spp, unsigned long long seed, int threads,
-         bool jitter, int max_scatter, double time, std::optional<int> width, std::optional<int> height) {
-        return render_reference_arrays(scene, {width, height, {}, {}, {}, py::none()},
+      [](const SceneHandle& scene, const std::string& integrator, const py::object& spp, const py::object& seed,
+         const py::object& threads, bool jitter, const py::object& max_scatter, const py::object& time,
+         py::object width, py::object height) {
+        return render_reference_arrays(scene,
+                                       {std::move(width), std::move(height), py::none(), py::none(), {}, py::none()},
                                        settings_of(integrator, spp, seed, threads, jitter, max_scatter, time));
       },
       py::arg("scene"), py::kw_only(), py::arg("integrator") = "volpath", py::arg("spp") = 16, py::arg("seed") = 1,
@@ -57,7 +64,8 @@ void bind_reference(py::module_& m) {
       "Renders the CPU reference as `lucent reference` does: integrator \"volpath\" (the physics) or \"bssrdf\" "
       "(the model), spp samples per pixel, threads (0: all cores), jitter (rays jittered inside pixels; default "
       "pixel centres), max_scatter (volpath: end paths after this many scattering events; 0: no limit), time "
-      "[s] for animated scenes. Returns (mean, standard_error), each float32 (height, width, 3).");
+      "[s] for animated scenes, in [0, 1e9]. The numbers have the ranges of `lucent reference`'s options. "
+      "Returns (mean, standard_error), each float32 (height, width, 3).");
 }
 
 }  // namespace lucent::python

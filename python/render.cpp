@@ -1,5 +1,7 @@
 // render.cpp: lucent.render: a real-time render with any registered method, as `lucent render` does, returned as
-// linear radiance. One headless OpenGL context serves every render of the process.
+// linear radiance. One headless OpenGL context serves every render of the process, from any thread.
+#include <mutex>
+
 #include <pybind11/stl.h>
 
 #include "bindings.h"
@@ -17,9 +19,23 @@ namespace {
 // driver's own atexit handlers may have run) is not safe, and the process ends right after.
 GLContext& headless_context() {
   static GLContext* context = create_headless_context().release();
-  context->make_current();
   return *context;
 }
+
+// Renders from any Python thread, one at a time: a GL context is current on one thread at a time, so each render
+// holds this lock, makes the context current on its thread and lets go of it when done.
+std::mutex render_mutex;
+
+class CurrentContext {
+ public:
+  CurrentContext() : context_(headless_context()) { context_.make_current(); }
+  ~CurrentContext() { context_.release_current(); }
+  CurrentContext(const CurrentContext&) = delete;
+  CurrentContext& operator=(const CurrentContext&) = delete;
+
+ private:
+  GLContext& context_;
+};
 
 struct RenderResult {
   ImageRGBA32F radiance;
@@ -28,7 +44,8 @@ struct RenderResult {
 };
 
 RenderResult render_frames(const Scene& scene) {
-  headless_context();
+  const std::lock_guard<std::mutex> lock(render_mutex);
+  const CurrentContext current;  // released after the renderer and framebuffer below are gone
   Renderer renderer(scene);
   const int width = scene.render.width, height = scene.render.height;
   OffscreenFramebuffer target(width, height);
@@ -70,9 +87,11 @@ py::object render(const SceneHandle& handle, const RenderArguments& arguments, b
 void bind_render(py::module_& m) {
   m.def(
       "render",
-      [](const SceneHandle& scene, std::optional<int> width, std::optional<int> height, std::optional<int> frames,
-         std::optional<std::string> method, py::object params, std::optional<long long> seed, bool timings) {
-        return render(scene, {width, height, frames, seed, std::move(method), std::move(params)}, timings);
+      [](const SceneHandle& scene, py::object width, py::object height, py::object frames,
+         std::optional<std::string> method, py::object params, py::object seed, bool timings) {
+        return render(scene, {std::move(width), std::move(height), std::move(frames), std::move(seed),
+                              std::move(method), std::move(params)},
+                      timings);
       },
       py::arg("scene"), py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
       py::arg("frames") = py::none(), py::arg("method") = py::none(), py::arg("params") = py::none(),

@@ -9,10 +9,10 @@ namespace lucent::python {
 
 std::vector<std::string> render_overrides(const RenderArguments& a) {
   std::vector<std::string> overrides;
-  if (a.width) overrides.push_back(fmt::format("render.width={}", *a.width));
-  if (a.height) overrides.push_back(fmt::format("render.height={}", *a.height));
-  if (a.frames) overrides.push_back(fmt::format("render.frames={}", *a.frames));
-  if (a.seed) overrides.push_back(fmt::format("render.seed={}", *a.seed));
+  const std::pair<const char*, const pybind11::object&> render_values[] = {
+      {"width", a.width}, {"height", a.height}, {"frames", a.frames}, {"seed", a.seed}};
+  for (const auto& [key, value] : render_values)
+    if (value && !value.is_none()) overrides.push_back(fmt::format("render.{}={}", key, to_json_text(value)));
   py::dict params = a.params.is_none() ? py::dict() : py::dict(a.params);
   if (a.method) {
     py::dict method;

@@ -9,9 +9,9 @@
 
 namespace lucent::python {
 
+// width, height, frames and seed: None or a Python value, written as JSON and checked as render.* values.
 struct RenderArguments {
-  std::optional<int> width, height, frames;
-  std::optional<long long> seed;
+  pybind11::object width, height, frames, seed;
   std::optional<std::string> method;  // a registered method: replaces the scene's method and its parameters
   pybind11::object params;            // dict of method parameters (None: none)
 };

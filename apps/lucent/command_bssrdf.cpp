@@ -15,6 +15,7 @@
 #include "lucent/scene.h"
 #include "materials/bssrdf_evaluation.h"
 #include "materials/model_total_reflectance.h"
+#include "params/argument_ranges.h"
 
 namespace lucent::cli {
 namespace {
@@ -122,20 +123,20 @@ void add_bssrdf_command(CLI::App& app) {
   cmd->add_option("--model", options->model, doc("model") + ": directional | standard | photon-beam | better-dipole | tabulated")
       ->capture_default_str();
   cmd->add_option("--material", options->material, doc("preset"));
-  cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm^-1"));
-  cmd->add_option("--sigma-s", options->sigma_s, doc("sigma_s") + ", R,G,B")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm^-1"));
-  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm^-1"));
-  cmd->add_option("--g", options->g, doc("g"))->delimiter(',')->check(number_in(-1, 1, false, ""));
-  cmd->add_option("--eta", options->eta, doc("eta"))->check(number_in(1, 3));
-  cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm"))->capture_default_str();
-  cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
-  cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
-  cmd->add_option("--xo", options->xo, "exit point X,Y,Z [mm]")->delimiter(',')->check(number_in(-1e6, 1e6, false, "mm"))->capture_default_str();
-  cmd->add_option("--no", options->no, "exit normal")->delimiter(',')->check(number_in(-1e6, 1e6, false, ""))->capture_default_str();
+  cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',')->check(number_in(argument_ranges::kCoefficient));
+  cmd->add_option("--sigma-s", options->sigma_s, doc("sigma_s") + ", R,G,B")->delimiter(',')->check(number_in(argument_ranges::kCoefficient));
+  cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',')->check(number_in(argument_ranges::kCoefficient));
+  cmd->add_option("--g", options->g, doc("g"))->delimiter(',')->check(number_in(argument_ranges::kAnisotropy));
+  cmd->add_option("--eta", options->eta, doc("eta"))->check(number_in(argument_ranges::kEta));
+  cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->check(number_in(argument_ranges::kPointMm))->capture_default_str();
+  cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->check(number_in(argument_ranges::kDirection))->capture_default_str();
+  cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->check(number_in(argument_ranges::kDirection))->capture_default_str();
+  cmd->add_option("--xo", options->xo, "exit point X,Y,Z [mm]")->delimiter(',')->check(number_in(argument_ranges::kPointMm))->capture_default_str();
+  cmd->add_option("--no", options->no, "exit normal")->delimiter(',')->check(number_in(argument_ranges::kDirection))->capture_default_str();
   cmd->add_flag("--total", options->total,
                 "print the model's flat half-space total diffuse reflectance per refracted power instead of S_d");
   cmd->add_option("--incidence-deg", options->incidence_deg, "--total: angle of the incident light to the normal [degrees]")
-      ->check(number_in(0, 89.9, false, "degrees"))
+      ->check(number_in(argument_ranges::kIncidenceDeg))
       ->needs("--total");
   cmd->add_flag("--json", options->json, "print JSON");
   cmd->callback([options] { run(*options); });

@@ -11,6 +11,7 @@
 #include "image/image_metrics.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
+#include "params/argument_ranges.h"
 #include "reference/reference_files.h"
 
 namespace lucent::cli {
@@ -66,7 +67,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--diff-scale", o->scale, "radiance difference shown as white (default 4 x RMSE)")
       ->check(number_in(1e-30, 1e30));
   cmd->add_option("--exposure", o->exposure, "exposure [stops] for the tone-mapped comparison")
-      ->check(number_in(-30, 30, false, "stops"))
+      ->check(number_in(argument_ranges::kExposureStops))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON");
   cmd->callback([o] { run(*o); });
@@ -80,7 +81,7 @@ void add_tonemap_command(CLI::App& app) {
   cmd->add_option("input", *input, "linear EXR")->required();
   cmd->add_option("-o,--output", *output, "PNG")->required();
   cmd->add_option("--exposure", *exposure, "exposure [stops]")
-      ->check(number_in(-30, 30, false, "stops"))
+      ->check(number_in(argument_ranges::kExposureStops))
       ->capture_default_str();
   cmd->callback([input, output, exposure] {
     check_outputs({{*output, "--output", {".png"}}}, {*input});

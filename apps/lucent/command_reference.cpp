@@ -12,6 +12,7 @@
 #include "lucent/error.h"
 #include "lucent/output_file.h"
 #include "lucent/scene.h"
+#include "params/argument_ranges.h"
 #include "progress_bar.h"
 #include "reference/reference_files.h"
 #include "reference/reference_merge.h"
@@ -160,18 +161,18 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("scene", o->scene_path, "scene file (JSON); or `merge`, see lucent reference merge --help");
   cmd->add_option("--integrator", o->integrator, "volpath (the physics) | bssrdf (the model)")->capture_default_str();
   cmd->add_option("--spp", o->settings.samples_per_pixel, "samples per pixel to add")
-      ->check(whole_number_in(1, 1e9))
+      ->check(number_in(argument_ranges::kSamplesPerPixel))
       ->capture_default_str();
   cmd->add_option("-o,--output", o->output, "mean radiance EXR; also writes <stem>.stderr.exr and <stem>.meta.json")
       ->capture_default_str();
   cmd->add_option("--threads", o->settings.threads, "threads (0 = all cores)")
-      ->check(whole_number_in(0, 4096))
+      ->check(number_in(argument_ranges::kThreads))
       ->capture_default_str();
-  cmd->add_option("--seed", o->settings.seed, "random seed (batches to be merged need distinct seeds)")->check(whole_number_in(0, 1.8e19))->capture_default_str();
+  cmd->add_option("--seed", o->settings.seed, "random seed (batches to be merged need distinct seeds)")->check(number_in(argument_ranges::kReferenceSeed))->capture_default_str();
   cmd->add_flag("--jitter", o->settings.jitter, "jitter rays inside pixels (default: pixel centres, as rasterized)");
   cmd->add_option("--max-scatter", o->settings.max_scatter,
                   "volpath: end paths after this many scattering events (1: single scattering; 0: no limit)")
-      ->check(whole_number_in(0, 1e9))
+      ->check(number_in(argument_ranges::kMaxScatter))
       ->capture_default_str();
   cmd->add_flag("--resume", o->resume, "add samples to the existing output (same scene and seed)");
   cmd->add_option("--set", o->sets, "override a scene value, e.g. --set render.width=160");

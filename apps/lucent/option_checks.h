@@ -11,20 +11,18 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "params/number_range.h"
+
 namespace lucent::cli {
 
-// A number in [lo, hi]; `whole`: also an integer (no fraction, no exponent beyond the range).
-// A bound as people write it: 4294967295, not 4.29497e+09.
-inline std::string bound_text(double x) {
-  return std::abs(x) < 1e16 && x == std::floor(x) ? fmt::format("{:.0f}", x) : fmt::format("{:g}", x);
-}
-
-inline CLI::Validator number_in(double lo, double hi, bool whole = false, std::string unit = "") {
-  std::string range = lo <= -1e30 && hi >= 1e30
-                          ? std::string("any finite number")
-                          : fmt::format("allowed range [{}, {}]{}", bound_text(lo), bound_text(hi), unit.empty() ? "" : " " + unit);
+// A number in `range` (params/number_range.h, the check the Python module makes too); integers as digits.
+inline CLI::Validator number_in(const NumberRange& range) {
+  const std::string unit(range.unit);
+  const double lo = range.lo, hi = range.hi;
+  const bool whole = range.whole;
+  const std::string description = range_text(range);
   return CLI::Validator(
-      [lo, hi, whole, range](std::string& text) -> std::string {
+      [lo, hi, whole, unit](std::string& text) -> std::string {
         const char* begin = text.c_str();
         char* end = nullptr;
         errno = 0;
@@ -33,21 +31,27 @@ inline CLI::Validator number_in(double lo, double hi, bool whole = false, std::s
         if (end == begin || *end != '\0' || text.find_first_of("xX") != std::string::npos)
           return fmt::format("'{}' is not a number", text);
         if (errno == ERANGE && std::abs(x) < 1.0) x = 0.0;  // underflow: as good as zero
-        if (!std::isfinite(x) || errno == ERANGE) return fmt::format("{} is not a finite number; {}", text, range);
-        if (x < lo || x > hi) return fmt::format("{} is out of range; {}", text, range);
+        if (errno == ERANGE) x = std::copysign(HUGE_VAL, x);  // overflow: not finite
+        std::string problem = number_problem(x, {lo, hi, false, unit}, text);
+        if (!problem.empty()) return problem;
         // Integers as digits: the option's integer conversion reads no fraction or exponent ("1e3", "2.0").
         if (whole && (x != std::floor(x) || text.find_first_of(".eE") != std::string::npos))
           return fmt::format("{} is not a whole number (write digits only)", text);
         return {};
       },
-      whole ? "INT in " + range : "NUMBER in " + range);
+      (whole ? "INT in " : "NUMBER in ") + description);
+}
+
+// A number in [lo, hi]; `whole`: also an integer.
+inline CLI::Validator number_in(double lo, double hi, bool whole = false, std::string unit = "") {
+  return number_in(NumberRange{lo, hi, whole, unit});
 }
 
 inline CLI::Validator whole_number_in(double lo, double hi, std::string unit = "") {
   return number_in(lo, hi, true, std::move(unit));
 }
 
-// Any finite number (coordinates, exposures).
+// Any number a float holds with room to spare (coordinates, exposures).
 inline CLI::Validator finite_number() { return number_in(-1e30, 1e30); }
 
 }  // namespace lucent::cli

@@ -11,7 +11,11 @@ namespace lucent {
 class GLContext {
  public:
   virtual ~GLContext() = default;
+  // Makes the context current on the calling thread. A context is current on one thread at a time: another
+  // thread takes it after release_current() on the thread that has it.
   virtual void make_current() = 0;
+  // The calling thread lets go of the context (no context current on it afterwards).
+  virtual void release_current() = 0;
   // "NVIDIA H100 ..., 4.5.0 NVIDIA 550" / "llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6"
   virtual std::string description() const = 0;
 };

@@ -95,8 +95,8 @@ MapImage read_material_map(const std::string& file, bool colour, const std::stri
     throw Error(fmt::format("{}: {}", where, e.what()));
   }
   if (image.width > kMaxMaterialMapSide || image.height > kMaxMaterialMapSide)
-    throw Error(fmt::format("{}: {}: map is {}x{}, more than the {} x {} texels a material map may have", where, file,
-                            image.width, image.height, kMaxMaterialMapSide, kMaxMaterialMapSide));
+    throw Error(fmt::format("{}: {}: map is {}x{}; a material map may have at most {} texels on each side", where,
+                            file, image.width, image.height, kMaxMaterialMapSide));
   out.size = {image.width, image.height};
   out.texels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
   for (int y = 0; y < image.height; ++y) {
@@ -180,7 +180,7 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
           const int w = std::max(1, mfp_scale->size.x);
           const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
           throw Error(fmt::format("{}/mfp_map: {}: texel ({}, {}) band {} scales the mean free path {} mm to {} mm; "
-                                  "allowed (0, inf): a map value of 0 is no mean free path",
+                                  "allowed range (1e-30, 1e+30) mm: a map value of 0 is no mean free path",
                                   where, mfp_scale->file, x, mfp_scale->size.y - 1 - y, c, maps->base_mfp_mm[c],
                                   mfp[c]));
         }

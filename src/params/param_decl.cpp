@@ -52,9 +52,7 @@ std::string to_string(const ParamValue& value) {
 static std::string range_text(const ParamDecl& p) {
   if (p.type == ParamType::Enum) return fmt::format("{{{}}}", p.choices);
   if (p.type == ParamType::Bool || p.type == ParamType::String) return "";
-  std::string lo = p.min <= -1e29 ? "-inf" : fmt::format("{:g}", p.min);
-  std::string hi = p.max >= 1e29 ? "inf" : fmt::format("{:g}", p.max);
-  return fmt::format("[{}, {}]", lo, hi);
+  return fmt::format("[{:g}, {:g}]", p.min, p.max);  // the bounds checked, also the default +-1e30
 }
 
 std::string describe(const ParamSection& section, int indent) {

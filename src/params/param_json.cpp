@@ -194,12 +194,9 @@ json try_parse_json(std::istream& in, const std::string& source) {
 
 namespace {
 
+// The bounds the value is checked against, also the default +-1e30 (a float's range with room to spare).
 std::string allowed_range(const ParamDecl& p) {
-  if (p.min <= -1e29 && p.max >= 1e29) return "any finite number";
-  std::string lo = p.min <= -1e29 ? "-inf" : fmt::format("{:g}", p.min);
-  std::string hi = p.max >= 1e29 ? "inf" : fmt::format("{:g}", p.max);
-  std::string unit = p.unit.empty() ? "" : " " + std::string(p.unit);
-  return fmt::format("allowed range [{}, {}]{}", lo, hi, unit);
+  return fmt::format("allowed range [{:g}, {:g}]{}", p.min, p.max, p.unit.empty() ? "" : " " + std::string(p.unit));
 }
 
 double read_number(const nlohmann::json& v, const ParamDecl& p, const JsonLocation& where) {

@@ -68,9 +68,15 @@ class EglContext final : public GLContext {
   }
 
   void make_current() override {
-    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      throw Error("no OpenGL context: eglMakeCurrent without a surface failed");
+    if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) return;
+    const EGLint error = eglGetError();
+    if (error == EGL_BAD_ACCESS)  // EGL: a context is current on one thread at a time
+      throw Error("no OpenGL context: the headless context is current on another thread (release_current() there "
+                  "first)");
+    throw Error(fmt::format("no OpenGL context: eglMakeCurrent without a surface failed (EGL error 0x{:x})", error));
   }
+
+  void release_current() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
 
   std::string description() const override { return caps_.renderer + ", OpenGL " + caps_.version; }
 

@@ -35,6 +35,7 @@ class GlfwContext final : public WindowContext {
     glfwTerminate();
   }
   void make_current() override { glfwMakeContextCurrent(window_); }
+  void release_current() override { glfwMakeContextCurrent(nullptr); }
   std::string description() const override { return caps_.renderer + ", OpenGL " + caps_.version; }
   GLFWwindow* window() override { return window_; }
   void swap_buffers() override { glfwSwapBuffers(window_); }

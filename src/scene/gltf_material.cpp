@@ -113,8 +113,11 @@ std::set<std::int64_t> used_materials(const json& doc, const JsonLocation& root)
 void read_volume(const json& ext, const JsonLocation& where, GltfMaterial& m) {
   m.has_volume = true;
   m.thickness_factor = static_cast<float>(read_number(ext, "thicknessFactor", 0.0, 0.0, 1e30, where));
-  m.attenuation_distance_m = read_number(ext, "attenuationDistance", HUGE_VAL, 0.0, HUGE_VAL, where);
-  if (m.attenuation_distance_m == 0.0) fail(where.child("attenuationDistance"), "0 is out of range; allowed range (0, inf) m");
+  // Any positive distance: one too long for a float's mean free path is refused as mfp_mm.
+  m.attenuation_distance_m = read_number(ext, "attenuationDistance", HUGE_VAL, -HUGE_VAL, HUGE_VAL, where);
+  if (!(m.attenuation_distance_m > 0.0))
+    fail(where.child("attenuationDistance"),
+         fmt::format("{:g} is out of range; allowed range (0, inf) m", m.attenuation_distance_m));
   m.has_attenuation_color = ext.contains("attenuationColor");
   m.attenuation_color = read_colour(ext, "attenuationColor", 3, glm::vec3(1.0f), where);
 }

@@ -665,6 +665,10 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  // A directory opens as an empty stream on Linux: say what it is rather than report empty JSON.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error(fmt::format("{}: is a directory; give a scene file (JSON)", path));
   std::ifstream file(path);
   if (!file) throw Error(fmt::format("{}: cannot open scene file", path));
   std::stringstream text;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -184,6 +185,20 @@ TEST(GltfMaterial, BadFilesGiveOneLine) {
   EXPECT_EQ(with_material(p, volume),
             prefix + ": /materials/0/extensions/KHR_materials_volume/attenuationD...: missing; a translucent "
                      "material needs a mean free path (or extras.lucent.mfp_mm)");
+  // attenuationDistance: any positive distance, 0 and negative ones refused under the same stated range.
+  for (const double d : {0.0, -1.0}) {
+    volume = kArtistMaterial;
+    volume["extensions"]["KHR_materials_volume"]["attenuationDistance"] = d;
+    EXPECT_EQ(with_material(p, volume),
+              prefix + fmt::format(": /materials/0/extensions/KHR_materials_volume/attenuationD...: {:g} is out of "
+                                   "range; allowed range (0, inf) m",
+                                   d));
+  }
+  // Too long for a float: its mean free path 1e28 m x 1000 mm/m / -ln(0.9) = 9.49122e31 mm is refused.
+  volume = kArtistMaterial;
+  volume["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 1e28;
+  EXPECT_EQ(with_material(p, volume),
+            prefix + ": /materials/0/mfp_mm/0: 9.49122e+31 is out of range; allowed range [-1e+30, 1e+30] mm");
   json ior = kArtistMaterial;
   ior["extensions"]["KHR_materials_ior"]["ior"] = 5;
   EXPECT_EQ(with_material(p, ior),

@@ -154,12 +154,18 @@ TEST(MaterialMaps, BadMapsGetOneLine) {
   const float skim_mfp = 1.0f / material_from_preset(*find_material_preset("Skimmilk")).sigma_t()[1];
   EXPECT_EQ(load(fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", zero.path())),
             fmt::format("{}/mfp_map: {}: texel (1, 0) band 1 scales the mean free path {} mm to 0 mm; allowed "
-                        "(0, inf): a map value of 0 is no mean free path",
+                        "range (1e-30, 1e+30) mm: a map value of 0 is no mean free path",
                         where, zero.path(), skim_mfp));
+  // A finite mean free path beyond the bound: the message states the bound, not "inf".
+  TempFile huge(".huge.exr");
+  write_exr(huge.path(), ImageRGBA32F{1, 1, {1, 1.2e30f / skim_mfp, 1, 1}});
+  const std::string huge_message = load(fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", huge.path()));
+  EXPECT_NE(huge_message.find("band 1 scales the mean free path"), std::string::npos) << huge_message;
+  EXPECT_NE(huge_message.find("mm; allowed range (1e-30, 1e+30) mm"), std::string::npos) << huge_message;
   TempFile wide(".wide.exr");
   write_exr(wide.path(), ImageRGBA32F{4097, 1, std::vector<float>(4 * 4097, 1.0f)});
   EXPECT_EQ(load(fmt::format(R"({{ "preset": "Skimmilk", "mfp_map": "{}" }})", wide.path())),
-            fmt::format("{}/mfp_map: {}: map is 4097x1, more than the 4096 x 4096 texels a material map may have",
+            fmt::format("{}/mfp_map: {}: map is 4097x1; a material map may have at most 4096 texels on each side",
                         where, wide.path()));
   TempFile negative(".negative.exr");
   write_exr(negative.path(), ImageRGBA32F{1, 1, {1, -1, 1, 1}});

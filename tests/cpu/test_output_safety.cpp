@@ -265,6 +265,9 @@ TEST(OutputSafetyCli, CommandLineNumbersAreCheckedLikeSceneValues) {
        "not both\n"},
       {"reference s.json --spp 0", "lucent: --spp: 0 is out of range; allowed range [1, 1000000000]" + help},
       {"render --seed -1", "lucent: --seed: -1 is out of range; allowed range [0, 4294967295]" + help},
+      {"materials invert --albedo 0.5 --mfp 1.4427e303",
+       "lucent: --mfp: 1.4427e303 is out of range; allowed range [-1e+30, 1e+30]" + help},
+      {"materials invert --albedo nan --mfp 1", "lucent: --albedo: nan is not a finite number; allowed range [-1e+30, 1e+30]" + help},
   };
   for (const auto& [arguments, message] : cases) {
     auto r = run_cli(arguments);

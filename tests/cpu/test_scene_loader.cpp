@@ -257,6 +257,12 @@ TEST(SceneLoader, ParamSectionsForHelp) {
   std::string text = describe(*method);
   EXPECT_NE(text.find("eps_bias"), std::string::npos) << text;
   EXPECT_NE(text.find("map texels"), std::string::npos) << text;
+  // The help states the bounds checked: a coefficient beyond 1e30 is refused, so it does not read [-inf, inf].
+  const ParamSection* material = find("objects[].material");
+  ASSERT_NE(material, nullptr);
+  text = describe(*material);
+  EXPECT_NE(text.find("[-1e+30, 1e+30] mm^-1"), std::string::npos) << text;
+  EXPECT_EQ(text.find("inf]"), std::string::npos) << text;
 }
 
 // ---- bad inputs: exact messages -------------------------------------------------------------------
@@ -302,6 +308,12 @@ TEST(SceneLoader, NanEta) {
 TEST(SceneLoader, EtaOutOfRange) {
   EXPECT_EQ(material_error({{"preset", "Marble"}, {"eta", 0.5}}),
             "test.json: /objects/0/material/eta: 0.5 is out of range; allowed range [1, 3]");
+}
+
+// A value the range check refuses is never called "any finite number": the message states the bounds checked.
+TEST(SceneLoader, HugeCoefficientStatesTheBoundsChecked) {
+  EXPECT_EQ(material_error({{"sigma_a", {1.4427e303, 0.1, 0.1}}, {"sigma_s", {1, 1, 1}}}),
+            "test.json: /objects/0/material/sigma_a/0: 1.4427e+303 is out of range; allowed range [-1e+30, 1e+30] mm^-1");
 }
 
 TEST(SceneLoader, KZero) {
@@ -475,6 +487,18 @@ TEST(SceneLoader, LoadMissingFile) {
   } catch (const Error& error) {
     EXPECT_EQ(std::string(error.what()), "/nonexistent/lucent/scene.json: cannot open scene file");
   }
+}
+
+TEST(SceneLoader, LoadDirectoryIsNamedADirectory) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lucent_scene_loader_a_directory.json";
+  std::filesystem::create_directories(dir);
+  try {
+    load_scene(dir.string());
+    ADD_FAILURE() << "load_scene accepted a directory";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()), dir.string() + ": is a directory; give a scene file (JSON)");
+  }
+  std::filesystem::remove(dir);
 }
 
 }  // namespace

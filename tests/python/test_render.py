@@ -1,6 +1,7 @@
 # test_render.py: lucent.render() gives the radiance `lucent render --exr` writes for the same scene, size, frames
 # and method settings (one headless context for all renders of the process).
 import json
+import threading
 
 import numpy as np
 import pytest
@@ -50,3 +51,28 @@ def test_unknown_method_is_the_cli_message(out_dir):
         lucent.render(lucent.load_scene(), method="no-such-method")
     cli = run_cli("render", "--set", 'method={"name": "no-such-method"}', "-o", out_dir / "x.png", check=False)
     assert cli.returncode == 1 and cli.stderr == f"lucent: {error.value}\n"
+
+
+def test_renders_from_other_threads():
+    # A GL context is current on one thread at a time: each render takes the one headless context on its own
+    # thread, one render at a time, and lets go of it afterwards, so that any thread may render next.
+    scene = lucent.load_scene()
+    args = {"method": "per-pixel", "params": PER_PIXEL, "width": 16, "height": 12, "frames": 1}
+    first = lucent.render(scene, **args)
+    results, errors = [None] * 3, []
+
+    def render(i):
+        try:
+            results[i] = lucent.render(scene, **args)
+        except lucent.Error as error:
+            errors.append(str(error))
+
+    threads = [threading.Thread(target=render, args=(i,)) for i in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert errors == []
+    assert first.max() > 0.01
+    for image in results + [lucent.render(scene, **args)]:  # the last one back on the first thread
+        np.testing.assert_array_equal(image, first)  # the same seed and code: the same image

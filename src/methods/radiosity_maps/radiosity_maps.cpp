@@ -13,6 +13,7 @@
 #include "gpu/gl_debug.h"
 #include "gpu/layer_views.h"
 #include "gpu/shader_program.h"
+#include "methods/radiosity_maps/pearling_warning.h"
 #include "methods/radiosity_maps/radiosity_maps_io.h"
 #include "platform/gl_capabilities.h"
 #include "lucent/error.h"
@@ -235,21 +236,21 @@ class RadiosityMaps final : public Method {
     return out;
   }
 
-  // Dal Corso et al., Section 5: when the scattering length 1/sigma_tr is under about two light-map texels the
-  // contributions cluster ("pearling"). Say so once, with the light-map size that would avoid it.
+  // Dal Corso et al., Section 5: contributions cluster ("pearling") when the scattering length is under about two
+  // light-map texels. Say so once per object (pearling_warning.h).
   void warn_about_pearling(const Scene& scene) const {
     if (scene.lights.empty()) return;
     float texel_mm = light_gbuffer_.views().views[0].direction.w / static_cast<float>(light_map_size_) * scene.scale_mm;
+    int max_light_map_size = light_map_size_;
+    for (const ParamDecl& p : find_method("radiosity-maps")->params)
+      if (p.name == "light_map_size") max_light_map_size = static_cast<int>(p.max);
     for (const SceneObject& object : scene.objects) {
       if (!object.material) continue;
       glm::vec3 sigma_tr = densest_darkest(*object.material).sigma_tr();  // a textured material's densest texel
       float length_mm = 1.0f / std::max({sigma_tr.x, sigma_tr.y, sigma_tr.z});
-      if (length_mm >= 2.0f * texel_mm) continue;
-      std::fprintf(stderr,
-                   "lucent: warning: %s: scattering length %.3g mm is under 2 light-map texels (%.3g mm each); "
-                   "expect pearling, or raise method.light_map_size to %d\n",
-                   object.name.c_str(), length_mm, texel_mm,
-                   static_cast<int>(std::ceil(2.0f * texel_mm / length_mm * static_cast<float>(light_map_size_))));
+      const std::string warning =
+          pearling_warning(object.name, length_mm, texel_mm, light_map_size_, max_light_map_size);
+      if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
     }
   }
 
