@@ -22,6 +22,7 @@
 #include "bench_config.h"
 #include "commands.h"
 #include "image/image_metrics.h"
+#include "io/input_file.h"
 #include "lucent/lucent.h"
 #include "params/param_json.h"
 #include "progress_bar.h"
@@ -446,6 +447,7 @@ std::vector<std::size_t> selected_runs(const json& runs, const std::vector<std::
 
 void run(const std::string& config_path, const std::string& output, const std::vector<std::string>& only,
          const std::vector<std::string>& sets) {
+  require_regular_file(config_path);
   std::ifstream file(config_path);
   if (!file) throw Error(fmt::format("{}: cannot open bench configuration", config_path));
   Bench bench;

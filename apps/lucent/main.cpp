@@ -38,8 +38,10 @@ int main(int argc, char** argv) {
   } catch (const lucent::Error& e) {
     std::cerr << "lucent: " << e.what() << "\n";
     return 1;
-  } catch (const std::system_error& e) {  // fmt::print to a closed or full standard output
-    std::cerr << "lucent: <stdout>: cannot write: " << e.code().message() << "\n";
+  } catch (const std::system_error& e) {
+    // fmt::print to a closed or full standard output; any other system error speaks for itself.
+    if (std::ferror(stdout)) std::cerr << "lucent: <stdout>: cannot write: " << e.code().message() << "\n";
+    else std::cerr << "lucent: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "lucent: internal error: " << e.what() << "\n";
