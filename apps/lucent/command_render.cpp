@@ -59,6 +59,9 @@ void warn_if_black(const ImageRGBA32F& image) {
   if (!(peak > 0.0f)) fmt::print(stderr, "lucent: warning: the image is black (no light reaches the camera)\n");
 }
 
+// The PNG of animation frame f: <base>_0000.png, ...
+std::string frame_path(const std::filesystem::path& base, int f) { return fmt::format("{}_{:04d}.png", base.string(), f); }
+
 // `--animate`: frame f shows time f / fps, accumulated over `samples_per_frame` renders, written as
 // <stem>_0000.png, ...; with ffmpeg on the PATH also <stem>.mp4.
 void run_animation(const RenderOptions& o, const Scene& scene, const std::string& png) {
@@ -75,7 +78,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
       renderer.render(scene.camera, {target.id(), width, height});
       for (FrameTimings& t : renderer.finished_frames(false)) timings.push_back(std::move(t));
     }
-    write_png(fmt::format("{}_{:04d}.png", base.string(), f), renderer.read_display());
+    write_png(frame_path(base, f), renderer.read_display());
     progress.update(f + 1);
   }
   progress.finish();
@@ -115,7 +118,9 @@ void run(const RenderOptions& o) {
   if (o.animate) {
     std::filesystem::path base = std::filesystem::path(png).replace_extension("");
     if (!o.exr.empty()) throw Error("--exr: not written with --animate (each frame is a PNG)");
-    outputs.push_back({fmt::format("{}_{:04d}.png", base.string(), 0), "--output (first frame)", {".png"}});
+    // Every frame and the video: a scene's texture named like frame 1 must not be replaced by it.
+    for (int f = 0; f < scene.render.frames; ++f)
+      outputs.push_back({frame_path(base, f), fmt::format("--output (frame {})", f), {".png"}});
     outputs.push_back({base.string() + ".mp4", "--output (video)", {".mp4"}});
   }
   check_outputs(outputs, scene_input_files(scene));

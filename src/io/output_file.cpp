@@ -8,7 +8,10 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <set>
 #include <system_error>
+#include <unordered_map>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -185,38 +188,48 @@ void OutputSet::commit() {
   entries_.clear();
 }
 
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code ec_a, ec_b;
-  const bool a_exists = fs::exists(a, ec_a), b_exists = fs::exists(b, ec_b);
-  if (a_exists && b_exists) {
-    std::error_code ec;
-    const bool equivalent = fs::equivalent(a, b, ec);
-    return !ec && equivalent;
-  }
-  if (a_exists != b_exists) return false;
+namespace {
+
+// What makes two paths one file (same_file): "i" and the device and inode of a file that exists (links followed),
+// else "p" and the absolute path with its existing part resolved; nullopt when neither can be found.
+std::optional<std::string> file_identity(const std::string& path) {
+  struct stat s {};
+  if (::stat(path.c_str(), &s) == 0) return fmt::format("i{}:{}", s.st_dev, s.st_ino);
   std::error_code ec;
-  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec);
-  if (ec) return false;
-  const fs::path cb = fs::weakly_canonical(fs::absolute(b), ec);
-  return !ec && ca == cb;
+  const fs::path canonical = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  if (ec) return std::nullopt;
+  return "p" + canonical.string();
+}
+
+}  // namespace
+
+bool same_file(const std::string& a, const std::string& b) {
+  const std::optional<std::string> ia = file_identity(a), ib = file_identity(b);
+  return ia && ib && *ia == *ib;
 }
 
 void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
+  // Identities are compared, not pairs of paths: an animation's thousands of frames are checked in linear time.
+  std::unordered_map<std::string, std::size_t> input_of, output_of;  // identity -> index
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    if (std::optional<std::string> id = file_identity(inputs[i])) input_of.emplace(std::move(*id), i);
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     const OutputPath& o = outputs[k];
     if (o.path.empty()) continue;
+    const std::optional<std::string> id = file_identity(o.path);
+    if (!id) continue;
     const std::string what = fmt::format("{} {}", o.option, o.path);
-    for (const std::string& input : inputs)
-      if (same_file(o.path, input))
-        throw Error(fmt::format("{}: would overwrite the input {}; choose another output path", what, input));
-    for (std::size_t j = 0; j < k; ++j)
-      if (!outputs[j].path.empty() && same_file(o.path, outputs[j].path))
-        throw Error(fmt::format("{}: is also the output {} {}; give each output its own path", what, outputs[j].option,
-                                outputs[j].path));
+    if (auto input = input_of.find(*id); input != input_of.end())
+      throw Error(fmt::format("{}: would overwrite the input {}; choose another output path", what,
+                              inputs[input->second]));
+    if (auto [other, inserted] = output_of.emplace(*id, k); !inserted)
+      throw Error(fmt::format("{}: is also the output {} {}; give each output its own path", what,
+                              outputs[other->second].option, outputs[other->second].path));
   }
   // A device or FIFO (/dev/stdout) takes any format; a file's name must say the format written.
   for (const OutputPath& o : outputs)
     if (!o.path.empty() && !o.extensions.empty() && !is_special_file(destination(o.path))) require_extension(o);
+  std::set<fs::path> probed;  // directories known to accept a new file
   for (const OutputPath& o : outputs) {
     if (o.path.empty()) continue;
     const std::string what = fmt::format("{} {}", o.option, o.path);
@@ -230,6 +243,7 @@ void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std
     // A file the user may not write is not replaced behind their back (rename would ignore its permissions).
     if (fs::exists(target, ec) && ::access(target.c_str(), W_OK) != 0)
       throw Error(fmt::format("{}: cannot write: {}", what, errno_text(errno)));
+    if (!probed.insert(directory_of(target)).second) continue;
     create_directory_for(target, what);
     // The directory must accept a new file (the temporary that is renamed into place).
     const fs::path probe = temporary_beside(target);
