@@ -487,12 +487,15 @@ void run(const std::string& config_path, const std::string& output, const std::v
     }
   }
   bench.out = output.empty() ? fs::path("out/bench") / fs::path(config_path).stem() : fs::path(output);
-  check_outputs({{(bench.out / "results.json").string(), "--output", {}},
-                 {(bench.out / "results.md").string(), "--output", {}},
-                 {(bench.out / "results.tsv").string(), "--output", {}},
-                 {(bench.out / "images" / "probe.png").string(), "--output (images)", {}},
-                 {(bench.out / "references" / "probe.exr").string(), "--output (reference cache)", {}}},
-                inputs);
+  const std::vector<OutputPath> table_paths = {{(bench.out / "results.json").string(), "--output", {}},
+                                               {(bench.out / "results.md").string(), "--output", {}},
+                                               {(bench.out / "results.tsv").string(), "--output", {}}};
+  std::vector<OutputPath> outputs = table_paths;
+  outputs.push_back({(bench.out / "images" / "probe.png").string(), "--output (images)", {}});
+  outputs.push_back({(bench.out / "references" / "probe.exr").string(), "--output (reference cache)", {}});
+  check_outputs(outputs, inputs);
+  // The tables' lock stands for the folder: its images and reference cache are written by one bench at a time.
+  const OutputLock lock(table_paths);
   bench.context = create_headless_context();
   json results = json::array();
   // The tables are rewritten after every run, so a long bench (references refined for hours) that is stopped

@@ -124,6 +124,10 @@ void run(const RenderOptions& o) {
     outputs.push_back({base.string() + ".mp4", "--output (video)", {".mp4"}});
   }
   check_outputs(outputs, scene_input_files(scene));
+  // Held until the last file is written. An animation's frames are named after its --output and locked with it.
+  std::vector<OutputPath> locked = {outputs[0], outputs[1], outputs[2]};
+  if (o.animate) locked.push_back(outputs.back());
+  const OutputLock lock(locked);
   if (o.animate) return run_animation(o, scene, png);
   auto context = create_headless_context();
   Renderer renderer(scene, o.quiet ? RenderProgress{} : RenderProgress(StepProgress()));
