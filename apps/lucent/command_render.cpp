@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "io/interruption.h"
 #include "option_checks.h"
 #include "lucent/lucent.h"
 #include "progress_bar.h"
@@ -92,6 +93,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
     std::string command = fmt::format("ffmpeg -loglevel error -y -framerate {} -i '{}' -pix_fmt yuv420p '{}'",
                                       scene.render.fps, pattern, partial.string());
     std::error_code ec;
+    const RemoveOnSignal removal(partial.string());  // a signal that ends lucent meanwhile leaves no partial video
     if (std::system(command.c_str()) != 0) {
       std::filesystem::remove(partial, ec);
       throw Error(fmt::format("{}: ffmpeg failed: {}", mp4, command));
