@@ -1,12 +1,17 @@
 // test_concurrent_outputs.cpp: an output is written by one lucent process at a time (OutputLock), and a signal
 // neither loses a reference's samples nor leaves temporaries or lock files behind (io/interruption.h).
+#include <algorithm>
+#include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fcntl.h>
 #include <spawn.h>

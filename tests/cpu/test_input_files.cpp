@@ -2,10 +2,13 @@
 // bench configuration is one line naming it (it used to block the open forever), a directory too; a precompute
 // cache entry that is not a regular file is derived data: a warning, removed and recomputed.
 #include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <sys/stat.h>
 
