@@ -296,7 +296,7 @@ def main():
             stem = os.path.splitext(os.path.basename(r["image"]))[0]
             sec.append(f"| {r['method']} | {name} | {fmt_ms(pts[i][0])} | {pts[i][1]:.4f} | {ev['relative_mse']:.4f} | "
                        f"{ev['mean_error']:+.4f} +- {ev['mean_error_se']:.4f} | {'-' if eb is None else f'{eb:.4f}'} | "
-                       f"`images/{stem}_vs_volpath.png` |")
+                       f"`images/{stem}+vs_volpath.png` |")
         for r in refused:
             sec.append(f"| {r['method']} | {r['variant']} | refused: {r['refused'].replace('|', '/')} | | | | | |")
         ref = rows[0]["error"]["volpath"]

@@ -82,7 +82,8 @@ void check_overrides(const json& object, const JsonLocation& where) {
 }
 
 // Run names and variant ids name the bench's image files: letters, digits, '_', '-', '.', not starting with '.', so
-// that no name writes outside the output folder or over a hidden file.
+// that no name writes outside the output folder or over a hidden file; never '+', which joins them in an image's
+// name (command_bench.cpp), so that no two images share one.
 void require_file_name_part(const std::string& name, const JsonLocation& where, const char* what) {
   const bool safe = !name.empty() && name.size() <= 100 && name[0] != '.' &&
                     std::all_of(name.begin(), name.end(), [](unsigned char c) {

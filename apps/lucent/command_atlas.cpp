@@ -69,7 +69,9 @@ ImageRGBA8 draw_atlas(const texture_space::Atlas& atlas) {
 
 void run(const AtlasCommandOptions& o) {
   Scene scene = input_scene(o.input);
-  check_outputs({{o.png, "--output", {".png"}}}, scene_input_files(scene));
+  const std::vector<OutputPath> outputs = {{o.png, "--output", {".png"}}};
+  check_outputs(outputs, scene_input_files(scene));
+  const OutputLock lock(outputs);
   texture_space::AtlasOptions options;
   options.size = o.size;
   options.cone_deg = o.cone_deg;

@@ -22,6 +22,7 @@
 #include "bench_config.h"
 #include "commands.h"
 #include "image/image_metrics.h"
+#include "io/input_file.h"
 #include "lucent/lucent.h"
 #include "params/param_json.h"
 #include "progress_bar.h"
@@ -75,13 +76,22 @@ json region_json(const reference::RegionMean& m) {
           {"display", m.display}};
 }
 
+// The name of a bench image under images/: the run, the variant id (empty for the run's own images: its references
+// and regions) and what the image shows (empty for the variant's own image), joined by '+', which run names and
+// variant ids cannot hold (bench_config.cpp). Every image of a bench has a name of its own: run "x" with variant
+// "y_f1" is x+y_f1.png, run "x_y" with variant "f1" x_y+f1.png; the run's reference is x++reference_volpath.png.
+std::string image_name(const std::string& run, const std::string& variant, const std::string& what,
+                       const char* extension) {
+  return fmt::format("{}+{}{}{}{}", run, variant, what.empty() ? "" : "+", what, extension);
+}
+
 // One rendered variant, waiting for its comparison with the references.
 struct Rendered {
   json result;
   std::vector<std::pair<std::string, std::vector<std::uint8_t>>> region_masks;  // name, mask
   ImageRGBA32F image;
   Scene scene;
-  std::string scene_path, stem;
+  std::string scene_path, run, id;  // its run's name and its variant id, which name its images
   std::vector<std::string> sets;
   double wall_seconds = 0.0;
 };
@@ -156,16 +166,16 @@ struct Bench {
     if (measured.size() > 1) measured = measured.subspan(1);
     const FrameTimings& last = frames_done.back();
     r.image = renderer.read_radiance();
-    r.stem = fmt::format("{}_{}", run_name, variant.value("id", name));
-    std::replace_if(r.stem.begin(), r.stem.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '_'; }, '_');
-    write_exr((out / "images" / (r.stem + ".exr")).string(), r.image);
-    write_png((out / "images" / (r.stem + ".png")).string(), renderer.read_display());
+    r.run = run_name;
+    r.id = variant.value("id", name);
+    write_exr((out / "images" / image_name(r.run, r.id, "", ".exr")).string(), r.image);
+    write_png((out / "images" / image_name(r.run, r.id, "", ".png")).string(), renderer.read_display());
 
     json& result = r.result;
     const stats::FrameSummary summary = stats::summarize(measured);
     auto spread_json = [](const stats::Spread& s) { return json{{"median", s.median}, {"min", s.min}, {"max", s.max}}; };
     result = {{"run", run_name}, {"variant", name}, {"scene", r.scene_path}, {"frames", frames},
-              {"image", "images/" + r.stem + ".png"},
+              {"image", "images/" + image_name(r.run, r.id, "", ".png")},
               {"wall_seconds", r.wall_seconds}, {"gpu_memory_mb", static_cast<double>(last.gpu_memory_bytes) / 1048576.0},
               {"method", scene.method},
               {"occupancy", last.stat("translucent_pixels") / (static_cast<double>(scene.render.width) * scene.render.height)},
@@ -194,7 +204,7 @@ struct Bench {
       ImageRGBA8 shown = to_display(r.image, scene.render.exposure);
       for (std::size_t i = 0; i < r.region_masks.back().second.size(); ++i)
         if (r.region_masks.back().second[i]) shown.pixels[4 * i + 1] = 255;
-      write_png((out / "images" / fmt::format("{}_region_{}.png", run_name, region.name)).string(), shown);
+      write_png((out / "images" / image_name(run_name, "", "region_" + region.name, ".png")).string(), shown);
       const reference::RegionMean m = reference::region_mean(r.image, r.region_masks.back().second, scene.render.exposure);
       result["regions"][region.name] = {{"pixels", m.pixels}, {"method", region_json(m)}};
     }
@@ -224,7 +234,7 @@ struct Bench {
           // A non-finite pixel in a method's image or the reference is an error naming the image, not a score.
           errors.push_back(image_error(
               r->image, ref.mean, &ref.standard_error,
-              {fmt::format("run {}'s image {}.exr", run_name, r->stem),
+              {fmt::format("run {}'s image {}", run_name, image_name(r->run, r->id, "", ".exr")),
                fmt::format("the {} reference of run {}", integrator, run_name),
                fmt::format("the {} reference's standard error of run {}", integrator, run_name)}));
           smallest = std::min(smallest, corrected_rmse(errors.back()));
@@ -252,10 +262,14 @@ struct Bench {
   void attach_error(Rendered& r, const std::string& run_name, const std::string& integrator,
                     const reference::ReferenceImage& ref, const ImageError& e) {
     const Scene& scene = r.scene;
-    std::string ref_png = "images/" + run_name + "_reference_" + integrator +
-                          (integrator == "bssrdf" ? "_" + std::string(to_string(scene.objects[0].material ? scene.objects[0].material->model : BssrdfModel::DirectionalDipole)) : "") + ".png";
+    const std::string model =
+        integrator == "bssrdf"
+            ? "_" + std::string(to_string(scene.objects[0].material ? scene.objects[0].material->model
+                                                                    : BssrdfModel::DirectionalDipole))
+            : "";
+    std::string ref_png = "images/" + image_name(run_name, "", "reference_" + integrator + model, ".png");
     write_png((out / ref_png).string(), to_display(ref.mean, scene.render.exposure));
-    write_png((out / "images" / (r.stem + "_vs_" + integrator + ".png")).string(),
+    write_png((out / "images" / image_name(r.run, r.id, "vs_" + integrator, ".png")).string(),
               heat_map(r.image, ref.mean, std::max(1e-6, 4.0 * e.rmse_rgb)));
     r.result["error"][integrator] = {{"rmse_rgb", e.rmse_rgb}, {"rmse", {e.rmse[0], e.rmse[1], e.rmse[2]}},
                                      {"rmse_rgb_corrected", corrected_rmse(e)},
@@ -272,7 +286,8 @@ struct Bench {
       ImageError eq = image_error(quick.mean, ref.mean, &ref.standard_error);
       r.result["equal_time_bssrdf"] = {{"rmse_rgb", eq.rmse_rgb}, {"spp", quick.samples_per_pixel},
                                        {"seconds", quick.seconds}};
-      write_png((out / "images" / (r.stem + "_equal_time_bssrdf.png")).string(), to_display(quick.mean, scene.render.exposure));
+      write_png((out / "images" / image_name(r.run, r.id, "equal_time_bssrdf", ".png")).string(),
+                to_display(quick.mean, scene.render.exposure));
     }
   }
 
@@ -446,6 +461,7 @@ std::vector<std::size_t> selected_runs(const json& runs, const std::vector<std::
 
 void run(const std::string& config_path, const std::string& output, const std::vector<std::string>& only,
          const std::vector<std::string>& sets) {
+  require_regular_file(config_path);
   std::ifstream file(config_path);
   if (!file) throw Error(fmt::format("{}: cannot open bench configuration", config_path));
   Bench bench;
@@ -471,12 +487,15 @@ void run(const std::string& config_path, const std::string& output, const std::v
     }
   }
   bench.out = output.empty() ? fs::path("out/bench") / fs::path(config_path).stem() : fs::path(output);
-  check_outputs({{(bench.out / "results.json").string(), "--output", {}},
-                 {(bench.out / "results.md").string(), "--output", {}},
-                 {(bench.out / "results.tsv").string(), "--output", {}},
-                 {(bench.out / "images" / "probe.png").string(), "--output (images)", {}},
-                 {(bench.out / "references" / "probe.exr").string(), "--output (reference cache)", {}}},
-                inputs);
+  const std::vector<OutputPath> table_paths = {{(bench.out / "results.json").string(), "--output", {}},
+                                               {(bench.out / "results.md").string(), "--output", {}},
+                                               {(bench.out / "results.tsv").string(), "--output", {}}};
+  std::vector<OutputPath> outputs = table_paths;
+  outputs.push_back({(bench.out / "images" / "probe.png").string(), "--output (images)", {}});
+  outputs.push_back({(bench.out / "references" / "probe.exr").string(), "--output (reference cache)", {}});
+  check_outputs(outputs, inputs);
+  // The tables' lock stands for the folder: its images and reference cache are written by one bench at a time.
+  const OutputLock lock(table_paths);
   bench.context = create_headless_context();
   json results = json::array();
   // The tables are rewritten after every run, so a long bench (references refined for hours) that is stopped

@@ -26,7 +26,9 @@ struct CompareOptions {
 
 void run(const CompareOptions& o) {
   std::string se_path = reference::reference_files(o.b).standard_error;
-  check_outputs({{o.diff, "--diff", {".png"}}}, {o.a, o.b, se_path});
+  const std::vector<OutputPath> outputs = {{o.diff, "--diff", {".png"}}};
+  check_outputs(outputs, {o.a, o.b, se_path});
+  const OutputLock lock(outputs);
   ImageRGBA32F a = read_exr(o.a), b = read_exr(o.b);
   if (a.width != b.width || a.height != b.height)
     throw Error(fmt::format("{} is {}x{} but {} is {}x{}; compare needs images of one size", o.a, a.width, a.height,
@@ -84,7 +86,9 @@ void add_tonemap_command(CLI::App& app) {
       ->check(number_in(argument_ranges::kExposureStops))
       ->capture_default_str();
   cmd->callback([input, output, exposure] {
-    check_outputs({{*output, "--output", {".png"}}}, {*input});
+    const std::vector<OutputPath> outputs = {{*output, "--output", {".png"}}};
+    check_outputs(outputs, {*input});
+    const OutputLock lock(outputs);
     const ImageRGBA32F image = read_exr(*input);
     check_displayable(image, *input);
     write_png(*output, to_display(image, *exposure));

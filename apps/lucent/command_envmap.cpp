@@ -37,7 +37,9 @@ void add_make_command(CLI::App& app) {
   cmd->add_option("-o,--output", output, "output file, .hdr or .exr")->required();
   cmd->add_option("--width", width, "width in pixels (height = width / 2)")->check(CLI::Range(2, 16384));
   cmd->callback([] {
-    lucent::check_outputs({{output, "--output", {".hdr", ".exr"}}}, {});
+    const std::vector<lucent::OutputPath> outputs = {{output, "--output", {".hdr", ".exr"}}};
+    lucent::check_outputs(outputs, {});
+    const lucent::OutputLock lock(outputs);
     const lucent::ImageRGBA32F image = lucent::environment_map_to_image(map_named(kind, width));
     if (lucent::lowercase_extension(output) == ".exr") {
       lucent::write_exr(output, image);

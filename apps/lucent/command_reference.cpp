@@ -2,12 +2,15 @@
 // integration of the BSSRDF model), with a progress bar, the time left, a standard-error image, and resuming;
 // `lucent reference merge A.exr B.exr ... -o ref.exr`: batches rendered with distinct seeds, combined exactly.
 #include <algorithm>
+#include <cstring>
 #include <limits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "interrupted.h"
+#include "io/interruption.h"
 #include "option_checks.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
@@ -68,10 +71,13 @@ void run(ReferenceOptions o) {
   Scene scene = load_scene(o.scene_path, o.sets);
   // The three files are checked before the first sample: a reference can take hours.
   const reference::ReferenceFiles files = reference::reference_files(o.output);
-  check_outputs({{files.mean, "--output", {".exr"}},
-                 {files.standard_error, "--output (standard error)", {".exr"}},
-                 {files.metadata, "--output (metadata)", {".json"}}},
-                scene_input_files(scene));
+  const std::vector<OutputPath> outputs = {{files.mean, "--output", {".exr"}},
+                                           {files.standard_error, "--output (standard error)", {".exr"}},
+                                           {files.metadata, "--output (metadata)", {".json"}}};
+  check_outputs(outputs, scene_input_files(scene));
+  // Held from before the previous samples are read (--resume) until the new set is renamed into place: a second
+  // lucent writing this reference fails at once instead of mixing the sets or counting the same samples twice.
+  const OutputLock lock(outputs);
   const std::string scene_hash = reference::scene_content_hash(scene);
   std::optional<reference::StoredReference> previous;
   if (o.resume) {
@@ -80,9 +86,21 @@ void run(ReferenceOptions o) {
   }
   ProgressBar progress(fmt::format("{} {} spp", o.integrator, o.settings.samples_per_pixel), o.quiet ? 1 : 1000);
   o.settings.progress = [&](double done) { progress.update(static_cast<int>(done * 1000.0)); };
+  // SIGINT or SIGTERM stops the render at its next chunk of rows; the completed passes are saved, then the command
+  // ends with a line saying how many samples it saved.
+  DeferredInterruption interruption;
+  o.settings.stop_requested = [&] { return interruption.received() != 0; };
   reference::ReferenceImage image =
       reference::render_reference(scene, o.settings, previous ? &previous->image : nullptr);
   progress.finish();
+  const int asked = o.settings.samples_per_pixel;
+  const int added = image.samples_per_pixel - (previous ? previous->image.samples_per_pixel : 0);
+  const int signal = added < asked ? interruption.take() : 0;
+  const std::string why =
+      fmt::format("interrupted by SIG{}", signal && sigabbrev_np(signal) ? sigabbrev_np(signal) : "?");
+  if (signal && added == 0)
+    throw Interrupted(signal, fmt::format("{} before its first pass of samples ended: {} {}", why, files.mean,
+                                          previous ? "is unchanged" : "was not written"));
   if (previous) image.seconds += previous->image.seconds;
   double paths = static_cast<double>(scene.render.width) * scene.render.height * image.samples_per_pixel;
   nlohmann::json metadata = {{"scene", o.scene_path},
@@ -106,6 +124,11 @@ void run(ReferenceOptions o) {
     if (previous->metadata.contains("inputs")) metadata["inputs"] = previous->metadata["inputs"];
   }
   reference::save_reference(files, image, std::move(metadata));
+  if (signal)
+    throw Interrupted(signal, fmt::format("{}: saved {} of the {} samples per pixel asked ({} in all) in {}; to add "
+                                          "the other {}, run the same command with --resume --spp {}",
+                                          why, added, asked, image.samples_per_pixel, files.mean, asked - added,
+                                          asked - added));
   if (!o.quiet)
     fmt::print("{}: {} {}x{}, {} spp in {:.1f} s ({:.3g} camera paths/s) -> {} (+ {}, {})\n", o.scene_path,
                o.integrator, scene.render.width, scene.render.height, image.samples_per_pixel, image.seconds,
@@ -128,10 +151,11 @@ void merge(const MergeOptions& o) {
     inputs.insert(inputs.end(), {f.mean, f.standard_error, f.metadata});
   }
   const reference::ReferenceFiles files = reference::reference_files(o.output);
-  check_outputs({{files.mean, "--output", {".exr"}},
-                 {files.standard_error, "--output (standard error)", {".exr"}},
-                 {files.metadata, "--output (metadata)", {".json"}}},
-                inputs);
+  const std::vector<OutputPath> outputs = {{files.mean, "--output", {".exr"}},
+                                           {files.standard_error, "--output (standard error)", {".exr"}},
+                                           {files.metadata, "--output (metadata)", {".json"}}};
+  check_outputs(outputs, inputs);
+  const OutputLock lock(outputs);
   reference::StoredReference merged = reference::merge_references(o.inputs);
   reference::save_reference(files, merged.image, merged.metadata);
   if (!o.quiet)

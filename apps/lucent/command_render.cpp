@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "io/interruption.h"
 #include "option_checks.h"
 #include "lucent/lucent.h"
 #include "progress_bar.h"
@@ -59,6 +60,9 @@ void warn_if_black(const ImageRGBA32F& image) {
   if (!(peak > 0.0f)) fmt::print(stderr, "lucent: warning: the image is black (no light reaches the camera)\n");
 }
 
+// The PNG of animation frame f: <base>_0000.png, ...
+std::string frame_path(const std::filesystem::path& base, int f) { return fmt::format("{}_{:04d}.png", base.string(), f); }
+
 // `--animate`: frame f shows time f / fps, accumulated over `samples_per_frame` renders, written as
 // <stem>_0000.png, ...; with ffmpeg on the PATH also <stem>.mp4.
 void run_animation(const RenderOptions& o, const Scene& scene, const std::string& png) {
@@ -75,7 +79,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
       renderer.render(scene.camera, {target.id(), width, height});
       for (FrameTimings& t : renderer.finished_frames(false)) timings.push_back(std::move(t));
     }
-    write_png(fmt::format("{}_{:04d}.png", base.string(), f), renderer.read_display());
+    write_png(frame_path(base, f), renderer.read_display());
     progress.update(f + 1);
   }
   progress.finish();
@@ -89,6 +93,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
     std::string command = fmt::format("ffmpeg -loglevel error -y -framerate {} -i '{}' -pix_fmt yuv420p '{}'",
                                       scene.render.fps, pattern, partial.string());
     std::error_code ec;
+    const RemoveOnSignal removal(partial.string());  // a signal that ends lucent meanwhile leaves no partial video
     if (std::system(command.c_str()) != 0) {
       std::filesystem::remove(partial, ec);
       throw Error(fmt::format("{}: ffmpeg failed: {}", mp4, command));
@@ -115,10 +120,16 @@ void run(const RenderOptions& o) {
   if (o.animate) {
     std::filesystem::path base = std::filesystem::path(png).replace_extension("");
     if (!o.exr.empty()) throw Error("--exr: not written with --animate (each frame is a PNG)");
-    outputs.push_back({fmt::format("{}_{:04d}.png", base.string(), 0), "--output (first frame)", {".png"}});
+    // Every frame and the video: a scene's texture named like frame 1 must not be replaced by it.
+    for (int f = 0; f < scene.render.frames; ++f)
+      outputs.push_back({frame_path(base, f), fmt::format("--output (frame {})", f), {".png"}});
     outputs.push_back({base.string() + ".mp4", "--output (video)", {".mp4"}});
   }
   check_outputs(outputs, scene_input_files(scene));
+  // Held until the last file is written. An animation's frames are named after its --output and locked with it.
+  std::vector<OutputPath> locked = {outputs[0], outputs[1], outputs[2]};
+  if (o.animate) locked.push_back(outputs.back());
+  const OutputLock lock(locked);
   if (o.animate) return run_animation(o, scene, png);
   auto context = create_headless_context();
   Renderer renderer(scene, o.quiet ? RenderProgress{} : RenderProgress(StepProgress()));

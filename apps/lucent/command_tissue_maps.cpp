@@ -21,7 +21,9 @@ struct TissueMapsOptions {
 
 void run(const TissueMapsOptions& o) {
   const std::string ext = lowercase_extension(o.output);
-  check_outputs({{o.output, "--output", {".png", ".exr"}}}, {});
+  const std::vector<OutputPath> outputs = {{o.output, "--output", {".png", ".exr"}}};
+  check_outputs(outputs, {});
+  const OutputLock lock(outputs);
   const ImageRGBA32F maps = media::tissue_layer_maps(o.size);
   if (ext == ".exr") {
     write_exr(o.output, maps);

@@ -7,12 +7,17 @@
 #include <iostream>
 
 #include "commands.h"
+#include "interrupted.h"
+#include "io/interruption.h"
 #include "lucent/error.h"
 
 int main(int argc, char** argv) {
   // A file-size limit (ulimit -f) makes write() fail with EFBIG, reported like a full disk, instead of killing the
   // process mid-write: outputs are written to temporaries and renamed, so the old file stays intact either way.
   std::signal(SIGXFSZ, SIG_IGN);
+  // SIGINT, SIGTERM, SIGHUP: temporaries and lock files are removed before the process ends (a reference saves its
+  // completed passes first).
+  lucent::install_interruption_handlers();
   CLI::App app{"lucent: real-time translucent materials with physically based subsurface scattering"};
   app.require_subcommand(1);
   lucent::cli::add_render_command(app);
@@ -35,11 +40,16 @@ int main(int argc, char** argv) {
     // A bad command line is one line naming the option, like every other input error.
     std::cerr << "lucent: " << e.what() << " (lucent --help lists the options)\n";
     return 1;
+  } catch (const lucent::cli::Interrupted& e) {
+    std::cerr << "lucent: " << e.what() << "\n";
+    return 128 + e.signal();
   } catch (const lucent::Error& e) {
     std::cerr << "lucent: " << e.what() << "\n";
     return 1;
-  } catch (const std::system_error& e) {  // fmt::print to a closed or full standard output
-    std::cerr << "lucent: <stdout>: cannot write: " << e.code().message() << "\n";
+  } catch (const std::system_error& e) {
+    // fmt::print to a closed or full standard output; any other system error speaks for itself.
+    if (std::ferror(stdout)) std::cerr << "lucent: <stdout>: cannot write: " << e.code().message() << "\n";
+    else std::cerr << "lucent: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "lucent: internal error: " << e.what() << "\n";

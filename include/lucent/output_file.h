@@ -15,6 +15,7 @@
 //   lucent::check_outputs({{png, "--output"}, {exr, "--exr"}}, scene.input_files);   // before rendering
 //   lucent::write_file(png, encode_png(image));                                       // after
 #pragma once
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,6 +47,28 @@ struct OutputPath {
   std::string path;
   std::string option;
   std::vector<std::string_view> extensions;
+};
+
+// One lucent process writes an output at a time: an OutputLock holds an advisory lock (flock) on
+// `.<name>.lucent-lock` beside each output, which holds the process id, from before the command reads what it will
+// replace (a reference's --resume) until after its last rename. A second process that wants one of the outputs fails
+// at once with "<option> <path>: is being written by another lucent process (pid N)". Lock files are removed on
+// release (and by the CLI's signal handlers); one left by a process killed with SIGKILL is harmless: the next writer
+// takes it over and removes it. Devices, FIFOs and /dev, /proc paths are not locked.
+//
+//   lucent::check_outputs(outputs, scene_input_files(scene));
+//   const lucent::OutputLock lock(outputs);   // until the outputs are written
+class OutputLock {
+ public:
+  OutputLock() = default;
+  explicit OutputLock(const std::vector<OutputPath>& outputs);
+  ~OutputLock();
+  OutputLock(OutputLock&&) noexcept;
+  OutputLock& operator=(OutputLock&&) noexcept;
+
+ private:
+  struct Held;  // one lock file, its descriptor and its removal on signals
+  std::vector<std::unique_ptr<Held>> held_;
 };
 
 // Throws lucent::Error("<option> <path>: <problem>") unless each output with a non-empty path: (a) is not the same

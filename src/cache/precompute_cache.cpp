@@ -20,6 +20,7 @@
 
 #include <fmt/format.h>
 
+#include "io/input_file.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
 
@@ -300,6 +301,20 @@ std::string check_entry(const std::string& file, const Key& key, EntryHeader& he
   return "";
 }
 
+// An entry that is not a regular file (a directory, a FIFO, a device: reading one would fail or block, writing
+// one would go into it) is derived data gone wrong: one warning line, and it is removed so that the recomputed
+// entry takes its place. False when it is still there (not removable).
+bool remove_if_not_a_file(const fs::path& path) {
+  const std::string kind = non_regular_file_kind(path.string());
+  if (kind.empty()) return true;
+  std::error_code ec;
+  fs::remove_all(path, ec);  // a link is removed itself, never what it points to
+  const bool gone = !fs::exists(fs::symlink_status(path, ec));
+  warn(fmt::format("{}: precompute cache entry is {}, not a file; {}", path.string(), kind,
+                   gone ? "removed and recomputed" : "ignored (it cannot be removed) and not cached"));
+  return gone;
+}
+
 // Every entry file under the cache directory with its size and last use, oldest first.
 struct EntryFile {
   fs::file_time_type used;
@@ -344,6 +359,10 @@ std::optional<std::vector<std::byte>> load(const Key& key) {
   const fs::path path = entry_path(key);
   if (path.empty()) return std::nullopt;
   std::lock_guard lock(settings().mutex);
+  if (!non_regular_file_kind(path.string()).empty()) {
+    remove_if_not_a_file(path);
+    return std::nullopt;
+  }
   const std::optional<std::string> file = read_whole(path);
   if (!file) return std::nullopt;
   EntryHeader header;
@@ -379,6 +398,7 @@ void store(const Key& key, std::span<const std::byte> payload) {
     std::error_code ec;
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw Error(path.parent_path().string() + ": cannot create: " + ec.message());
+    if (!remove_if_not_a_file(path)) return;
     write_file(path.string(), file);
   } catch (const Error& e) {
     if (std::exchange(s.warned_unwritable, directory()) != directory())

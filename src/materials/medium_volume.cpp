@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lucent/error.h"
+#include "io/input_file.h"
 #include "lucent/output_file.h"
 #include "media/heterogeneous_field.h"
 #include "params/param_json.h"
@@ -93,6 +94,7 @@ std::string_view to_string(MediumFieldType type) {
 }
 
 std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header_path) {
+  require_regular_file(header_path);
   std::ifstream in(header_path);
   if (!in) fail(header_path, "cannot open the volume header");
   json header = parse_json(in, header_path);
@@ -119,6 +121,8 @@ std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header
   if (!header.contains("data") || !header["data"].is_string()) fail(header_path, "missing key \"data\" (the raw file)");
   fs::path data = fs::path(header_path).parent_path() / header["data"].get<std::string>();
   volume->data_file = data.string();
+  if (const std::string kind = non_regular_file_kind(data.string()); !kind.empty())
+    fail(header_path, fmt::format("data: '{}' is {}, not a regular file", data.string(), kind));
   std::ifstream raw(data, std::ios::binary);
   if (!raw) fail(header_path, fmt::format("data: cannot open '{}'", data.string()));
   const std::size_t count = voxel_count(volume->size);

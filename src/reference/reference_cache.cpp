@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lucent/scene.h"
+#include "io/input_file.h"
 #include "reference/reference_files.h"
 #include "reference/reference_merge.h"
 
@@ -35,6 +36,7 @@ bool model_sets_coefficients(const std::string& scene_path, const std::vector<st
     return text.find("mfp_mm") != std::string::npos || text.find("from_mesh") != std::string::npos;
   };
   if (std::any_of(sets.begin(), sets.end(), mentions)) return true;
+  require_regular_file(scene_path);
   std::ifstream file(scene_path);
   std::stringstream text;
   text << file.rdbuf();

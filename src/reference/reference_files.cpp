@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "lucent/error.h"
+#include "io/input_file.h"
 #include "lucent/output_file.h"
 #include "params/param_json.h"
 
@@ -29,6 +30,7 @@ std::string beside(const std::string& exr, const std::string& suffix) {
 std::optional<json> read_json_object(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return std::nullopt;
+  require_regular_file(path);
   std::ifstream in(path);
   if (!in) throw Error(fmt::format("{}: cannot open reference metadata", path));
   std::stringstream text;

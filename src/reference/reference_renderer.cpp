@@ -74,62 +74,83 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
   ReferenceScene rs{scene, rt, settings.max_scatter};
   std::size_t pixels = static_cast<std::size_t>(width) * height;
   PixelSums sums = previous ? sums_from(*previous) : PixelSums{std::vector<glm::dvec3>(pixels), std::vector<glm::dvec3>(pixels)};
-  int first_sample = previous ? previous->samples_per_pixel : 0;
-  int total_samples = first_sample + settings.samples_per_pixel;
+  const int first_sample = previous ? previous->samples_per_pixel : 0;
   auto radiance = settings.integrator == Integrator::Volpath ? volpath_radiance : bssrdf_radiance;
 
   std::unique_ptr<tbb::global_control> limit;
   if (settings.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, settings.threads);
   const int rows_per_chunk = std::max(1, height / 50);
-  for (int row0 = 0; row0 < height; row0 += rows_per_chunk) {
-    int row1 = std::min(height, row0 + rows_per_chunk);
-    tbb::parallel_for(row0 * width, row1 * width, [&](int index) {
-      int x = index % width, y = index / width;
-      auto pixel = static_cast<std::size_t>(index);
-      // Without jitter every sample's camera ray goes through the pixel centre: trace it once. A pixel whose ray
-      // misses everything shows the background, exactly, in every sample (both integrators), so its sums are
-      // written without sampling.
-      glm::dvec3 centre_origin, centre_direction;
-      SurfaceHit centre_hit;
-      if (!settings.jitter) {
-        camera_ray(scene.camera, width, height, x + 0.5, y + 0.5, centre_origin, centre_direction);
-        centre_hit = rt.intersect(centre_origin, centre_direction);
-        if (!centre_hit.hit()) {
-          const glm::dvec3 background(scene.render.background);
-          const double count = total_samples - first_sample;
-          sums.sum[pixel] += count * background;
-          sums.sum2[pixel] += count * background * background;
-          return;
-        }
+  const int wanted = settings.samples_per_pixel;
+  int done = 0;  // samples per pixel of this run in the sums, all of completed passes
+  auto stop = [&] { return settings.stop_requested && settings.stop_requested(); };
+  while (done < wanted) {
+    // A pass is at most an eighth of the samples done before it: few passes (the camera rays are traced once per
+    // pass), and a stop loses at most an eighth of the work.
+    const int pass = std::min(wanted - done, std::max(1, (first_sample + done) / 8));
+    const int pass_first = first_sample + done, pass_end = pass_first + pass;
+    const PixelSums before = sums;  // restored when the pass is stopped part-way
+    bool complete = true;
+    for (int row0 = 0; row0 < height; row0 += rows_per_chunk) {
+      if (stop()) {
+        complete = false;
+        break;
       }
-      for (int sample = first_sample; sample < total_samples; ++sample) {
-        Rng rng = Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
-        glm::dvec3 L;
-        if (settings.jitter) {
-          glm::dvec3 origin, direction;
-          double jx = rng.uniform(), jy = rng.uniform();
-          camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
-          L = radiance(rs, origin, direction, rng, nullptr);
-        } else {
-          L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit);
+      int row1 = std::min(height, row0 + rows_per_chunk);
+      tbb::parallel_for(row0 * width, row1 * width, [&](int index) {
+        int x = index % width, y = index / width;
+        auto pixel = static_cast<std::size_t>(index);
+        // Without jitter every sample's camera ray goes through the pixel centre: trace it once a pass. A pixel whose
+        // ray misses everything shows the background, exactly, in every sample (both integrators), so its sums are
+        // written without sampling.
+        glm::dvec3 centre_origin, centre_direction;
+        SurfaceHit centre_hit;
+        if (!settings.jitter) {
+          camera_ray(scene.camera, width, height, x + 0.5, y + 0.5, centre_origin, centre_direction);
+          centre_hit = rt.intersect(centre_origin, centre_direction);
+          if (!centre_hit.hit()) {
+            const glm::dvec3 background(scene.render.background);
+            const double count = pass;
+            sums.sum[pixel] += count * background;
+            sums.sum2[pixel] += count * background * background;
+            return;
+          }
         }
-        if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
-        sums.sum[pixel] += L;
-        sums.sum2[pixel] += L * L;
-      }
-    });
-    if (settings.progress) settings.progress(static_cast<double>(row1) / height);
+        for (int sample = pass_first; sample < pass_end; ++sample) {
+          Rng rng = Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
+          glm::dvec3 L;
+          if (settings.jitter) {
+            glm::dvec3 origin, direction;
+            double jx = rng.uniform(), jy = rng.uniform();
+            camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
+            L = radiance(rs, origin, direction, rng, nullptr);
+          } else {
+            L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit);
+          }
+          if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
+          sums.sum[pixel] += L;
+          sums.sum2[pixel] += L * L;
+        }
+      });
+      if (settings.progress)
+        settings.progress((done + pass * (static_cast<double>(row1) / height)) / static_cast<double>(wanted));
+    }
+    if (!complete) {
+      sums = before;
+      break;
+    }
+    done += pass;
   }
+  const int total_samples = first_sample + done;
 
   ReferenceImage out;
   out.samples_per_pixel = total_samples;
   out.mean = {width, height, std::vector<float>(pixels * 4)};
   out.standard_error = {width, height, std::vector<float>(pixels * 4)};
-  double n = total_samples;
+  const double n = total_samples;
   for (std::size_t i = 0; i < pixels; ++i) {
     for (int c = 0; c < 3; ++c) {
-      double mean = sums.sum[i][c] / n;
+      double mean = n > 0 ? sums.sum[i][c] / n : 0.0;
       double variance = n > 1 ? std::max(0.0, (sums.sum2[i][c] - n * mean * mean) / (n - 1.0)) : 0.0;
       out.mean.pixels[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(mean);
       out.standard_error.pixels[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::sqrt(variance / n));

@@ -37,6 +37,10 @@ struct ReferenceSettings {
   // reflections included), the physics of single-scattering methods.
   int max_scatter = 0;
   std::function<void(double done_fraction)> progress;
+  // Polled between chunks of rows: true stops the render, which returns the samples of the passes it completed
+  // (ReferenceImage::samples_per_pixel tells how many; a pass is a few samples over every pixel, so the image stays
+  // a uniform number of samples per pixel).
+  std::function<bool()> stop_requested;
 };
 
 struct ReferenceImage {
@@ -47,7 +51,10 @@ struct ReferenceImage {
 };
 
 // Renders `settings.samples_per_pixel` samples; with `previous`, adds them to its samples (sample indices
-// continue after previous->samples_per_pixel, so two runs of S equal one run of 2S up to float rounding).
+// continue after previous->samples_per_pixel, so two runs of S equal one run of 2S up to float rounding). The
+// samples are rendered in passes over the whole image, each pass at most an eighth of the samples done before it
+// (at least one): a stop (settings.stop_requested) keeps every completed pass. Stopped before the first pass ended,
+// the result has the previous samples (none without `previous`: samples_per_pixel 0 and black images).
 ReferenceImage render_reference(const Scene& scene, const ReferenceSettings& settings,
                                 const ReferenceImage* previous = nullptr);
 

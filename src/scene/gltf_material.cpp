@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "lucent/error.h"
+#include "io/input_file.h"
 #include "materials/artist_parameters.h"
 #include "materials/model_total_reflectance.h"
 #include "params/param_json.h"
@@ -181,6 +182,7 @@ json array(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 }  // namespace
 
 json read_gltf_json(const std::string& path) {
+  require_regular_file(path);
   std::ifstream file(path, std::ios::binary);
   std::error_code ec;
   const std::uintmax_t file_size = std::filesystem::file_size(path, ec);

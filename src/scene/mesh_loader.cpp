@@ -16,6 +16,7 @@
 #include <assimp/scene.h>
 
 #include "lucent/error.h"
+#include "io/input_file.h"
 #include "lucent/mesh.h"
 #include "scene/import_guard.h"
 #include "scene/ply_size_check.h"
@@ -122,6 +123,7 @@ TriangleMesh import_triangles(const std::string& path) {
 TriangleMesh load_mesh(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
+  require_regular_file(path);
   check_ply_size(path);
 
   // Address space for the importer: generous for real files (its own structures take a few times the file),

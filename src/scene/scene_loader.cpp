@@ -14,6 +14,7 @@
 
 #include "lucent/environment.h"
 #include "lucent/error.h"
+#include "io/input_file.h"
 #include "lucent/medium_vdb.h"
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
@@ -257,6 +258,7 @@ MediumField read_field(const json& j, const JsonLocation& where, const std::stri
     vdb.grid = v.text("grid");
     vdb.density_scale = static_cast<float>(v.number("density_scale"));
     vdb.transform = v.text("transform") == "vdb-world" ? VdbTransform::VdbWorld : VdbTransform::ObjectBounds;
+    require_regular_file(vdb.file);
     VdbVolume loaded = load_medium_vdb(vdb);
     field.type = MediumFieldType::Volume;  // resampled into a dense volume: voxel-paths and volpath read it as one
     field.volume = std::move(loaded.volume);
@@ -669,6 +671,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw Error(fmt::format("{}: is a directory; give a scene file (JSON)", path));
+  require_regular_file(path);
   std::ifstream file(path);
   if (!file) throw Error(fmt::format("{}: cannot open scene file", path));
   std::stringstream text;

@@ -342,6 +342,7 @@ void save_scene(const Scene& scene, const std::string& path) {
     outputs.push_back({(dir / relative).string(), "scene mesh", {".gltf"}});
   }
   check_outputs(outputs, scene_input_files(scene));
+  const OutputLock lock(outputs);
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     if (!mesh_files[i].empty())
       write_gltf((dir / mesh_files[i]).string(), scene.objects[i].mesh, object_gltf_material(scene.objects[i]));

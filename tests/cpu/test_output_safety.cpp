@@ -201,6 +201,27 @@ TEST(OutputSafetyCli, OutputsThatAreInputsAreRefusedAndLeftAlone) {
   EXPECT_EQ(contents(exr), exr_before);
 }
 
+// `render --animate -o maps/out.png` writes maps/out_0000.png, maps/out_0001.png, ...: every frame is checked against
+// the scene's inputs before the first is written, not frame 0 alone (a texture named like frame 1 was replaced).
+TEST(OutputSafetyCli, EveryAnimationFrameIsCheckedAgainstTheInputs) {
+  const fs::path dir = fresh_dir("animate_inputs");
+  fs::create_directories(dir / "maps");
+  const std::string map = (dir / "maps" / "out_0001.png").string();
+  lucent::write_png(map, lucent::ImageRGBA8{2, 2, std::vector<std::uint8_t>(16, 200)});
+  const std::string map_before = contents(map);
+  put(dir / "s.json", R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]}, "lights": [{"direction": [0, 0, -1]}],
+    "objects": [{"shape": "sphere", "material": {"albedo_map": "maps/out_0001.png", "mfp_mm": 1}}],
+    "render": {"width": 8, "height": 6}})");
+  const std::string scene = (dir / "s.json").string(), png = (dir / "maps" / "out.png").string();
+  auto r = run_cli("render " + scene + " --animate --frames 3 -q -o " + png);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output, "lucent: --output (frame 1) " + map + ": would overwrite the input " + map +
+                          "; choose another output path\n");
+  EXPECT_EQ(contents(map), map_before);
+  EXPECT_FALSE(fs::exists(dir / "maps" / "out_0000.png"));  // nothing written before the check
+
+}
+
 // A reference fails on an output it cannot write before its first sample (the message is the check's, not the
 // writer's after rendering), and writes nothing.
 TEST(OutputSafetyCli, UnwritableOutputFolderIsFoundBeforeRendering) {

@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 #include <sys/wait.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -107,7 +109,7 @@ TEST(Cli, BenchRunsOneRunAndRefinesItsReferenceToTheNoiseRatio) {
   ref_exr.replace_extension("").replace_extension(".exr");  // <key>.meta.json -> <key>.exr
   fs::path ref_stderr = ref_exr;
   ref_stderr.replace_extension(".stderr.exr");
-  const lucent::ImageRGBA32F method = lucent::read_exr((fs::path(out) / "images" / "marble_four.exr").string());
+  const lucent::ImageRGBA32F method = lucent::read_exr((fs::path(out) / "images" / "marble+four.exr").string());
   const lucent::ImageRGBA32F reference = lucent::read_exr(ref_exr.string());
   const lucent::ImageRGBA32F standard_error = lucent::read_exr(ref_stderr.string());
   ASSERT_EQ(method.pixels.size(), reference.pixels.size());
@@ -183,6 +185,57 @@ TEST(Cli, BenchSharesVariantsRecordsRefusalsAndTakesOverrides) {
   md_text << std::ifstream(fs::path(out) / "results.md").rdbuf();
   const std::string md = md_text.str();
   EXPECT_NE(md.find("| bending | lg | local-global | refused: "), std::string::npos) << md;
+}
+
+// Image names are unique across runs: run x with variant y_f1 and run x_y with variant f1 both wrote x_y_f1.png, and
+// runs a.b and a_b one file each; results.json pointed two results at one image. Each run has its own background
+// colour, so an image shows which run wrote it.
+TEST(Cli, BenchImageNamesNeverCollide) {
+  namespace fs = std::filesystem;
+  const fs::path dir = lucent::test::output_path("bench_names");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = (dir / "s.json").string(), config = (dir / "bench.json").string();
+  std::ofstream(scene) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]}, "lights": [{"direction": [0.5, 0, -1]}],
+    "objects": [{"name": "ball", "shape": "sphere", "radius": 0.5, "material": "Skin1"}],
+    "method": {"name": "diffuse-wrap"}, "render": {"width": 16, "height": 12, "tonemap": "linear"}})";
+  const std::vector<std::pair<std::string, std::string>> runs = {{"x", "y_f1"}, {"x_y", "f1"}, {"a.b", "v"}, {"a_b", "v"}};
+  nlohmann::json bench = {{"references", {{"bssrdf", {{"spp", 1}}}}}, {"runs", nlohmann::json::array()}};
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const std::string background = fmt::format("render.background=[{}, {}, {}]", int(i == 0), int(i == 1), int(i == 2));
+    bench["runs"].push_back({{"name", runs[i].first},
+                             {"scene", scene},
+                             {"set", {background}},
+                             {"regions", {{{"name", "ball"}, {"object", "ball"}}}},
+                             {"variants", {{{"name", runs[i].second}, {"frames", 1}}}}});
+  }
+  std::ofstream(config) << bench.dump(2);
+  const fs::path out = dir / "out";
+  Result r = run("bench " + config + " -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto doc = nlohmann::json::parse(std::ifstream(out / "results.json"));
+  ASSERT_EQ(doc["results"].size(), runs.size());
+  std::set<std::string> images;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const nlohmann::json& result = doc["results"][i];
+    ASSERT_EQ(result["run"], runs[i].first);
+    for (const std::string& image : {result["image"].get<std::string>(),
+                                    result["error"]["bssrdf"]["reference_image"].get<std::string>()}) {
+      EXPECT_TRUE(images.insert(image).second) << image << " is named by two results";
+      // The corner shows the run's background: red, green, blue, black.
+      const lucent::ImageRGBA8 png = lucent::read_png((out / image).string());
+      const std::uint8_t* corner = png.at(0, 0);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(corner[c] > 128, static_cast<std::size_t>(c) == i) << image << " channel " << c;
+    }
+  }
+  EXPECT_EQ(images.count("images/x+y_f1.png") + images.count("images/x_y+f1.png") + images.count("images/a.b+v.png") +
+                images.count("images/a_b+v.png"),
+            4u);
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(out / "images")) files += entry.is_regular_file();
+  // Per run: the variant's PNG and EXR, its heat map, the reference and the region: 5 files, none shared.
+  EXPECT_EQ(files, 5 * runs.size());
 }
 
 TEST(Cli, MalformedJson) {

@@ -30,6 +30,7 @@ OutputPath view_output(const std::string& path) { return {path, "screenshot", {"
 
 void write_view(const Renderer& renderer, const std::string& path) {
   check_outputs({view_output(path)}, scene_input_files(renderer.scene()));
+  const OutputLock lock({view_output(path)});
   if (lowercase_extension(path) == ".exr") write_exr(path, renderer.read_radiance());
   else write_png(path, renderer.read_display());
 }
