@@ -23,6 +23,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 
 #include "image/image_limits.h"
+#include "io/file_path_check.h"
 #include "image/radiance_hdr.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
@@ -245,6 +246,7 @@ void write_exr(const std::string& path, const ImageRGBA32F& image) { encode_and_
 void write_hdr(const std::string& path, const ImageRGBA32F& image) { encode_and_write(path, image, encode_hdr); }
 
 ImageRGBA8 read_png(const std::string& path) {
+  check_file_path(path);
   if (const std::string problem = png_header_problem(path); !problem.empty())
     throw Error(fmt::format("{}: cannot read PNG: {}", path, problem));
   int width = 0, height = 0, channels_in_file = 0;
@@ -259,6 +261,7 @@ ImageRGBA8 read_png(const std::string& path) {
 }
 
 ImageRGBA32F read_exr(const std::string& path) {
+  check_file_path(path);
   try {
     return read_exr_pixels(path);
   } catch (const std::exception& e) {
@@ -267,6 +270,7 @@ ImageRGBA32F read_exr(const std::string& path) {
 }
 
 ImageRGBA32F read_hdr(const std::string& path) {
+  check_file_path(path);
   try {
     return read_radiance_hdr_file(path);
   } catch (const std::exception& e) {

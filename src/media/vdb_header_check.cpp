@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "io/file_path_check.h"
 #include "io/printable_text.h"
 #include "lucent/error.h"
 
@@ -85,6 +86,7 @@ class VdbCursor {
 }  // namespace
 
 void check_vdb_header(const std::string& path) {
+  check_file_path(path);
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) fail(path, "cannot open the VDB file");

@@ -15,6 +15,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "io/file_path_check.h"
+#include "io/printable_text.h"
 #include "lucent/error.h"
 #include "lucent/mesh.h"
 #include "scene/import_guard.h"
@@ -120,6 +122,7 @@ TriangleMesh import_triangles(const std::string& path) {
 }  // namespace
 
 TriangleMesh load_mesh(const std::string& path) {
+  check_file_path(path);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
   check_ply_size(path);
