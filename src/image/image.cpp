@@ -24,6 +24,7 @@
 
 #include "image/image_limits.h"
 #include "io/file_path_check.h"
+#include "io/printable_text.h"
 #include "image/radiance_hdr.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
@@ -265,7 +266,7 @@ ImageRGBA32F read_exr(const std::string& path) {
   try {
     return read_exr_pixels(path);
   } catch (const std::exception& e) {
-    throw Error(fmt::format("{}: cannot read EXR: {}", path, e.what()));
+    throw Error(fmt::format("{}: cannot read EXR: {}", path, printable_text(e.what())));
   }
 }
 

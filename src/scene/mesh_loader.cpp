@@ -100,7 +100,7 @@ TriangleMesh import_triangles(const std::string& path) {
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
-  if (!scene) throw Error(path + ": cannot read mesh: " + one_line(importer.GetErrorString()));
+  if (!scene) throw Error(path + ": cannot read mesh: " + printable_text(one_line(importer.GetErrorString())));
 
   // SortByPType leaves each mesh one primitive type. Point and line meshes are dropped here rather than by
   // AI_CONFIG_PP_SBP_REMOVE, which fails a file of lines alone as "No meshes remaining".

@@ -127,6 +127,27 @@ TEST(HostileHdr, MalformedHeadersAreNamed) {
   }
 }
 
+// Header text quoted in a message keeps it one printable line: control bytes and stray binary bytes as \xNN,
+// well-formed UTF-8 as it is, and a long line cut.
+TEST(HostileHdr, QuotedHeaderTextIsPrintable) {
+  const TempFile file(".hdr");
+  const std::pair<std::string, std::string> cases[] = {
+      {"#?RADIANCE\nFORMAT=rgbe\r\x1b[2J\xff\xc3\xa9\n\n-Y 1 +X 1\nabcd",
+       "unsupported FORMAT=rgbe\\x0d\\x1b[2J\\xff\xc3\xa9 (only 32-bit_rle_rgbe)"},
+      {"#?RADIANCE\n\n-Y \x01\x02 +X 1\n", "bad image size '\\x01\\x02' in the resolution line"},
+      {"#?RADIANCE\n\n+Y 1 +X 1 " + std::string(100, '\x7f') + "\n",
+       "unsupported resolution line '+Y 1 +X 1 " + [] {
+         std::string escaped;
+         while (escaped.size() < 54) escaped += "\\x7f";
+         return escaped;
+       }() + "...' (only -Y height +X width)"},
+  };
+  for (const auto& [bytes, problem] : cases) {
+    write_bytes(file.path(), bytes);
+    EXPECT_EQ(error_message([&] { read_hdr(file.path()); }), file.path() + ": cannot read HDR: " + problem);
+  }
+}
+
 // Flat scanlines (width under 8) and the sizes at the limit.
 TEST(HostileHdr, FlatScanlinesAndTheLimit) {
   const std::string pixel("\x80\x40\x20\x81", 4);  // (1, 0.5, 0.25)
