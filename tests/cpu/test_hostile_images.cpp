@@ -189,6 +189,19 @@ TEST(HostilePng, HugeDeclaredSizeIsRefused) {
                 "16384) lucent reads");
 }
 
+// Within the pixel limit but far more pixel data than the file could inflate to: refused before stb_image
+// allocates the 1 GiB image. Scanlines: a filter byte and 4 samples of 8 bits a pixel (RGBA), 16384 rows.
+TEST(HostilePng, PixelDataTheFileCannotHoldIsRefused) {
+  const TempFile file(".png");
+  const std::string bytes = png_header(16384, 16384) + big_endian32(4) + "IDAT" + std::string(8, '\0') +
+                            big_endian32(0) + "IEND" + big_endian32(0);
+  write_bytes(file.path(), bytes);
+  EXPECT_EQ(error_message([&] { read_png(file.path()); }),
+            file.path() + ": cannot read PNG: image is 16384x16384, " + std::to_string(16384LL * (1 + 4 * 16384)) +
+                " bytes of pixel data, more than a file of " + std::to_string(bytes.size()) +
+                " bytes can hold (at most 4096 bytes a file byte)");
+}
+
 // stb_image decodes any format it was built with; a Radiance file named .png went through its looping HDR reader.
 TEST(HostilePng, OtherFormatsAreNotDecoded) {
   const TempFile hdr(".hdr"), png(".png");  // distinct names: TempFile names files after the test
@@ -245,6 +258,18 @@ TEST(HostileExr, HugeDeclaredSizeIsRefusedBeforeAllocating) {
             file.path() +
                 ": cannot read EXR: image is 100000x100000, more than the 268435456 pixels (16384 x "
                 "16384) lucent reads");
+}
+
+// At the pixel limit, one float channel: 1 GiB of pixel data (4 GiB as RGBA floats) declared by a file that holds
+// the header and the chunk offsets only. Refused before the image is allocated.
+TEST(HostileExr, PixelDataTheFileCannotHoldIsRefusedBeforeAllocating) {
+  const TempFile file(".exr");
+  write_exr_header(file.path(), 16384, 16384);
+  const std::size_t size = read_bytes(file.path()).size();
+  ASSERT_LT(size, std::size_t{1} << 20);
+  EXPECT_EQ(error_message([&] { read_exr(file.path()); }),
+            file.path() + ": cannot read EXR: image is 16384x16384, 1073741824 bytes of pixel data, more than a file "
+                          "of " + std::to_string(size) + " bytes can hold (at most 4096 bytes a file byte)");
 }
 
 TEST(HostileExr, TruncatedFileIsAnError) {
