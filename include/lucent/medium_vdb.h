@@ -19,8 +19,8 @@
 // (checked before OpenVDB reads it), no grid of that name (the grids present are listed), a grid that is not
 // float, no active voxels, a negative or NaN value, a size over the limits. OpenVDB reads the file in a child
 // process (src/scene/import_guard.h) under CPU, wall-clock and memory limits, so a file that makes it crash or
-// allocate without bound is an error too ("cannot read the VDB file: the OpenVDB reader ran out of memory
-// (limit 4608 MiB)"); text OpenVDB quotes from the file appears with its unprintable bytes as \xNN.
+// allocate without bound is an error too ("cannot read the VDB file: the OpenVDB reader ran out of memory (limit
+// 4352 MiB)" with 2 hardware threads); text OpenVDB quotes from the file shows its unprintable bytes as \xNN.
 //
 // OpenVDB (with its oneTBB and Boost headers) is compiled into one file, src/media/medium_vdb.cpp, in its own
 // library lucent_vdb; this header declares no OpenVDB type (docs/design.md, "Libraries").

@@ -59,7 +59,8 @@ void read_header(Cursor& in) {
   in.line();
   for (std::string_view line = in.line(); !line.empty(); line = in.line()) {
     if (!line.starts_with("FORMAT=")) continue;  // EXPOSURE, GAMMA, comments: ignored, as by stb_image
-    if (line != "FORMAT=32-bit_rle_rgbe") fail(fmt::format("unsupported {} (only 32-bit_rle_rgbe)", printable_text(line, 64)));
+    if (line != "FORMAT=32-bit_rle_rgbe")
+      fail(fmt::format("unsupported {} (only 32-bit_rle_rgbe)", printable_text(line, 64)));
   }
 }
 

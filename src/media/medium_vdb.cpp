@@ -60,7 +60,8 @@ openvdb::FloatGrid::Ptr read_float_grid(const VdbField& field) {
     fail(path, fmt::format("grid '{}' holds {} values; a vdb field needs a float grid", printable_text(field.grid),
                            printable_text(base->valueType())));
   openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-  if (grid->activeVoxelCount() == 0) fail(path, fmt::format("grid '{}' has no active voxels", printable_text(field.grid)));
+  if (grid->activeVoxelCount() == 0)
+    fail(path, fmt::format("grid '{}' has no active voxels", printable_text(field.grid)));
   auto check = [&](float v, const std::string& where) {
     if (!std::isfinite(v) || v < 0.0f)
       fail(path, fmt::format("grid '{}': value {} at {} is not a finite m >= 0", printable_text(field.grid), v, where));
@@ -161,8 +162,8 @@ VdbVolume read_medium_vdb(const VdbField& field) {
   }
   volume->max_value = *std::max_element(volume->values.begin(), volume->values.end());
   if (!std::isfinite(volume->max_value))
-    fail(field.file, fmt::format("grid '{}': values times density_scale {} exceed the float range", printable_text(field.grid),
-                                 field.density_scale));
+    fail(field.file, fmt::format("grid '{}': values times density_scale {} exceed the float range",
+                                 printable_text(field.grid), field.density_scale));
   out.volume = std::move(volume);
   return out;
 }

@@ -43,7 +43,9 @@ std::string volume_bytes(const VdbVolume& v) {
 
 VdbVolume volume_from_bytes(const std::string& bytes, const VdbField& field) {
   VdbVolumeHeader header;
-  const auto damaged = [&] { return Error(fmt::format("{}: the OpenVDB reader returned a damaged volume", field.file)); };
+  const auto damaged = [&] {
+    return Error(fmt::format("{}: cannot read the VDB file: the OpenVDB reader returned a damaged volume", field.file));
+  };
   if (bytes.size() < sizeof header) throw damaged();
   std::memcpy(&header, bytes.data(), sizeof header);
   const glm::ivec3 size(header.size[0], header.size[1], header.size[2]);
@@ -77,10 +79,12 @@ VdbVolume load_medium_vdb(const VdbField& field) {
   // malloc arena and a stack on top.
   ImportLimits limits = vdb_read_limits();
   if (limits.memory_bytes == 0)
-    limits.memory_bytes = (std::uint64_t{4} << 30) + (std::uint64_t{128} << 20) * std::max(1u, std::thread::hardware_concurrency());
+    limits.memory_bytes =
+        (std::uint64_t{4} << 30) + (std::uint64_t{128} << 20) * std::max(1u, std::thread::hardware_concurrency());
   const GuardedReader names{"cannot read the VDB file", "the OpenVDB reader"};
-  return volume_from_bytes(read_in_child(field.file, names, [&] { return volume_bytes(read_medium_vdb(field)); }, limits),
-                           field);
+  const std::string bytes =
+      read_in_child(field.file, names, [&] { return volume_bytes(read_medium_vdb(field)); }, limits);
+  return volume_from_bytes(bytes, field);
 }
 
 }  // namespace lucent

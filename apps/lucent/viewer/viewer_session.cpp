@@ -41,8 +41,8 @@ bool ViewerSession::load(bool strict) {
     return false;
   } catch (const std::exception& e) {  // e.g. std::bad_alloc: the scene is as unusable, the session goes on
     if (strict) throw;
-    error_ = fmt::format("{}: cannot load the scene: {}", scene_path_.empty() ? "<built-in default scene>" : scene_path_,
-                         e.what());
+    const std::string scene = scene_path_.empty() ? "<built-in default scene>" : scene_path_;
+    error_ = fmt::format("{}: cannot load the scene: {}", scene, e.what());
     return false;
   }
 }
