@@ -275,7 +275,7 @@ std::string child_failure(int status, bool timed_out, const ImportLimits& limits
 
 template <class T>
 void append_array(std::string& bytes, const std::vector<T>& values) {
-  bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  if (!values.empty()) bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
 std::string mesh_bytes(const TriangleMesh& mesh, const std::string& path) {
@@ -299,7 +299,7 @@ template <class T>
 bool take_array(std::string_view bytes, std::size_t& offset, std::uint64_t count, std::vector<T>& values) {
   if (count > (bytes.size() - offset) / sizeof(T)) return false;
   values.resize(static_cast<std::size_t>(count));
-  std::memcpy(values.data(), bytes.data() + offset, values.size() * sizeof(T));
+  if (!values.empty()) std::memcpy(values.data(), bytes.data() + offset, values.size() * sizeof(T));
   offset += values.size() * sizeof(T);
   return true;
 }
