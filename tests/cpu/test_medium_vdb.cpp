@@ -24,6 +24,7 @@
 #include "reference/integrators.h"
 #include "transport/estimate.h"
 #include "transport/rng.h"
+#include "../cli_runner.h"
 #include "../test_support.h"
 
 namespace lucent {
@@ -230,6 +231,25 @@ TEST(MediumVdb, TruncatedFilesAreRefusedBeforeOpenVdbReadsThem) {
                                          "file)");
   EXPECT_EQ(error_for(4), part.path() + ": not a VDB file (no OpenVDB magic number)");
   EXPECT_EQ(load_medium_vdb(VdbField{whole.path()}).volume->size, glm::ivec3(40));
+}
+
+// The first 5000 bytes of a VDB file named by a scene: one line and exit status 1 (it was "internal error:
+// std::bad_alloc", exit status 2, after OpenVDB allocated what the damaged header declared).
+TEST(MediumVdb, ATruncatedFileInASceneIsOneLineFromTheCli) {
+  test::TempFile whole(".vdb"), part(".part.vdb"), scene(".json"), out(".exr");
+  write_grids(whole.path(), {float_grid("density", {0, 0, 0}, {39, 39, 39}, ramp)});
+  write_prefix(whole.path(), part.path(), 5000);
+  std::ofstream(scene.path()) << json{{"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
+                                      {"objects", json::array({json{{"shape", "sphere"},
+                                                                    {"material", json{{"preset", "Marble"},
+                                                                                      {"field", json{{"type", "vdb"},
+                                                                                                     {"file", part.path()}}}}}}})}}
+                                     .dump();
+  const test::CliResult result = test::run_cli("reference " + scene.path() + " -q -o " + out.path(), "timeout 60");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.output, fmt::format("lucent: {}: grid 'density' ends at byte {}, past the end of the file (5000 "
+                                       "bytes; truncated)\n",
+                                       part.path(), test::read_text(whole.path()).size()));
 }
 
 TEST(MediumVdb, OpenVdbsMessagesAreQuotedAsPrintableText) {
