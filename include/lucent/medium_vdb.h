@@ -15,8 +15,12 @@
 //                  VDB's voxel centres and the values are copied, otherwise BoxSampler resamples them. Linear
 //                  transforms only (no frustum).
 // Limits, as for raw volumes: at most 1024 voxels per axis and 2^27 in all after resampling. Bad input throws
-// lucent::Error naming the file: missing, not a VDB file, no grid of that name (the grids present are listed), a
-// grid that is not float, no active voxels, a negative or NaN value, a size over the limits.
+// lucent::Error naming the file: missing, not a VDB file, a header or grid that runs past the end of the file
+// (checked before OpenVDB reads it), no grid of that name (the grids present are listed), a grid that is not
+// float, no active voxels, a negative or NaN value, a size over the limits. OpenVDB reads the file in a child
+// process (src/scene/import_guard.h) under CPU, wall-clock and memory limits, so a file that makes it crash or
+// allocate without bound is an error too ("cannot read the VDB file: the OpenVDB reader ran out of memory (limit
+// 4352 MiB)" with 2 hardware threads); text OpenVDB quotes from the file shows its unprintable bytes as \xNN.
 //
 // OpenVDB (with its oneTBB and Boost headers) is compiled into one file, src/media/medium_vdb.cpp, in its own
 // library lucent_vdb; this header declares no OpenVDB type (docs/design.md, "Libraries").

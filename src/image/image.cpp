@@ -5,11 +5,13 @@
 // lucent/output_file.h). Failures throw lucent::Error naming the path.
 #include "lucent/image.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
@@ -23,6 +25,8 @@
 #include <OpenEXR/ImfOutputFile.h>
 
 #include "image/image_limits.h"
+#include "io/file_path_check.h"
+#include "io/printable_text.h"
 #include "image/radiance_hdr.h"
 #include "io/input_file.h"
 #include "lucent/error.h"
@@ -131,6 +135,18 @@ ImageRGBA32F read_exr_pixels(const std::string& path) {
   const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
   if (const std::string problem = image_size_problem(width, height); !problem.empty())
     throw std::runtime_error(problem);
+  std::int64_t data_bytes = 0;  // the pixel data the file declares, every channel at its sampling
+  for (auto channel = channels.begin(); channel != channels.end(); ++channel) {
+    const Imf::Channel& c = channel.channel();
+    const std::int64_t bytes = c.type == Imf::HALF ? 2 : 4;
+    const std::int64_t x_sampling = std::max(c.xSampling, 1), y_sampling = std::max(c.ySampling, 1);
+    data_bytes += bytes * ((width + x_sampling - 1) / x_sampling) * ((height + y_sampling - 1) / y_sampling);
+  }
+  std::error_code size_error;
+  const auto file_bytes = static_cast<std::int64_t>(std::filesystem::file_size(path, size_error));
+  if (const std::string problem = pixel_data_problem(width, height, data_bytes, size_error ? -1 : file_bytes);
+      !problem.empty())
+    throw std::runtime_error(problem);
   ImageRGBA32F image;
   image.width = static_cast<int>(width);
   image.height = static_cast<int>(height);
@@ -174,15 +190,22 @@ std::string png_header_problem(const std::string& path) {
   static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   std::ifstream file(path, std::ios::binary);
   if (!file) return std::strerror(errno);
-  unsigned char start[24] = {};
+  unsigned char start[26] = {};
   file.read(reinterpret_cast<char*>(start), sizeof start);
   if (file.gcount() < 8 || std::memcmp(start, kSignature, 8) != 0) return "not a PNG file";
-  if (file.gcount() < 24 || std::memcmp(start + 12, "IHDR", 4) != 0) return "";  // stb_image names the problem
-  if (std::string problem = image_size_problem(big_endian_32(start + 16), big_endian_32(start + 20)); !problem.empty())
-    return problem;
+  if (file.gcount() < 26 || std::memcmp(start + 12, "IHDR", 4) != 0) return "";  // stb_image names the problem
+  const std::int64_t width = big_endian_32(start + 16), height = big_endian_32(start + 20);
+  if (std::string problem = image_size_problem(width, height); !problem.empty()) return problem;
   file.clear();
   file.seekg(0, std::ios::end);
   const std::int64_t file_size = file.tellg();
+  // The filtered scanlines the image data inflates to: a filter byte and the row's samples (colour type 0 grey,
+  // 2 RGB, 3 palette index, 4 grey + alpha, 6 RGBA) at the bit depth.
+  static constexpr int kSamples[7] = {1, 0, 3, 1, 2, 0, 4};
+  const int samples = start[25] < 7 ? std::max(kSamples[start[25]], 1) : 1;
+  const std::int64_t row_bytes = 1 + (width * samples * std::max<int>(start[24], 1) + 7) / 8;
+  if (std::string problem = pixel_data_problem(width, height, height * row_bytes, file_size); !problem.empty())
+    return problem;
   return png_chunk_problem(file, file_size);
 }
 
@@ -246,6 +269,7 @@ void write_exr(const std::string& path, const ImageRGBA32F& image) { encode_and_
 void write_hdr(const std::string& path, const ImageRGBA32F& image) { encode_and_write(path, image, encode_hdr); }
 
 ImageRGBA8 read_png(const std::string& path) {
+  check_file_path(path);
   require_regular_file(path);
   if (const std::string problem = png_header_problem(path); !problem.empty())
     throw Error(fmt::format("{}: cannot read PNG: {}", path, problem));
@@ -261,15 +285,17 @@ ImageRGBA8 read_png(const std::string& path) {
 }
 
 ImageRGBA32F read_exr(const std::string& path) {
+  check_file_path(path);
   require_regular_file(path);
   try {
     return read_exr_pixels(path);
   } catch (const std::exception& e) {
-    throw Error(fmt::format("{}: cannot read EXR: {}", path, e.what()));
+    throw Error(fmt::format("{}: cannot read EXR: {}", path, printable_text(e.what())));
   }
 }
 
 ImageRGBA32F read_hdr(const std::string& path) {
+  check_file_path(path);
   require_regular_file(path);
   try {
     return read_radiance_hdr_file(path);

@@ -20,4 +20,19 @@ inline std::string image_size_problem(std::int64_t width, std::int64_t height) {
   return "";
 }
 
+// The most bytes of pixel data a compressed image file can expand to, per byte of the file. Lossless image
+// codecs stay far below it (deflate, PNG's and EXR's ZIP, at most 1032:1); a file that declares more pixel data
+// than this could hold is refused before the pixels are allocated, since reading it would fail after the
+// allocation anyway.
+inline constexpr std::int64_t kMaxExpansionPerFileByte = 4096;
+
+// "" when `data_bytes` of pixel data can come from a file of `file_bytes`, else the problem.
+inline std::string pixel_data_problem(std::int64_t width, std::int64_t height, std::int64_t data_bytes,
+                                      std::int64_t file_bytes) {
+  if (file_bytes >= 0 && data_bytes / kMaxExpansionPerFileByte <= file_bytes) return "";
+  return fmt::format("image is {}x{}, {} bytes of pixel data, more than a file of {} bytes can hold (at most {} "
+                     "bytes a file byte)",
+                     width, height, data_bytes, file_bytes, kMaxExpansionPerFileByte);
+}
+
 }  // namespace lucent

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "image/image_limits.h"
+#include "io/printable_text.h"
 
 namespace lucent {
 namespace {
@@ -58,7 +59,8 @@ void read_header(Cursor& in) {
   in.line();
   for (std::string_view line = in.line(); !line.empty(); line = in.line()) {
     if (!line.starts_with("FORMAT=")) continue;  // EXPOSURE, GAMMA, comments: ignored, as by stb_image
-    if (line != "FORMAT=32-bit_rle_rgbe") fail(fmt::format("unsupported {} (only 32-bit_rle_rgbe)", line));
+    if (line != "FORMAT=32-bit_rle_rgbe")
+      fail(fmt::format("unsupported {} (only 32-bit_rle_rgbe)", printable_text(line, 64)));
   }
 }
 
@@ -67,7 +69,7 @@ int parse_dimension(std::string_view text) {
   const char* end = text.data() + text.size();
   const auto [last, error] = std::from_chars(text.data(), end, value);
   if (error != std::errc() || last != end || value <= 0 || value > kMaxImagePixels)
-    fail(fmt::format("bad image size '{}' in the resolution line", text));
+    fail(fmt::format("bad image size '{}' in the resolution line", printable_text(text, 64)));
   return static_cast<int>(value);
 }
 
@@ -85,7 +87,7 @@ void read_resolution(Cursor& in, int& width, int& height) {
     i = end;
   }
   if (count != 4 || words[0] != "-Y" || words[2] != "+X")
-    fail(fmt::format("unsupported resolution line '{}' (only -Y height +X width)", line.substr(0, 64)));
+    fail(fmt::format("unsupported resolution line '{}' (only -Y height +X width)", printable_text(line, 64)));
   height = parse_dimension(words[1]);
   width = parse_dimension(words[3]);
 }

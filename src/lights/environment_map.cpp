@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "io/file_path_check.h"
 #include "lights/equirect.h"
 #include "lucent/environment.h"
 #include "lucent/error.h"
@@ -90,6 +91,7 @@ EnvironmentMap environment_map_from_image(const ImageRGBA32F& image, const std::
 }
 
 EnvironmentMap load_environment_map(const std::string& path) {
+  check_file_path(path);
   const std::string extension = lowercase_extension(path);
   if (extension != ".hdr" && extension != ".exr") {
     throw Error(fmt::format("{}: an environment map must be a .hdr or .exr file", path));

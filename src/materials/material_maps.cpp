@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "io/file_path_check.h"
+#include "io/printable_text.h"
 #include "lucent/error.h"
 #include "lucent/image.h"
 #include "lucent/output_file.h"
@@ -71,6 +73,8 @@ double AlbedoCurve::alpha(double albedo) const {
 }
 
 MapImage read_material_map(const std::string& file, bool colour, const std::string& where) {
+  if (const std::string problem = file_path_problem(file); !problem.empty())
+    throw Error(fmt::format("{}: {}: {}", where, printable_text(file), problem));
   MapImage out;
   out.file = file;
   const std::string ext = lowercase_extension(file);

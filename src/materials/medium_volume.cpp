@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "io/file_path_check.h"
 #include "lucent/error.h"
 #include "io/input_file.h"
 #include "lucent/output_file.h"
@@ -94,6 +95,7 @@ std::string_view to_string(MediumFieldType type) {
 }
 
 std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header_path) {
+  check_file_path(header_path);
   require_regular_file(header_path);
   std::ifstream in(header_path);
   if (!in) fail(header_path, "cannot open the volume header");
@@ -119,6 +121,8 @@ std::shared_ptr<const MediumVolume> load_medium_volume(const std::string& header
       fail(header_path, "range: needs 0 <= lo <= hi, finite");
   }
   if (!header.contains("data") || !header["data"].is_string()) fail(header_path, "missing key \"data\" (the raw file)");
+  if (const std::string problem = file_path_problem(header["data"].get<std::string>()); !problem.empty())
+    fail(header_path, "data: " + problem);
   fs::path data = fs::path(header_path).parent_path() / header["data"].get<std::string>();
   volume->data_file = data.string();
   if (const std::string kind = non_regular_file_kind(data.string()); !kind.empty())

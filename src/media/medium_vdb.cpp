@@ -1,12 +1,12 @@
-// medium_vdb.cpp: see lucent/medium_vdb.h. The only file that includes OpenVDB (library lucent_vdb).
-#include "lucent/medium_vdb.h"
+// medium_vdb.cpp: the OpenVDB reader of media/medium_vdb_reader.h (lucent/medium_vdb.h). The only file that
+// includes OpenVDB (library lucent_vdb).
+#include "media/medium_vdb_reader.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <vector>
 
@@ -15,6 +15,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 
+#include "io/printable_text.h"
 #include "lucent/error.h"
 
 namespace lucent {
@@ -22,7 +23,6 @@ namespace {
 
 constexpr long long kMaxAxis = 1024;                       // as raw volume files (lucent/medium_volume.h)
 constexpr long long kMaxVoxels = 1LL << 27;
-constexpr std::uint32_t kVdbMagic = 0x56444220;  // OPENVDB_MAGIC, the file's first 4 bytes (little-endian)
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw Error(fmt::format("{}: {}", path, problem));
@@ -36,44 +36,35 @@ void initialize_openvdb() {
   (void)initialized;
 }
 
-void check_magic(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the VDB file");
-  std::array<unsigned char, 8> head{};
-  in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
-  std::uint32_t magic = 0;
-  for (int i = 3; i >= 0; --i) magic = (magic << 8) | head[static_cast<std::size_t>(i)];
-  if (in.gcount() != 8 || magic != kVdbMagic) fail(path, "not a VDB file (no OpenVDB magic number)");
-}
-
 std::string grid_names(openvdb::io::File& file) {
   std::string names;
   for (auto it = file.beginName(); it != file.endName(); ++it) names += (names.empty() ? "" : ", ") + *it;
-  return names.empty() ? "none" : names;
+  return names.empty() ? "none" : printable_text(names);
 }
 
 openvdb::FloatGrid::Ptr read_float_grid(const VdbField& field) {
   const std::string& path = field.file;
-  check_magic(path);
   initialize_openvdb();
   openvdb::GridBase::Ptr base;
   try {
     openvdb::io::File file(path);
     file.open(false);
     if (!file.hasGrid(field.grid))
-      fail(path, fmt::format("no grid '{}' (grids: {})", field.grid, grid_names(file)));
+      fail(path, fmt::format("no grid '{}' (grids: {})", printable_text(field.grid), grid_names(file)));
     base = file.readGrid(field.grid);
     file.close();
   } catch (const openvdb::Exception& e) {
-    fail(path, fmt::format("cannot read the VDB file ({})", e.what()));
+    fail(path, fmt::format("cannot read the VDB file ({})", printable_text(e.what())));
   }
   if (!base->isType<openvdb::FloatGrid>())
-    fail(path, fmt::format("grid '{}' holds {} values; a vdb field needs a float grid", field.grid, base->valueType()));
+    fail(path, fmt::format("grid '{}' holds {} values; a vdb field needs a float grid", printable_text(field.grid),
+                           printable_text(base->valueType())));
   openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-  if (grid->activeVoxelCount() == 0) fail(path, fmt::format("grid '{}' has no active voxels", field.grid));
+  if (grid->activeVoxelCount() == 0)
+    fail(path, fmt::format("grid '{}' has no active voxels", printable_text(field.grid)));
   auto check = [&](float v, const std::string& where) {
     if (!std::isfinite(v) || v < 0.0f)
-      fail(path, fmt::format("grid '{}': value {} at {} is not a finite m >= 0", field.grid, v, where));
+      fail(path, fmt::format("grid '{}': value {} at {} is not a finite m >= 0", printable_text(field.grid), v, where));
   };
   check(grid->background(), "the background");
   for (auto it = grid->cbeginValueAll(); it; ++it) {
@@ -89,7 +80,7 @@ glm::ivec3 checked_size(const std::array<long long, 3>& n, const VdbField& field
                     n[0] * n[1] * n[2] > kMaxVoxels;  // each factor <= kMaxAxis here
   if (over)
     fail(field.file, fmt::format("grid '{}': {} {}x{}x{} voxels is over the limit ({} per axis, 2^27 in all)",
-                                 field.grid, what, n[0], n[1], n[2], kMaxAxis));
+                                 printable_text(field.grid), what, n[0], n[1], n[2], kMaxAxis));
   return {static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2])};
 }
 
@@ -99,7 +90,7 @@ std::string_view to_string(VdbTransform transform) {
   return transform == VdbTransform::VdbWorld ? "vdb-world" : "object-bounds";
 }
 
-VdbVolume load_medium_vdb(const VdbField& field) {
+VdbVolume read_medium_vdb(const VdbField& field) {
   if (!(field.density_scale >= 0.0f) || !std::isfinite(field.density_scale))
     fail(field.file, fmt::format("density_scale {} is not a finite number >= 0", field.density_scale));
   openvdb::FloatGrid::Ptr grid = read_float_grid(field);
@@ -123,7 +114,7 @@ VdbVolume load_medium_vdb(const VdbField& field) {
     const openvdb::math::Transform& transform = grid->transform();
     if (!transform.isLinear())
       fail(field.file, fmt::format("grid '{}' has a non-linear (frustum) transform; vdb-world needs a linear one",
-                                   field.grid));
+                                   printable_text(field.grid)));
     // The active box plus one voxel of background on each side, in index space (voxel centres at integers).
     const openvdb::Vec3d index_lower = box.min().asVec3d() - openvdb::Vec3d(1.5);
     const openvdb::Vec3d index_upper = box.max().asVec3d() + openvdb::Vec3d(1.5);
@@ -173,7 +164,7 @@ VdbVolume load_medium_vdb(const VdbField& field) {
   if (!(volume->max_value <= kMaxDensityMultiplier))
     fail(field.file, fmt::format("grid '{}': values times density_scale {} reach {}; a density multiplier is at most "
                                  "{:g}",
-                                 field.grid, field.density_scale, volume->max_value, kMaxDensityMultiplier));
+                                 printable_text(field.grid), field.density_scale, volume->max_value, kMaxDensityMultiplier));
   out.volume = std::move(volume);
   return out;
 }

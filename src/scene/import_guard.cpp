@@ -1,15 +1,16 @@
-// import_guard.cpp: the mesh importer in a forked child process (import_guard.h).
+// import_guard.cpp: file readers in a forked child process (import_guard.h).
 //
 // Why a child process: assimp is a third-party parser of dozens of formats with a history of crash bugs on hostile
 // files (reads past the end of buffers, null dereferences, endless loops, allocations sized by a header field),
-// and a scene file may name any file. The child runs the importer under CPU, memory and core-file limits and
-// hands the triangles back; if it dies, the parent reports the file as unreadable and goes on.
+// OpenVDB allocates from the sizes a file declares, and a scene file may name any file. The child runs the reader
+// under CPU, memory and core-file limits and hands its result back as bytes; if it dies, the parent reports the
+// file as unreadable and goes on.
 // Why fork (and not a helper executable): the importer stays ordinary in-process code, and fork is safe with
 // glibc's malloc, which holds its arena locks across fork (pthread_atfork), so the child can allocate even when
 // other threads of the parent were allocating at that moment. A lock of another kind held by another parent
 // thread stays held in the child; a child that waits on one is caught by the wall-clock limit.
-// Transfer: the child writes the arrays into a memfd (shared memory) and then a small header into a pipe; the
-// parent waits on the pipe with a deadline and copies the arrays out. (Through the pipe alone, each 64 KiB costs
+// Transfer: the child writes its result into a memfd (shared memory) and then a small header into a pipe; the
+// parent waits on the pipe with a deadline and copies the result out. (Through the pipe alone, each 64 KiB costs
 // a context switch: 20 to 50 ms more for a 70k-triangle mesh on a loaded 2-core machine.)
 #include "scene/import_guard.h"
 
@@ -22,6 +23,7 @@
 #include <exception>
 #include <new>
 #include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -35,6 +37,7 @@
 
 #include <fmt/format.h>
 
+#include "io/printable_text.h"
 #include "lucent/error.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -54,17 +57,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr std::uint32_t kMagic = 0x4c4d5348;  // "LMSH"
-constexpr std::uint32_t kMeshResult = 0, kErrorResult = 1;
+constexpr std::uint32_t kBytesResult = 0, kErrorResult = 1;
 constexpr std::uint64_t kMaxMessage = 1 << 16;
 
-// The fixed-size start of the child's reply: a mesh (a = vertex count, b = index count, c = texture coordinate
-// count: 0 or a) or an error (a = length).
+// The fixed-size start of the child's reply: the result (its size in the shared memory file) or an error (the
+// length of the message that follows in the pipe).
 struct ReplyHeader {
   std::uint32_t magic = kMagic;
-  std::uint32_t kind = kMeshResult;
-  std::uint64_t a = 0;
-  std::uint64_t b = 0;
-  std::uint64_t c = 0;
+  std::uint32_t kind = kBytesResult;
+  std::uint64_t size = 0;
 };
 
 // ---- child ----------------------------------------------------------------------------------------------
@@ -81,21 +82,15 @@ bool write_all(int fd, const void* data, std::size_t size) {
   return true;
 }
 
-// The arrays go to the shared memory file, then the header to the pipe: its arrival says the data is complete.
-bool send_mesh(int fd, int data_fd, const TriangleMesh& mesh) {
-  const ReplyHeader header{kMagic, kMeshResult, mesh.positions.size(), mesh.indices.size(), mesh.uvs.size()};
-  return mesh.normals.size() == mesh.positions.size() &&
-         (mesh.uvs.empty() || mesh.uvs.size() == mesh.positions.size()) &&
-         write_all(data_fd, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3)) &&
-         write_all(data_fd, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3)) &&
-         write_all(data_fd, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t)) &&
-         write_all(data_fd, mesh.uvs.data(), mesh.uvs.size() * sizeof(glm::vec2)) &&
-         write_all(fd, &header, sizeof header);
+// The result goes to the shared memory file, then the header to the pipe: its arrival says the data is complete.
+bool send_result(int fd, int data_fd, const std::string& bytes) {
+  const ReplyHeader header{kMagic, kBytesResult, bytes.size()};
+  return write_all(data_fd, bytes.data(), bytes.size()) && write_all(fd, &header, sizeof header);
 }
 
 bool send_error(int fd, std::string message) {
   message.resize(std::min<std::size_t>(message.size(), kMaxMessage));
-  const ReplyHeader header{kMagic, kErrorResult, message.size(), 0, 0};
+  const ReplyHeader header{kMagic, kErrorResult, message.size()};
   return write_all(fd, &header, sizeof header) && write_all(fd, message.data(), message.size());
 }
 
@@ -127,22 +122,24 @@ void apply_limits(const ImportLimits& limits, std::uint64_t inherited_address_sp
 #endif
 }
 
-[[noreturn]] void run_child(int fd, int data_fd, const std::string& path, const std::function<TriangleMesh()>& import,
-                            const ImportLimits& limits, std::uint64_t inherited_address_space) {
+[[noreturn]] void run_child(int fd, int data_fd, const std::string& path, const GuardedReader& names,
+                            const std::function<std::string()>& read, const ImportLimits& limits,
+                            std::uint64_t inherited_address_space) {
   restore_crash_signals();
   apply_limits(limits, inherited_address_space);
   bool sent = false;
   try {
-    sent = send_mesh(fd, data_fd, import());
+    sent = send_result(fd, data_fd, read());
   } catch (const Error& e) {
     sent = send_error(fd, e.what());
   } catch (const std::bad_alloc&) {
-    sent = send_error(fd, fmt::format("{}: cannot read mesh: the importer ran out of memory (limit {} MiB)", path,
-                                      limits.memory_bytes >> 20));
+    sent = send_error(fd, fmt::format("{}: {}: {} ran out of memory (limit {} MiB)", path, names.failure,
+                                      names.reader, limits.memory_bytes >> 20));
   } catch (const std::exception& e) {
-    sent = send_error(fd, fmt::format("{}: cannot read mesh: the importer failed: {}", path, e.what()));
+    sent = send_error(fd, fmt::format("{}: {}: {} failed: {}", path, names.failure, names.reader,
+                                      printable_text(e.what())));
   } catch (...) {
-    sent = send_error(fd, path + ": cannot read mesh: the importer failed");
+    sent = send_error(fd, fmt::format("{}: {}: {} failed", path, names.failure, names.reader));
   }
   _exit(sent ? 0 : 3);  // no atexit handlers, no stdio flushing of the parent's buffers
 }
@@ -216,28 +213,24 @@ struct FileDescriptor {
   int fd;
 };
 
-// The child's reply: a mesh, or the message of the error it threw; nullopt when the reply is incomplete.
+// The child's reply: its result, or the message of the error it threw; nullopt when the reply is incomplete.
 struct Reply {
-  std::optional<TriangleMesh> mesh;
+  std::optional<std::string> result;
   std::string error;
 };
 
-// Reads `count` elements from the shared memory file at `offset`, which must hold them.
-template <class T>
-bool read_array(int data_fd, std::uint64_t data_size, std::uint64_t& offset, std::uint64_t count,
-                std::vector<T>& values) {
-  if (count > (data_size - offset) / sizeof(T)) return false;
-  values.resize(static_cast<std::size_t>(count));
-  const std::size_t bytes = values.size() * sizeof(T);
-  for (std::size_t done = 0; done < bytes;) {
-    const ssize_t n = ::pread(data_fd, reinterpret_cast<char*>(values.data()) + done, bytes - done,
-                              static_cast<off_t>(offset + done));
+// The first `size` bytes of the shared memory file, which must hold them.
+std::optional<std::string> read_data(int data_fd, std::uint64_t size) {
+  struct stat data_stat {};
+  if (::fstat(data_fd, &data_stat) != 0 || static_cast<std::uint64_t>(data_stat.st_size) < size) return std::nullopt;
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::pread(data_fd, bytes.data() + done, bytes.size() - done, static_cast<off_t>(done));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
+    if (n <= 0) return std::nullopt;
     done += static_cast<std::size_t>(n);
   }
-  offset += bytes;
-  return true;
+  return bytes;
 }
 
 std::optional<Reply> receive(PipeReader& reader, int data_fd) {
@@ -245,23 +238,14 @@ std::optional<Reply> receive(PipeReader& reader, int data_fd) {
   if (!reader.read(&header, sizeof header) || header.magic != kMagic) return std::nullopt;
   Reply reply;
   if (header.kind == kErrorResult) {
-    if (header.a > kMaxMessage) return std::nullopt;
-    reply.error.resize(header.a);
+    if (header.size > kMaxMessage) return std::nullopt;
+    reply.error.resize(header.size);
     if (!reader.read(reply.error.data(), reply.error.size())) return std::nullopt;
     return reply;
   }
-  struct stat data_stat {};
-  if (header.kind != kMeshResult || ::fstat(data_fd, &data_stat) != 0) return std::nullopt;
-  const auto data_size = static_cast<std::uint64_t>(data_stat.st_size);
-  std::uint64_t offset = 0;
-  TriangleMesh mesh;
-  if ((header.c != 0 && header.c != header.a) ||
-      !read_array(data_fd, data_size, offset, header.a, mesh.positions) ||
-      !read_array(data_fd, data_size, offset, header.a, mesh.normals) ||
-      !read_array(data_fd, data_size, offset, header.b, mesh.indices) ||
-      !read_array(data_fd, data_size, offset, header.c, mesh.uvs))
-    return std::nullopt;
-  reply.mesh = std::move(mesh);
+  if (header.kind != kBytesResult) return std::nullopt;
+  reply.result = read_data(data_fd, header.size);
+  if (!reply.result) return std::nullopt;
   return reply;
 }
 
@@ -274,17 +258,63 @@ int wait_for(pid_t pid) {
 }
 
 // Why the child gave no complete reply.
-std::string child_failure(int status, bool timed_out, const ImportLimits& limits) {
-  if (timed_out) return fmt::format("the importer did not finish within {} s", limits.wall_seconds);
-  if (status == -1) return "the importer stopped without a result";
+std::string child_failure(int status, bool timed_out, const ImportLimits& limits, const std::string& reader) {
+  if (timed_out) return fmt::format("{} did not finish within {} s", reader, limits.wall_seconds);
+  if (status == -1) return reader + " stopped without a result";
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    if (sig == SIGXCPU) return fmt::format("the importer used more than {} s of CPU time", limits.cpu_seconds);
-    return fmt::format("the importer crashed (signal {}, {})", sig, strsignal(sig));
+    if (sig == SIGXCPU) return fmt::format("{} used more than {} s of CPU time", reader, limits.cpu_seconds);
+    return fmt::format("{} crashed (signal {}, {})", reader, sig, strsignal(sig));
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
-    return fmt::format("the importer crashed (exit status {})", WEXITSTATUS(status));
-  return "the importer stopped without a result";
+    return fmt::format("{} crashed (exit status {})", reader, WEXITSTATUS(status));
+  return reader + " stopped without a result";
+}
+
+// ---- the mesh as bytes: three counts (vertices, indices, texture coordinates), then the arrays ------------
+
+template <class T>
+void append_array(std::string& bytes, const std::vector<T>& values) {
+  if (!values.empty()) bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+std::string mesh_bytes(const TriangleMesh& mesh, const std::string& path) {
+  if (mesh.normals.size() != mesh.positions.size() || (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()))
+    throw Error(fmt::format("{}: cannot read mesh: the importer returned {} normals and {} texture coordinates for "
+                            "{} vertices",
+                            path, mesh.normals.size(), mesh.uvs.size(), mesh.positions.size()));
+  const std::uint64_t counts[3] = {mesh.positions.size(), mesh.indices.size(), mesh.uvs.size()};
+  std::string bytes(reinterpret_cast<const char*>(counts), sizeof counts);
+  bytes.reserve(sizeof counts + mesh.positions.size() * 2 * sizeof(glm::vec3) +
+                mesh.indices.size() * sizeof(std::uint32_t) + mesh.uvs.size() * sizeof(glm::vec2));
+  append_array(bytes, mesh.positions);
+  append_array(bytes, mesh.normals);
+  append_array(bytes, mesh.indices);
+  append_array(bytes, mesh.uvs);
+  return bytes;
+}
+
+// Copies `count` elements at `offset` of `bytes`, which must hold them.
+template <class T>
+bool take_array(std::string_view bytes, std::size_t& offset, std::uint64_t count, std::vector<T>& values) {
+  if (count > (bytes.size() - offset) / sizeof(T)) return false;
+  values.resize(static_cast<std::size_t>(count));
+  if (!values.empty()) std::memcpy(values.data(), bytes.data() + offset, values.size() * sizeof(T));
+  offset += values.size() * sizeof(T);
+  return true;
+}
+
+std::optional<TriangleMesh> mesh_from_bytes(std::string_view bytes) {
+  std::uint64_t counts[3];
+  if (bytes.size() < sizeof counts) return std::nullopt;
+  std::memcpy(counts, bytes.data(), sizeof counts);
+  std::size_t offset = sizeof counts;
+  TriangleMesh mesh;
+  if ((counts[2] != 0 && counts[2] != counts[0]) || !take_array(bytes, offset, counts[0], mesh.positions) ||
+      !take_array(bytes, offset, counts[0], mesh.normals) || !take_array(bytes, offset, counts[1], mesh.indices) ||
+      !take_array(bytes, offset, counts[2], mesh.uvs) || offset != bytes.size())
+    return std::nullopt;
+  return mesh;
 }
 
 }  // namespace
@@ -294,29 +324,44 @@ ImportLimits& mesh_import_limits() {
   return limits;
 }
 
-TriangleMesh import_in_child(const std::string& path, const std::function<TriangleMesh()>& import,
-                             const ImportLimits& limits) {
+ImportLimits& vdb_read_limits() {
+  static ImportLimits limits;
+  return limits;
+}
+
+std::string read_in_child(const std::string& path, const GuardedReader& names,
+                          const std::function<std::string()>& read, const ImportLimits& limits) {
   const std::uint64_t inherited_address_space = address_space_bytes();
   const auto fail = [&](const char* what) {
-    throw Error(fmt::format("{}: cannot read mesh: {}: {}", path, what, std::strerror(errno)));
+    throw Error(fmt::format("{}: {}: {}: {}", path, names.failure, what, std::strerror(errno)));
   };
-  const FileDescriptor data(::memfd_create("lucent-mesh-import", MFD_CLOEXEC));
-  if (data.fd < 0) fail("cannot create the importer's shared memory");
+  const FileDescriptor data(::memfd_create("lucent-guarded-read", MFD_CLOEXEC));
+  if (data.fd < 0) fail("cannot create the reader's shared memory");
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) fail("cannot create a pipe");
   FileDescriptor read_end(fds[0]), write_end(fds[1]);
   const pid_t pid = ::fork();
-  if (pid < 0) fail("cannot start the importer");
-  if (pid == 0) run_child(write_end.fd, data.fd, path, import, limits, inherited_address_space);
+  if (pid < 0) fail("cannot start the reader");
+  if (pid == 0) run_child(write_end.fd, data.fd, path, names, read, limits, inherited_address_space);
   ::close(write_end.release());
   PipeReader reader(read_end.fd, Clock::now() + std::chrono::seconds(limits.wall_seconds));
   std::optional<Reply> reply = receive(reader, data.fd);
   if (!reply && !reader.at_end()) ::kill(pid, SIGKILL);  // timed out, or a reply that makes no sense
   const int status = wait_for(pid);
   if (!reply)
-    throw Error(fmt::format("{}: cannot read mesh: {}", path, child_failure(status, reader.timed_out(), limits)));
-  if (!reply->mesh) throw Error(reply->error);
-  return std::move(*reply->mesh);
+    throw Error(fmt::format("{}: {}: {}", path, names.failure,
+                            child_failure(status, reader.timed_out(), limits, names.reader)));
+  if (!reply->result) throw Error(reply->error);
+  return std::move(*reply->result);
+}
+
+TriangleMesh import_in_child(const std::string& path, const std::function<TriangleMesh()>& import,
+                             const ImportLimits& limits) {
+  const GuardedReader names;
+  std::optional<TriangleMesh> mesh =
+      mesh_from_bytes(read_in_child(path, names, [&] { return mesh_bytes(import(), path); }, limits));
+  if (!mesh) throw Error(fmt::format("{}: {}: {} returned a damaged mesh", path, names.failure, names.reader));
+  return std::move(*mesh);
 }
 
 }  // namespace lucent

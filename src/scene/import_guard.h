@@ -1,5 +1,5 @@
-// import_guard.h: runs a mesh importer in a child process, so that a crash, a runaway loop or a runaway
-// allocation inside it becomes a lucent::Error instead of taking the program down.
+// import_guard.h: runs a file reader (the mesh importer, the OpenVDB reader) in a child process, so that a crash,
+// a runaway loop or a runaway allocation inside it becomes a lucent::Error instead of taking the program down.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -17,14 +17,27 @@ struct ImportLimits {
   std::uint64_t memory_bytes = 0;
 };
 
-// Process-wide limits of load_mesh's importer; the fuzz targets lower them.
+// Process-wide limits of load_mesh's importer and load_medium_vdb's reader; the fuzz targets lower them.
 ImportLimits& mesh_import_limits();
+ImportLimits& vdb_read_limits();
 
-// Calls `import` in a forked child and returns the mesh it produced, read back through a pipe and shared memory
-// (positions, normals, indices, texture coordinates when it has them). A lucent::Error or std::exception thrown by `import` is rethrown here with the same message.
+// The names a guarded reader's messages use: "<path>: <failure>: <reader> crashed (signal 11, ...)".
+struct GuardedReader {
+  std::string failure = "cannot read mesh";
+  std::string reader = "the importer";
+};
+
+// Calls `read` in a forked child and returns the bytes it returned, read back through a pipe and shared memory.
+// A lucent::Error thrown by `read` is rethrown here with the same message; another std::exception as
+// "<path>: <failure>: <reader> failed: <what>", std::bad_alloc as "... ran out of memory (limit N MiB)".
 // When the child dies (signal, CPU or memory limit, sanitizer report) or does not finish within the wall time,
-// throws lucent::Error("<path>: cannot read mesh: the importer crashed (signal 11, Segmentation fault)") or
-// similar. Returns the mesh as the child built it: the caller validates it.
+// throws lucent::Error("<path>: <failure>: <reader> crashed (signal 11, Segmentation fault)") or similar.
+std::string read_in_child(const std::string& path, const GuardedReader& names,
+                          const std::function<std::string()>& read, const ImportLimits& limits);
+
+// read_in_child for the mesh importer: the mesh `import` produced (positions, normals, indices, texture
+// coordinates when it has them), as the child built it: the caller validates it. Messages as read_in_child's,
+// "<path>: cannot read mesh: the importer crashed (signal 11, Segmentation fault)".
 TriangleMesh import_in_child(const std::string& path, const std::function<TriangleMesh()>& import,
                              const ImportLimits& limits);
 

@@ -15,6 +15,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "io/file_path_check.h"
+#include "io/printable_text.h"
 #include "lucent/error.h"
 #include "io/input_file.h"
 #include "lucent/mesh.h"
@@ -99,7 +101,7 @@ TriangleMesh import_triangles(const std::string& path) {
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
-  if (!scene) throw Error(path + ": cannot read mesh: " + one_line(importer.GetErrorString()));
+  if (!scene) throw Error(path + ": cannot read mesh: " + printable_text(one_line(importer.GetErrorString())));
 
   // SortByPType leaves each mesh one primitive type. Point and line meshes are dropped here rather than by
   // AI_CONFIG_PP_SBP_REMOVE, which fails a file of lines alone as "No meshes remaining".
@@ -121,6 +123,7 @@ TriangleMesh import_triangles(const std::string& path) {
 }  // namespace
 
 TriangleMesh load_mesh(const std::string& path) {
+  check_file_path(path);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
   require_regular_file(path);

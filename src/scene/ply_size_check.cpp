@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "lucent/error.h"
+#include "io/printable_text.h"
 
 namespace lucent {
 namespace {
@@ -114,7 +115,7 @@ class HeaderParser {
     else if (format == "binary_big_endian")
       header.format = PlyFormat::BinaryBigEndian;
     else
-      fail(fmt::format("unknown format '{}'", words[1]));
+      fail(fmt::format("unknown format '{}'", printable_text(words[1], 64)));
     has_format_ = true;
   }
 
@@ -125,7 +126,8 @@ class HeaderParser {
     const char* end = words[2].data() + words[2].size();
     const auto [last, error] = std::from_chars(words[2].data(), end, element.count);
     if (error != std::errc() || last != end)
-      fail(fmt::format("element '{}' has count '{}', not a whole number below 2^64", words[1], words[2]));
+      fail(fmt::format("element '{}' has count '{}', not a whole number below 2^64", printable_text(words[1], 64),
+                       printable_text(words[2], 64)));
     header.elements.push_back(std::move(element));
   }
 
@@ -136,7 +138,7 @@ class HeaderParser {
     if (list) {
       if (words.size() != 5) fail("'property list' needs a count type, an item type and a name");
       if (!is_integer_type(words[2]) || type_size(words[2]) == 0)
-        fail(fmt::format("list count type '{}' is not an integer type", words[2]));
+        fail(fmt::format("list count type '{}' is not an integer type", printable_text(words[2], 64)));
       property.count_size = type_size(words[2]);
       property.count_signed = is_signed_type(words[2]);
     } else if (words.size() != 3) {
@@ -144,7 +146,8 @@ class HeaderParser {
     }
     const std::string_view type = list ? words[3] : words[1];
     property.size = type_size(type);
-    if (property.size == 0) fail(fmt::format("property '{}' has unknown type '{}'", words.back(), type));
+    if (property.size == 0) fail(fmt::format("property '{}' has unknown type '{}'", printable_text(words.back(), 64),
+                                                printable_text(type, 64)));
     header.elements.back().properties.push_back(property);
   }
 

@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "io/file_path_check.h"
 #include "lucent/environment.h"
 #include "lucent/error.h"
 #include "io/input_file.h"
@@ -126,6 +127,13 @@ constexpr ParamDecl kRenderParams[] = {
     {"fps", ParamType::Float, "30", "frames/s", 1e-3, 1e4, "", "animation frame rate (lucent render --animate)"},
 };
 
+// The file the scene names in `key`, refused when it cannot name a file (a NUL byte would cut it).
+const std::string& file_param(const ParamValues& v, const char* key, const JsonLocation& where) {
+  const std::string& file = v.text(key);
+  if (const std::string problem = file_path_problem(file); !problem.empty()) fail(where.child(key), problem);
+  return file;
+}
+
 // A path as the scene file gives it, relative to the scene's folder.
 std::string resolve_path(const std::string& file, const std::string& base_dir) {
   std::filesystem::path path = file;
@@ -195,7 +203,7 @@ void read_environment(const json& j, const JsonLocation& where, const std::strin
   ParamValues v = read_params(j, {"environment", kEnvironmentParams}, where);
   if (!v.has("file") || v.text("file").empty()) fail(where.child("file"), "missing; an .hdr or .exr map");
   EnvironmentLight env;
-  std::filesystem::path path = v.text("file");
+  std::filesystem::path path = file_param(v, "file", where);
   if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
   env.file = path.lexically_normal().string();
   env.light_count = v.integer("lights");
@@ -246,7 +254,7 @@ MediumField read_field(const json& j, const JsonLocation& where, const std::stri
                                    : MediumFieldType::None;
   field.scale_mm = static_cast<float>(v.number("scale_mm"));
   field.contrast = static_cast<float>(v.number("contrast"));
-  field.file = v.text("file");
+  field.file = file_param(v, "file", where);
   for (const char* key : {"grid", "density_scale", "transform"})
     if (j.contains(key) && type != "vdb") fail(where.child(key), fmt::format("only for type vdb (type is {})", type));
   if (type == "vdb") {
@@ -323,7 +331,7 @@ Material material_from_artist(const ParamValues& v, const JsonLocation& where, c
 std::optional<MapImage> read_map_key(const ParamValues& v, const char* key, bool colour, const JsonLocation& where,
                                      const std::string& base_dir) {
   if (!v.has(key) || v.text(key).empty()) return std::nullopt;
-  return read_material_map(resolve_path(v.text(key), base_dir), colour, where.child(key).str());
+  return read_material_map(resolve_path(file_param(v, key, where), base_dir), colour, where.child(key).str());
 }
 
 // The middle of the albedos the material's model reaches, for an albedo map's mean outside them (the texels are
@@ -397,7 +405,7 @@ std::vector<glm::vec2> read_profile(const json& object, const JsonLocation& wher
 TriangleMesh read_geometry(const ParamValues& v, const std::vector<glm::vec2>& profile, const JsonLocation& where,
                            const std::string& base_dir) {
   const std::string& shape = v.text("shape");
-  const std::string& mesh = v.text("mesh");
+  const std::string& mesh = file_param(v, "mesh", where);
   if (shape.empty() == mesh.empty()) fail(where, "give exactly one of shape and mesh");
   int segments = v.integer("segments");
   if (shape == "blobs") return {};  // extracted every frame (SceneObject::blob_resolution)

@@ -127,6 +127,27 @@ TEST(HostileHdr, MalformedHeadersAreNamed) {
   }
 }
 
+// Header text quoted in a message keeps it one printable line: control bytes and stray binary bytes as \xNN,
+// well-formed UTF-8 as it is, and a long line cut.
+TEST(HostileHdr, QuotedHeaderTextIsPrintable) {
+  const TempFile file(".hdr");
+  const std::pair<std::string, std::string> cases[] = {
+      {"#?RADIANCE\nFORMAT=rgbe\r\x1b[2J\xff\xc3\xa9\n\n-Y 1 +X 1\nabcd",
+       "unsupported FORMAT=rgbe\\x0d\\x1b[2J\\xff\xc3\xa9 (only 32-bit_rle_rgbe)"},
+      {"#?RADIANCE\n\n-Y \x01\x02 +X 1\n", "bad image size '\\x01\\x02' in the resolution line"},
+      {"#?RADIANCE\n\n+Y 1 +X 1 " + std::string(100, '\x7f') + "\n",
+       "unsupported resolution line '+Y 1 +X 1 " + [] {
+         std::string escaped;
+         while (escaped.size() < 54) escaped += "\\x7f";
+         return escaped;
+       }() + "...' (only -Y height +X width)"},
+  };
+  for (const auto& [bytes, problem] : cases) {
+    write_bytes(file.path(), bytes);
+    EXPECT_EQ(error_message([&] { read_hdr(file.path()); }), file.path() + ": cannot read HDR: " + problem);
+  }
+}
+
 // Flat scanlines (width under 8) and the sizes at the limit.
 TEST(HostileHdr, FlatScanlinesAndTheLimit) {
   const std::string pixel("\x80\x40\x20\x81", 4);  // (1, 0.5, 0.25)
@@ -166,6 +187,19 @@ TEST(HostilePng, HugeDeclaredSizeIsRefused) {
             file.path() +
                 ": cannot read PNG: image is 100000x100000, more than the 268435456 pixels (16384 x "
                 "16384) lucent reads");
+}
+
+// Within the pixel limit but far more pixel data than the file could inflate to: refused before stb_image
+// allocates the 1 GiB image. Scanlines: a filter byte and 4 samples of 8 bits a pixel (RGBA), 16384 rows.
+TEST(HostilePng, PixelDataTheFileCannotHoldIsRefused) {
+  const TempFile file(".png");
+  const std::string bytes = png_header(16384, 16384) + big_endian32(4) + "IDAT" + std::string(8, '\0') +
+                            big_endian32(0) + "IEND" + big_endian32(0);
+  write_bytes(file.path(), bytes);
+  EXPECT_EQ(error_message([&] { read_png(file.path()); }),
+            file.path() + ": cannot read PNG: image is 16384x16384, " + std::to_string(16384LL * (1 + 4 * 16384)) +
+                " bytes of pixel data, more than a file of " + std::to_string(bytes.size()) +
+                " bytes can hold (at most 4096 bytes a file byte)");
 }
 
 // stb_image decodes any format it was built with; a Radiance file named .png went through its looping HDR reader.
@@ -224,6 +258,18 @@ TEST(HostileExr, HugeDeclaredSizeIsRefusedBeforeAllocating) {
             file.path() +
                 ": cannot read EXR: image is 100000x100000, more than the 268435456 pixels (16384 x "
                 "16384) lucent reads");
+}
+
+// At the pixel limit, one float channel: 1 GiB of pixel data (4 GiB as RGBA floats) declared by a file that holds
+// the header and the chunk offsets only. Refused before the image is allocated.
+TEST(HostileExr, PixelDataTheFileCannotHoldIsRefusedBeforeAllocating) {
+  const TempFile file(".exr");
+  write_exr_header(file.path(), 16384, 16384);
+  const std::size_t size = read_bytes(file.path()).size();
+  ASSERT_LT(size, std::size_t{1} << 20);
+  EXPECT_EQ(error_message([&] { read_exr(file.path()); }),
+            file.path() + ": cannot read EXR: image is 16384x16384, 1073741824 bytes of pixel data, more than a file "
+                          "of " + std::to_string(size) + " bytes can hold (at most 4096 bytes a file byte)");
 }
 
 TEST(HostileExr, TruncatedFileIsAnError) {

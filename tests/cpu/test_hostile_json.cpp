@@ -10,12 +10,15 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "../cli_runner.h"
 #include "../test_support.h"
 #include "lucent/error.h"
+#include "lucent/image.h"
+#include "lucent/mesh.h"
 #include "lucent/medium_volume.h"
 #include "lucent/scene.h"
 #include "methods/method_info.h"
@@ -325,6 +328,46 @@ TEST(HostileJson, SceneFileAndSetThroughTheCli) {
   r = test::run_cli("reference " + good + " --set 'method={\"name\": 3}'");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output, "lucent: --set 'method={\"name\": 3}': /method/name: expected a string, got 3\n");
+}
+
+// A NUL byte (JSON "\u0000") would cut a path where the operating system takes it: "sky.hdr\u0000.exr" would open
+// sky.hdr after the extension check saw .exr. Every path the scene names is refused, naming its key.
+TEST(HostileJson, PathsWithANulByteAreRefused) {
+  const std::string scenes = LUCENT_SCENES_DIR;
+  const std::string problem = "the file path holds a NUL byte (byte {}), which no file name can";
+  auto expected = [&](const std::string& pointer, const std::string& path) {
+    return std::string(kSource) + ": " + pointer + ": " +
+           fmt::format(fmt::runtime(problem), path.find('\0'));
+  };
+  json doc = minimal_scene();
+  std::string mesh = scenes + "/volumes/strata.json";
+  mesh += std::string(1, '\0') + ".obj";
+  doc["objects"][0] = json{{"mesh", mesh}, {"material", "Marble"}};
+  EXPECT_EQ(scene_error(doc), expected("/objects/0/mesh", mesh));
+  std::string map = scenes + "/maps/marble_albedo.png";
+  map += std::string(1, '\0') + ".exr";
+  doc = minimal_scene();
+  doc["objects"][0]["material"] = json{{"preset", "Marble"}, {"albedo_map", map}};
+  EXPECT_EQ(scene_error(doc), expected("/objects/0/material/albedo_map", map));
+  std::string volume = scenes + "/volumes/strata.json";
+  volume += std::string(1, '\0') + "x";
+  doc = minimal_scene();
+  doc["objects"][0]["material"] = json{{"preset", "Marble"}, {"field", {{"type", "volume"}, {"file", volume}}}};
+  EXPECT_EQ(scene_error(doc), expected("/objects/0/material/field/file", volume));
+  doc["objects"][0]["material"]["field"]["type"] = "vdb";
+  EXPECT_EQ(scene_error(doc), expected("/objects/0/material/field/file", volume));
+  std::string sky = scenes + "/env/sky.hdr";
+  sky += std::string(1, '\0') + ".exr";
+  doc = minimal_scene();
+  doc["environment"] = json{{"file", sky}};
+  EXPECT_EQ(scene_error(doc), expected("/environment/file", sky));
+  // The readers refuse such paths too (the Python module hands strings to them as they are).
+  EXPECT_EQ(test::error_message([&] { load_medium_volume(volume); }),
+            scenes + "/volumes/strata.json\\x00x: " + fmt::format(fmt::runtime(problem), volume.find('\0')));
+  EXPECT_EQ(test::error_message([&] { load_mesh(mesh); }),
+            scenes + "/volumes/strata.json\\x00.obj: " + fmt::format(fmt::runtime(problem), mesh.find('\0')));
+  EXPECT_EQ(test::error_message([&] { read_hdr(sky); }),
+            scenes + "/env/sky.hdr\\x00.exr: " + fmt::format(fmt::runtime(problem), sky.find('\0')));
 }
 
 TEST(HostileJson, ReferenceMetadataDuplicateKeyIsAnError) {

@@ -193,6 +193,13 @@ TEST(HostilePly, MalformedHeadersAreNamed) {
   }
 }
 
+TEST(HostilePly, QuotedHeaderWordsArePrintable) {
+  const TempFile file(".ply");
+  write_file(file.path(), "ply\nformat ascii 1.0\nelement vertex 1\nproperty \x1b[31m\xfe x\nend_header\n");
+  EXPECT_EQ(error_message([&] { load_mesh(file.path()); }),
+            file.path() + ": malformed PLY header: property 'x' has unknown type '\\x1b[31m\\xfe'");
+}
+
 // The importer recognises PLY by content, whatever the extension; so does the check.
 TEST(HostilePly, ContentNotExtensionDecides) {
   const TempFile file(".bin");

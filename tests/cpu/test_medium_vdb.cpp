@@ -10,18 +10,21 @@
 #include <fstream>
 #include <limits>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
 #include "lucent/medium_vdb.h"
+#include "scene/import_guard.h"
 #include "lucent/scene.h"
 #include "lucent/scene_writer.h"
 #include "reference/embree_scene.h"
 #include "reference/integrators.h"
 #include "transport/estimate.h"
 #include "transport/rng.h"
+#include "../cli_runner.h"
 #include "../test_support.h"
 
 namespace lucent {
@@ -200,6 +203,87 @@ TEST(MediumVdb, BadFilesNameTheFileAndTheProblem) {
   big->tree().setValue(openvdb::Coord(599, 599, 599), 1.0f);
   EXPECT_EQ(error_for({big}),
             path + ": grid 'density': active bounding box 600x600x600 voxels is over the limit (1024 per axis, 2^27 in all)");
+}
+
+// The first `count` bytes of `from` as the file `to`.
+void write_prefix(const std::string& from, const std::string& to, std::size_t count) {
+  std::ofstream(to, std::ios::binary) << test::read_text(from).substr(0, count);
+}
+
+TEST(MediumVdb, TruncatedFilesAreRefusedBeforeOpenVdbReadsThem) {
+  test::TempFile whole(".vdb"), part(".part.vdb");
+  write_grids(whole.path(), {float_grid("density", {0, 0, 0}, {39, 39, 39}, ramp)});
+  const std::size_t size = test::read_text(whole.path()).size();
+  ASSERT_GT(size, 5000u);
+  VdbField field;
+  field.file = part.path();
+  auto error_for = [&](std::size_t count) {
+    write_prefix(whole.path(), part.path(), count);
+    return test::error_message([&] { load_medium_vdb(field); });
+  };
+  // The grid's descriptor (name, type, offsets) ends within the first 200 bytes; its data runs to the end.
+  for (std::size_t count : {200u, 5000u, static_cast<unsigned>(size - 1)})
+    EXPECT_EQ(error_for(count), fmt::format("{}: grid 'density' ends at byte {}, past the end of the file ({} bytes; "
+                                            "truncated)",
+                                            part.path(), size, count));
+  EXPECT_EQ(error_for(8), part.path() + ": the file ends inside the header (8 bytes; truncated or not a VDB file)");
+  EXPECT_EQ(error_for(70), part.path() + ": the file ends inside a grid descriptor (70 bytes; truncated or not a VDB "
+                                         "file)");
+  EXPECT_EQ(error_for(4), part.path() + ": not a VDB file (no OpenVDB magic number)");
+  EXPECT_EQ(load_medium_vdb(VdbField{whole.path()}).volume->size, glm::ivec3(40));
+}
+
+// The first 5000 bytes of a VDB file named by a scene: one line and exit status 1 (it was "internal error:
+// std::bad_alloc", exit status 2, after OpenVDB allocated what the damaged header declared).
+TEST(MediumVdb, ATruncatedFileInASceneIsOneLineFromTheCli) {
+  test::TempFile whole(".vdb"), part(".part.vdb"), scene(".json"), out(".exr");
+  write_grids(whole.path(), {float_grid("density", {0, 0, 0}, {39, 39, 39}, ramp)});
+  write_prefix(whole.path(), part.path(), 5000);
+  std::ofstream(scene.path()) << json{{"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
+                                      {"objects", json::array({json{{"shape", "sphere"},
+                                                                    {"material", json{{"preset", "Marble"},
+                                                                                      {"field", json{{"type", "vdb"},
+                                                                                                     {"file", part.path()}}}}}}})}}
+                                     .dump();
+  const test::CliResult result = test::run_cli("reference " + scene.path() + " -q -o " + out.path(), "timeout 60");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.output, fmt::format("lucent: {}: grid 'density' ends at byte {}, past the end of the file (5000 "
+                                       "bytes; truncated)\n",
+                                       part.path(), test::read_text(whole.path()).size()));
+}
+
+TEST(MediumVdb, OpenVdbsMessagesAreQuotedAsPrintableText) {
+  test::TempFile file(".vdb");
+  write_grids(file.path(), {float_grid("density", {0, 0, 0}, {3, 3, 3}, ramp)});
+  std::string bytes = test::read_text(file.path());
+  const std::size_t map = bytes.find("UniformScaleMap");
+  ASSERT_NE(map, std::string::npos);
+  bytes.replace(map + 7, 3, "\n\x01\xff");  // the transform's type name, which OpenVDB quotes in its message
+  std::ofstream(file.path(), std::ios::binary) << bytes;
+  EXPECT_EQ(test::error_message([&] { load_medium_vdb(VdbField{file.path()}); }),
+            file.path() + ": cannot read the VDB file (KeyError: Map Uniform\\x0a\\x01\\xffleMap is not registered)");
+}
+
+TEST(MediumVdb, TheReaderRunsUnderAMemoryLimit) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "no address-space limit under AddressSanitizer";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  GTEST_SKIP() << "no address-space limit under AddressSanitizer";
+#endif
+#endif
+  test::TempFile file(".vdb");
+  openvdb::FloatGrid::Ptr tiles = openvdb::FloatGrid::create(0.0f);  // active tiles: a few KiB in this process
+  tiles->setName("density");
+  tiles->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(255)), 1.0f, true);
+  write_grids(file.path(), {tiles});
+  ImportLimits& limits = vdb_read_limits();
+  const ImportLimits saved = limits;
+  limits.memory_bytes = std::uint64_t{16} << 20;  // less than the 64 MiB of the dense 256^3 volume
+  const std::string message = test::error_message([&] { load_medium_vdb(VdbField{file.path()}); });
+  limits = saved;
+  EXPECT_EQ(message, file.path() + ": cannot read the VDB file: the OpenVDB reader ran out of memory (limit 16 MiB)");
+  EXPECT_EQ(load_medium_vdb(VdbField{file.path()}).volume->size, glm::ivec3(256));
 }
 
 json scene_with_field(const json& field) {

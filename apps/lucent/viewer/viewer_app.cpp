@@ -113,7 +113,7 @@ glm::ivec2 initial_view_size(const ViewerOptions& o) {
   try {
     Scene scene = o.scene_path.empty() ? default_scene(o.sets) : load_scene(o.scene_path, o.sets);
     size = {scene.render.width, scene.render.height};
-  } catch (const Error&) {
+  } catch (const std::exception&) {
     if (o.frames > 0) throw;
   }
   if (o.width) size.x = *o.width;
@@ -224,10 +224,7 @@ class ViewerApp {
                                     state_.scene_save_path);
       }
       if (actions.reload) session_.load();
-    } catch (const Error& e) {
-      state_.status.clear();
-      session_.set_error(e.what());
-    } catch (const std::filesystem::filesystem_error& e) {
+    } catch (const std::exception& e) {  // lucent::Error, a filesystem error, an allocation that failed
       state_.status.clear();
       session_.set_error(e.what());
     }

@@ -2,6 +2,7 @@
 #include "viewer/viewer_session.h"
 
 #include <algorithm>
+#include <exception>
 
 #include <fmt/format.h>
 
@@ -37,6 +38,11 @@ bool ViewerSession::load(bool strict) {
   } catch (const Error& e) {
     if (strict) throw;
     error_ = e.what();
+    return false;
+  } catch (const std::exception& e) {  // e.g. std::bad_alloc: the scene is as unusable, the session goes on
+    if (strict) throw;
+    const std::string scene = scene_path_.empty() ? "<built-in default scene>" : scene_path_;
+    error_ = fmt::format("{}: cannot load the scene: {}", scene, e.what());
     return false;
   }
 }
@@ -80,7 +86,7 @@ void ViewerSession::apply_pending() {
     try {
       renderer_ = std::make_unique<Renderer>(edit_);
       error_.clear();
-    } catch (const Error& e) {
+    } catch (const std::exception& e) {
       error_ = e.what();
     }
     return;
@@ -92,12 +98,12 @@ void ViewerSession::apply_pending() {
     renderer_->scene() = edit_;
     renderer_->scene_changed();
     error_.clear();
-  } catch (const Error& e) {
+  } catch (const std::exception& e) {
     error_ = e.what();
     try {
       renderer_->scene() = std::move(good);
       renderer_->scene_changed();
-    } catch (const Error&) {
+    } catch (const std::exception&) {
       renderer_.reset();  // not even the last good scene builds: an empty view with the message
     }
   }
@@ -108,7 +114,7 @@ void ViewerSession::render(const RenderTarget& target) {
   if (!renderer_) return;
   try {
     renderer_->render(camera_.camera(), target);
-  } catch (const Error& e) {
+  } catch (const std::exception& e) {
     error_ = e.what();
     renderer_.reset();
   }

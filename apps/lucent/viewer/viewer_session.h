@@ -20,8 +20,9 @@ class ViewerSession {
   // `scene_path` "" = the built-in default scene; `overrides` as `lucent render --set`.
   ViewerSession(std::string scene_path, std::vector<std::string> overrides);
 
-  // Loads the scene (needs a current GL context). `strict`: rethrow lucent::Error instead of keeping it for
-  // display (the --frames mode, which must fail like `lucent render`). True on success.
+  // Loads the scene (needs a current GL context for the renderer). Every std::exception (lucent::Error, and
+  // std::bad_alloc or another from a reader) is kept for display; `strict`: rethrown instead (the --frames mode,
+  // which must fail like `lucent render`). True on success.
   bool load(bool strict = false);
   // Reloads when the scene file changed on disk; true when it did (successfully or not).
   bool reload_if_changed();
