@@ -162,7 +162,7 @@ VdbVolume read_medium_vdb(const VdbField& field) {
   }
   volume->max_value = *std::max_element(volume->values.begin(), volume->values.end());
   if (!(volume->max_value <= kMaxDensityMultiplier))
-    fail(field.file, fmt::format("grid '{}': values times density_scale {} reach {}; a density multiplier is at most "
+    fail(field.file, fmt::format("grid '{}': values times density_scale {} reach {:g}; a density multiplier is at most "
                                  "{:g}",
                                  printable_text(field.grid), field.density_scale, volume->max_value, kMaxDensityMultiplier));
   out.volume = std::move(volume);

@@ -195,6 +195,9 @@ TEST(MediumVdb, BadFilesNameTheFileAndTheProblem) {
               return x == 1 ? std::numeric_limits<float>::quiet_NaN() : 1.0f;
             })}),
             path + ": grid 'density': value nan at [1, 0, 0] is not a finite m >= 0");
+  // A density multiplier beyond 1e6 overflowed the real-time methods' single-precision optical depths.
+  EXPECT_EQ(error_for({float_grid("density", {0, 0, 0}, {1, 1, 1}, [](int x, int, int) { return x == 1 ? 2e6f : 1.0f; })}),
+            path + ": grid 'density': values times density_scale 1 reach 2e+06; a density multiplier is at most 1e+06");
   openvdb::FloatGrid::Ptr wide = float_grid("density", {0, 0, 0}, {0, 0, 0}, one);
   wide->tree().setValue(openvdb::Coord(2000, 0, 0), 1.0f);
   EXPECT_EQ(error_for({wide}),
