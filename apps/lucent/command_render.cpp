@@ -88,10 +88,14 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
   std::string pattern = base.string() + "_%04d.png", mp4 = base.string() + ".mp4";
   bool have_ffmpeg = std::system("command -v ffmpeg > /dev/null 2>&1") == 0;
   if (have_ffmpeg) {
-    // ffmpeg writes a temporary file that replaces the MP4 only when complete, as lucent's own outputs do.
+    // ffmpeg writes a temporary file that replaces the MP4 only when complete, as lucent's own outputs do. It reads
+    // this animation's frames only (-frames:v), not those an earlier, longer one left after them, and never its
+    // standard input (-nostdin), which belongs to whoever started lucent: a pipe's lines or a terminal whose
+    // background jobs ffmpeg would stop.
     std::filesystem::path partial = base.parent_path() / ("." + base.filename().string() + ".lucent-tmp.mp4");
-    std::string command = fmt::format("ffmpeg -loglevel error -y -framerate {} -i '{}' -pix_fmt yuv420p '{}'",
-                                      scene.render.fps, pattern, partial.string());
+    std::string command =
+        fmt::format("ffmpeg -nostdin -loglevel error -y -framerate {} -i '{}' -frames:v {} -pix_fmt yuv420p '{}'",
+                    scene.render.fps, pattern, frames, partial.string());
     std::error_code ec;
     const RemoveOnSignal removal(partial.string());  // a signal that ends lucent meanwhile leaves no partial video
     if (std::system(command.c_str()) != 0) {

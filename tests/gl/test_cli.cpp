@@ -418,10 +418,17 @@ TEST(Cli, AnimateWritesNumberedFramesAndCallsFfmpeg) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir + "/bin");
   std::string fake = dir + "/bin/ffmpeg";
-  // It writes its last argument (the output), as ffmpeg does.
-  std::ofstream(fake) << "#!/bin/sh\necho \"$@\" > " << dir << "/ffmpeg_args.txt\nfor a; do last=$a; done\n"
-                      << "echo video > \"$last\"\n";
+  // It writes its last argument (the output), as ffmpeg does, from the frames ffmpeg's image2 input would read: the
+  // pattern's files from number 0 on while they exist, at most -frames:v of them.
+  std::ofstream(fake) << "#!/bin/sh\necho \"$@\" > " << dir << "/ffmpeg_args.txt\n"
+                      << "n=-1\nwhile [ $# -gt 1 ]; do\n"
+                      << "  case $1 in -frames:v) n=$2;; -i) pattern=$2;; esac; shift\ndone\n"
+                      << "count=0\nwhile [ $n -lt 0 ] || [ $count -lt $n ]; do\n"
+                      << "  [ -f \"$(printf \"$pattern\" $count)\" ] || break; count=$((count + 1))\ndone\n"
+                      << "echo video of $count frames > \"$1\"\n";
   std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  // A frame of an earlier, longer animation is no part of this one's video.
+  std::ofstream(dir + "/blobs_0002.png") << "an earlier animation's frame";
   std::string scene = std::string(LUCENT_SCENES_DIR) + "/blobs.json";
   Result r = run("render " + scene + " " + kSmall + " --set method.vpls=0 --set objects.0.segments=24 --animate --frames 2 -o " +
                      dir + "/blobs.png",
@@ -431,13 +438,16 @@ TEST(Cli, AnimateWritesNumberedFramesAndCallsFfmpeg) {
   EXPECT_NE(a.pixels, b.pixels) << "the blobs move between frames";
   std::ifstream args_file(dir + "/ffmpeg_args.txt");
   std::string args((std::istreambuf_iterator<char>(args_file)), std::istreambuf_iterator<char>());
-  EXPECT_NE(args.find("-framerate 30 -i " + dir + "/blobs_%04d.png"), std::string::npos) << args;
+  EXPECT_NE(args.find("-framerate 30 -i " + dir + "/blobs_%04d.png -frames:v 2 "), std::string::npos) << args;
+  // ffmpeg reads commands from its standard input unless told not to: it would take a pipe's lines meant for
+  // others, or stop a background job (SIGTTIN) that shares the terminal.
+  EXPECT_EQ(args.rfind("-nostdin ", 0), 0u) << args;
   // ffmpeg writes a temporary beside the video, renamed into place when it succeeded.
   EXPECT_NE(args.find(dir + "/.blobs.lucent-tmp.mp4"), std::string::npos) << args;
   std::ifstream video(dir + "/blobs.mp4");
   std::string first_line;
   std::getline(video, first_line);
-  EXPECT_EQ(first_line, "video");
+  EXPECT_EQ(first_line, "video of 2 frames");
   EXPECT_FALSE(std::filesystem::exists(dir + "/.blobs.lucent-tmp.mp4"));
 }
 
