@@ -96,7 +96,7 @@ TEST(CliInputFiles, FifoAndDirectoryInputsAreRefusedNamingThePath) {
   }
   auto scene_is_directory = run_cli("reference " + dir.string() + reference, kNoHang);
   EXPECT_EQ(scene_is_directory.exit_code, 1);
-  EXPECT_EQ(scene_is_directory.output, "lucent: " + dir.string() + ": is a directory, not a regular file\n");
+  EXPECT_EQ(scene_is_directory.output, "lucent: " + dir.string() + ": is a directory; give a scene file (JSON)\n");
   EXPECT_FALSE(fs::exists(dir / "r.exr"));
 }
 
