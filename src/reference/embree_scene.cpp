@@ -125,12 +125,13 @@ double EmbreeScene::offset_at(const glm::dvec3& p) {
 
 namespace {
 
-// Embree's ray check (RayK::valid): finite origin and direction below FLT_LARGE, 0 <= tnear <= tfar.
+// Embree's ray check (RayK::valid): finite origin and direction below FLT_LARGE, tnear >= 0, tfar not NaN (an
+// empty interval tnear > tfar is a miss, decided before Embree).
 void check_ray(const glm::dvec3& origin, const glm::dvec3& direction, double t_min, double t_max) {
   constexpr double kLargest = 1.8e18;
   const bool valid = glm::all(glm::lessThan(glm::abs(origin), glm::dvec3(kLargest))) &&
                      glm::all(glm::lessThan(glm::abs(direction), glm::dvec3(kLargest))) && t_min >= 0.0 &&
-                     t_min <= t_max;  // false for NaN
+                     !std::isnan(t_max);  // false for NaN
   if (!valid)
     throw Error(fmt::format("internal error: a reference ray from ({}, {}, {}) along ({}, {}, {}) over [{}, {}] is "
                             "not finite; the scene's numbers are too large for single-precision ray tracing",
@@ -156,6 +157,7 @@ SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& di
   rh.ray.dir_z = static_cast<float>(direction.z);
   const double t_near = t_min < 0.0 ? offset_at(origin) : t_min, t_far = std::min(t_max, 1e30);
   check_ray(origin, direction, t_near, t_far);
+  if (t_far < t_near) return SurfaceHit{};  // an empty segment (shorter than the offset): nothing on it
   rh.ray.tnear = static_cast<float>(t_near);
   rh.ray.tfar = static_cast<float>(t_far);
   rh.ray.mask = 0xffffffffu;
@@ -188,8 +190,8 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
   ray.dir_x = static_cast<float>(direction.x), ray.dir_y = static_cast<float>(direction.y);
   ray.dir_z = static_cast<float>(direction.z);
   const double t_near = offset_at(origin), t_far = std::min(t_max, 1e30);
-  if (!(t_far >= t_near)) return false;  // a shadow segment shorter than the offset: nothing in between
   check_ray(origin, direction, t_near, t_far);
+  if (t_far < t_near) return false;  // a shadow segment shorter than the offset: nothing in between
   ray.tnear = static_cast<float>(t_near);
   ray.tfar = static_cast<float>(t_far);
   ray.mask = 0xffffffffu;

@@ -3,6 +3,7 @@
 // over the seeds must agree with the mean of the claimed variances (standard error squared). Everything built on
 // the standard error depends on it: compare's noise correction, reference merge, the refinement criterion.
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,14 @@ Scene seeds_scene() {
                   "material": { "sigma_a": [0.02, 0.05, 0.2], "sigma_s": [1.0, 0.8, 0.6], "g": [0.3, 0.3, 0.3],
                                 "eta": 1.3 } },
                 { "shape": "plane", "extent": [6, 6], "albedo": [0.5, 0.5, 0.5] }],
-    "render": { "width": 24, "height": 24, "background": [0, 0, 0] } })",
+    "render": { "width": 32, "height": 32, "background": [0, 0, 0] } })",
                      "seeds", "/");
+}
+
+// LUCENT_SEED_BASE offsets the 16 seeds, to see the test's spread over independent sets of seeds.
+int seed_base() {
+  const char* base = std::getenv("LUCENT_SEED_BASE");
+  return base ? std::atoi(base) : 0;
 }
 
 void expect_honest_standard_error(Integrator integrator, int spp) {
@@ -40,7 +47,7 @@ void expect_honest_standard_error(Integrator integrator, int spp) {
     ReferenceSettings settings;
     settings.integrator = integrator;
     settings.samples_per_pixel = spp;
-    settings.seed = static_cast<std::uint64_t>(seed);
+    settings.seed = static_cast<std::uint64_t>(seed + seed_base());
     renders.push_back(render_reference(scene, settings));
   }
   const std::size_t pixels = renders[0].mean.pixels.size() / 4;
@@ -60,8 +67,11 @@ void expect_honest_standard_error(Integrator integrator, int spp) {
     ASSERT_GT(claimed, 0.0);
     std::printf("%s %d spp, band %d: variance of the mean over seeds / claimed %.3f\n",
                 std::string(to_string(integrator)).c_str(), spp, band, observed / claimed);
-    // Over 576 pixels the ratio's own spread is about sqrt(2 / 15 / 576) = 1.5% (somewhat more: neighbouring
-    // pixels are not independent samples of the ratio); 10% is the acceptance bound.
+    // The ratio's own spread: the variance over 16 seeds is within sqrt(2 / 15) = 37% per pixel, and the claimed
+    // variances are random too, which biases a ratio of sums upward where samples are few and heavy-tailed
+    // (bssrdf at 16 spp: 1.00-1.09 over five sets of seeds, up to 1.09 at 64 spp). Over eight sets of seeds
+    // (LUCENT_SEED_BASE 0 to 700) at these sample counts: volpath 0.95-1.07, bssrdf 0.96-1.03, every band; 10% is
+    // the acceptance bound.
     EXPECT_NEAR(observed / claimed, 1.0, 0.10)
         << fmt::format("{} {} spp, band {}: variance of the mean over {} seeds {:.4g}, claimed {:.4g}",
                        to_string(integrator), spp, band, kSeeds, observed, claimed);
@@ -69,11 +79,11 @@ void expect_honest_standard_error(Integrator integrator, int spp) {
 }
 
 TEST(ReferenceStandardError, VolpathClaimsTheSpreadOfItsMeanOverSeeds) {
-  expect_honest_standard_error(Integrator::Volpath, 16);
+  expect_honest_standard_error(Integrator::Volpath, 32);
 }
 
 TEST(ReferenceStandardError, BssrdfClaimsTheSpreadOfItsMeanOverSeeds) {
-  expect_honest_standard_error(Integrator::Bssrdf, 16);
+  expect_honest_standard_error(Integrator::Bssrdf, 256);
 }
 
 }  // namespace

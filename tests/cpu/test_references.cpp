@@ -101,6 +101,7 @@ TEST(EmbreeScene, ARayThatIsNotFiniteIsAnError) {
     }
   }
   EXPECT_TRUE(rt.intersect({0, 1, 0}, {0, -1, 0}).hit());
+  EXPECT_FALSE(rt.intersect({0, 1, 0}, {0, -1, 0}, 1e-9, 1e-6).hit());  // an empty segment is a miss, not an error
 }
 
 // A point light inside a medium lights it from within: single scattering (max_scatter 1) in an index-matched
