@@ -329,8 +329,37 @@ ImportLimits& vdb_read_limits() {
   return limits;
 }
 
+#if defined(LUCENT_ASAN)
+// The threads of this process (the Threads: line of /proc/self/status); 0 when unknown.
+int thread_count() {
+  std::FILE* file = std::fopen("/proc/self/status", "r");
+  if (!file) return 0;
+  char line[256];
+  int threads = 0;
+  while (std::fgets(line, sizeof line, file))
+    if (std::sscanf(line, "Threads: %d", &threads) == 1) break;
+  std::fclose(file);
+  return threads;
+}
+#endif
+
 std::string read_in_child(const std::string& path, const GuardedReader& names,
                           const std::function<std::string()>& read, const ImportLimits& limits) {
+#if defined(LUCENT_ASAN)
+  // AddressSanitizer's allocator (clang 14) is not fork-safe: a child forked while another thread held its lock
+  // (a TBB worker freeing memory) waits on it forever, where glibc's malloc would not. With other threads
+  // running, a sanitizer build reads in this process instead, where AddressSanitizer sees the reader's code;
+  // single-threaded processes (the fuzz targets, the CLI loading a scene) still fork.
+  if (thread_count() != 1) {
+    try {
+      return read();
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw Error(fmt::format("{}: {}: {} failed: {}", path, names.failure, names.reader, printable_text(e.what())));
+    }
+  }
+#endif
   const std::uint64_t inherited_address_space = address_space_bytes();
   const auto fail = [&](const char* what) {
     throw Error(fmt::format("{}: {}: {}: {}", path, names.failure, what, std::strerror(errno)));
