@@ -325,7 +325,11 @@ ImportLimits& mesh_import_limits() {
 }
 
 ImportLimits& vdb_read_limits() {
-  static ImportLimits limits;
+  static ImportLimits limits = [] {
+    ImportLimits l;
+    l.in_process_when_threaded_under_asan = true;  // OpenVDB's tests run TBB threads before a read
+    return l;
+  }();
   return limits;
 }
 
@@ -348,9 +352,10 @@ std::string read_in_child(const std::string& path, const GuardedReader& names,
 #if defined(LUCENT_ASAN)
   // AddressSanitizer's allocator (clang 14) is not fork-safe: a child forked while another thread held its lock
   // (a TBB worker freeing memory) waits on it forever, where glibc's malloc would not. With other threads
-  // running, a sanitizer build reads in this process instead, where AddressSanitizer sees the reader's code;
-  // single-threaded processes (the fuzz targets, the CLI loading a scene) still fork.
-  if (thread_count() != 1) {
+  // running, a sanitizer build reads VDB files (whose tests run TBB threads first) in this process instead, where
+  // AddressSanitizer sees the reader's code; single-threaded processes (the fuzz targets, the CLI loading a
+  // scene) and the mesh importer, whose crash tests need the child, still fork.
+  if (limits.in_process_when_threaded_under_asan && thread_count() != 1) {
     try {
       return read();
     } catch (const Error&) {

@@ -15,6 +15,8 @@ struct ImportLimits {
   // Address space the child may add to what it inherits (RLIMIT_AS); 0 = unlimited. Not applied under
   // AddressSanitizer, whose shadow memory reserves terabytes of address space.
   std::uint64_t memory_bytes = 0;
+  // Sanitizer builds only: read in this process instead when other threads run (read_in_child).
+  bool in_process_when_threaded_under_asan = false;
 };
 
 // Process-wide limits of load_mesh's importer and load_medium_vdb's reader; the fuzz targets lower them.
