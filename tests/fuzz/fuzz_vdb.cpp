@@ -13,6 +13,9 @@
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   lucent::vdb_read_limits().cpu_seconds = 4;
   lucent::vdb_read_limits().wall_seconds = 8;
+  // Always in the child: libFuzzer's memory-watch thread would otherwise make the sanitizer build read in-process,
+  // and the target would fuzz OpenVDB itself (its leaks and crashes on hostile files are what the child contains).
+  lucent::vdb_read_limits().in_process_when_threaded_under_asan = false;
   return 0;
 }
 
