@@ -1,6 +1,17 @@
 // test_support.h: small helpers shared by the CPU tests: a temporary file named after the running test, a file's
 // text, and the message of the lucent::Error a call throws.
 #pragma once
+
+// LUCENT_TEST_ASAN: defined when the tests are built with AddressSanitizer (GCC or clang), whose shadow memory
+// makes address-space limits meaningless.
+#if defined(__SANITIZE_ADDRESS__)
+#define LUCENT_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define LUCENT_TEST_ASAN 1
+#endif
+#endif
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>

@@ -23,14 +23,6 @@
 #include "scene/import_guard.h"
 #include "../test_paths.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define LUCENT_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define LUCENT_TEST_ASAN 1
-#endif
-#endif
-
 namespace lucent {
 namespace {
 

@@ -17,14 +17,6 @@
 namespace lucent {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-#define LUCENT_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define LUCENT_TEST_ASAN 1
-#endif
-#endif
-
 // The address space the process has now [bytes] (/proc/self/statm, in pages).
 std::uint64_t address_space_bytes() {
   std::ifstream statm("/proc/self/statm");
