@@ -41,6 +41,7 @@ struct FrameContext {
   GLuint hdr_image;
   gpu::FrameProfiler& profiler;
   bool restart;  // something other than the camera changed: drop accumulated results
+  double time_seconds = 0.0;  // animated scenes: the instant the shared geometry was brought to
 };
 
 // One finished frame as the method's statistics() sees it: its pass times and counters.

@@ -15,6 +15,12 @@ struct GLCapabilities {
                                           // machine's RAM; 0 when the driver does not say
 };
 
+// Mesa's llvmpipe ends every loop of a shader invocation, silently, once the loops' iterations together reach
+// this many (one counter per invocation, decremented by each iteration of any loop and never reset). Shaders
+// whose loop counts come from data bound them below it, or split their work over dispatches (the random-walk
+// method counts its iterations and starts another event only well under it).
+inline constexpr unsigned kLlvmpipeLoopIterations = 65535;
+
 // Queries the current context and throws lucent::Error naming the missing version or limit.
 GLCapabilities check_capabilities();
 const GLCapabilities& current_capabilities();

@@ -334,7 +334,7 @@ struct Renderer::Impl {
     scene_gpu->bind_buffers();
     if (environment) environment->bind();
     camera_gbuffer_pass();
-    method->render({method_scene(), *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0});
+    method->render({method_scene(), *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0, time_seconds});
     tonemap_pass();
     glBlitNamedFramebuffer(output.ldr_framebuffer, target.framebuffer, 0, 0, output.width, output.height, 0, 0,
                            target.width, target.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

@@ -1,0 +1,308 @@
+// random_walk.cpp: the physics on the GPU. Volumetric path tracing of the scene exactly as the CPU reference
+// `volpath` defines it (docs/references.md), progressively: each frame adds paths per pixel; a camera move, an
+// edit or an animation step restarts. Geometry: a bounding volume hierarchy built on the CPU (binned SAH,
+// triangle_bvh.h) over the scene's triangles in the order of the shared index buffer; deforming meshes are
+// gathered from the shared vertex buffer and the hierarchy refitted on the GPU. Dense media: sphere jumps
+// (sphere_jump_tables.h, docs/methods/random-walk.md). Shaders: src/methods/random_walk/shaders/.
+#include "methods/method.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include <fmt/format.h>
+
+#include "gpu/gl_debug.h"
+#include "gpu/shader_program.h"
+#include "lucent/error.h"
+#include "media/heterogeneous_field.h"
+#include "platform/gl_capabilities.h"
+#include "methods/random_walk/random_walk_io.h"
+#include "methods/random_walk/triangle_bvh.h"
+#include "render/light_views.h"
+#include "render/view_accumulator.h"
+#include "scene/mesh_enclosure.h"
+
+namespace lucent::methods {
+namespace {
+
+// Pixel stride (both axes) of the paths whose walk steps the statistics count: 1 in 16 pixels keeps the 32-bit
+// counters from overflowing at 1080p with thousands of steps per path.
+constexpr int kStatisticsStride = 4;
+constexpr int kMaxSurfaceBounces = 64;  // as volpath
+constexpr int kRouletteAfter = 8;       // as volpath
+// Events of one path at most (a path spans dispatches, so llvmpipe's loop cap does not bound it): far beyond any
+// physical path's (roulette ends them), a guard against a path that never ends.
+constexpr int kMaxPathEvents = 10000000;
+
+template <typename T>
+GLuint storage_buffer(const std::vector<T>& data, const char* label) {
+  GLuint buffer = 0;
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T)),
+                       data.empty() ? nullptr : data.data(), GL_DYNAMIC_STORAGE_BIT);
+  gpu::label_object(GL_BUFFER, buffer, label);
+  return buffer;
+}
+
+// Each object's medium or surface as the walk reads it (volpath's ObjectData, in float).
+std::vector<shader::WalkObjectGPU> walk_objects(const Scene& scene) {
+  std::vector<shader::WalkObjectGPU> out(scene.objects.size(), shader::WalkObjectGPU{});
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    shader::WalkObjectGPU& o = out[i];
+    o.albedo = glm::vec4(object.albedo, 1.0f);
+    if (!object.material) continue;
+    const Material& m = *object.material;
+    if (m.field.type == MediumFieldType::Volume)
+      throw Error(fmt::format("{}: /objects/{}/material/field: method 'random-walk' does not read volume fields (the "
+                              "reference lucent reference --integrator volpath does)",
+                              scene.source, i));
+    const float scale = scene.scale_mm;
+    o.sigma_a = glm::vec4(m.sigma_a * scale, m.eta);
+    o.sigma_s = glm::vec4(m.sigma_s * scale, 1.0f);
+    o.g = glm::vec4(m.g, static_cast<float>(static_cast<int>(m.field.type)));
+    const TriangleMesh world = transformed(object.mesh, object.world_from_object);
+    glm::vec3 lower(1e30f), upper(-1e30f);
+    for (const glm::vec3& p : world.positions) lower = glm::min(lower, p), upper = glm::max(upper, p);
+    o.mesh_lower = glm::vec4(lower, 0.0f), o.mesh_upper = glm::vec4(upper, 0.0f);
+    if (m.field.has_bounds) lower = m.field.bounds_lower, upper = m.field.bounds_upper;
+    o.lower = glm::vec4(lower, m.field.scale_mm / scale);
+    o.upper = glm::vec4(upper, m.field.contrast);
+    o.majorant = glm::vec4(m.field.max_multiplier() * (m.sigma_a + m.sigma_s) * scale, 0.0f);
+  }
+  return out;
+}
+
+class RandomWalk final : public Method {
+ public:
+  RandomWalk(const Scene& scene, const render::SceneGpu& scene_gpu)
+      : scene_(scene), params_(scene.method_params),
+        program_(gpu::ShaderProgram::compute("methods/random_walk/shaders/trace.comp")) {
+    check_representable(scene);
+    const render::LightViews light_views =
+        render::build_light_views(scene, scene_gpu.translucent_bounds(), scene_gpu.scene_bounds(), 16);
+    lights_ = light_views.lights;
+    light_media_ = point_light_media(scene);
+
+    bvh_ = random_walk::build_triangle_bvh(random_walk::gather_scene_triangles(scene).triangles);
+    if (bvh_.nodes.empty()) throw Error(fmt::format("{}: method 'random-walk' needs at least one triangle", scene.source));
+    nodes_ = storage_buffer(bvh_.nodes, "random-walk BVH nodes");
+    triangles_ = storage_buffer(bvh_.triangles, "random-walk triangles");
+    objects_ = storage_buffer(walk_objects(scene), "random-walk objects");
+    glCreateBuffers(1, &block_buffer_);
+    glNamedBufferStorage(block_buffer_, sizeof(shader::RandomWalkGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gpu::label_object(GL_BUFFER, block_buffer_, "random-walk block");
+    glCreateBuffers(1, &counters_);
+    glNamedBufferStorage(counters_, sizeof(shader::WalkCountersGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gpu::label_object(GL_BUFFER, counters_, "random-walk counters");
+    const platform::GLCapabilities& caps = platform::current_capabilities();
+    loop_cap_ = caps.is_llvmpipe ? platform::kLlvmpipeLoopIterations : 0u;
+    // An invocation's own count undercounts the SIMD loop's (8 or 16 lanes): a sixteenth of the cap.
+    loop_budget_ = caps.is_llvmpipe ? platform::kLlvmpipeLoopIterations / 16 : 1u << 16;
+  }
+  ~RandomWalk() override {
+    glDeleteBuffers(1, &block_buffer_);
+    glDeleteBuffers(1, &paths_);
+    glDeleteBuffers(1, &counters_);
+    glDeleteBuffers(1, &nodes_);
+    glDeleteBuffers(1, &triangles_);
+    glDeleteBuffers(1, &objects_);
+  }
+
+  void prepare_frame(shader::FrameGPU& frame, bool restart) override {
+    restart = accumulated_.begin_frame(frame, restart);
+    frame.seeds.z = restart ? 1u : 0u;
+    frame.light_counts = glm::ivec4(static_cast<int>(lights_.size()), 0, 0, 0);
+    std::copy(lights_.begin(), lights_.end(), frame.lights);
+    if (restart) samples_done_ = 0;
+    samples_this_frame_ = static_cast<unsigned>(params_.integer("samples_per_frame"));
+
+    shader::RandomWalkGPU block{};
+    set_camera(frame, block);
+    block.samples = glm::uvec4(samples_this_frame_, samples_done_, frame.seeds.x,
+                               params_.boolean("sphere_jumps") ? LUCENT_WALK_SPHERE_JUMPS : 0u);
+    block.limits = glm::ivec4(kMaxSurfaceBounces, kRouletteAfter, params_.integer("max_scatter"), kMaxPathEvents);
+    block.jump_info = glm::ivec4(0, kStatisticsStride, 0, 0);
+    for (std::size_t l = 0; l < LUCENT_MAX_LIGHTS; ++l)
+      block.light_media[l / 4][static_cast<int>(l % 4)] = l < light_media_.size() ? light_media_[l] : -1;
+    glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
+    samples_done_ += samples_this_frame_;
+  }
+
+  void render(const FrameContext& context) override {
+    if (context.scene_gpu.animated() && context.time_seconds != geometry_time_) follow_animation(context);
+    auto pass = context.profiler.pass("trace");
+    const std::size_t pixels = static_cast<std::size_t>(accumulated_.width()) * static_cast<std::size_t>(accumulated_.height());
+    if (pixels != path_capacity_) allocate_paths(pixels);
+    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_NODES, nodes_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_TRIANGLES, triangles_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_OBJECTS, objects_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_PATHS, paths_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_COUNTERS, counters_);
+    accumulated_.bind(LUCENT_IMAGE_WALK_SUM);
+    glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glUseProgram(program_.id());
+    glClearNamedBufferData(counters_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    // The frame's paths advance over dispatches until every pixel has finished its paths: each invocation runs
+    // events only while its loop iterations stay under the budget (llvmpipe's cap, gpu/platform capabilities).
+    for (unsigned dispatch = 0;; ++dispatch) {
+      const glm::uvec4 control(dispatch == 0 ? 1u : 0u, loop_budget_, loop_cap_, 2u);
+      glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, dispatch), sizeof(control), &control);
+      glClearNamedBufferSubData(counters_, GL_R32UI, 0, sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      glDispatchCompute(static_cast<GLuint>((accumulated_.width() + 7) / 8),
+                        static_cast<GLuint>((accumulated_.height() + 7) / 8), 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                      GL_TEXTURE_FETCH_BARRIER_BIT);
+      glGetNamedBufferSubData(counters_, 0, sizeof(last_counters_), &last_counters_);
+      if (last_counters_.active == 0) break;
+    }
+  }
+
+  int accumulated_frames() const override { return accumulated_.frames(); }
+
+  void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
+    (void)record.counters;
+    const double counted_paths = last_counters_.paths, counted_steps = last_counters_.steps;
+    const double steps_per_path = counted_paths > 0.0 ? counted_steps / counted_paths : 0.0;
+    const double paths = static_cast<double>(accumulated_.width()) * accumulated_.height() * samples_this_frame_;
+    const double ms = record.pass_ms("trace");
+    out.push_back({"steps_per_path", steps_per_path, ""});
+    out.push_back({"paths_per_second", ms > 0.0 ? paths / (ms * 1e-3) : 0.0, "1/s"});
+    out.push_back({"steps_per_second", ms > 0.0 ? paths * steps_per_path / (ms * 1e-3) : 0.0, "1/s"});
+    out.push_back({"loop_limited_paths", static_cast<double>(last_counters_.loop_limited), ""});
+  }
+
+  bool update_live_params(const Scene& scene) override {
+    (void)scene;
+    return true;
+  }
+  bool update_materials(const Scene& scene) override {
+    const std::vector<shader::WalkObjectGPU> objects = walk_objects(scene);
+    glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
+    return true;
+  }
+  std::size_t gpu_memory_bytes() const override {
+    return accumulated_.gpu_memory_bytes() + path_capacity_ * sizeof(shader::WalkPathGPU) + bvh_.nodes.size() * sizeof(shader::BvhNodeGPU) +
+           bvh_.triangles.size() * sizeof(shader::TriangleGPU) + scene_.objects.size() * sizeof(shader::WalkObjectGPU);
+  }
+
+ private:
+  // Deforming meshes: the triangles at the frame's instant, the hierarchy refitted (same topology) and uploaded.
+  void follow_animation(const FrameContext& context) {
+    auto pass = context.profiler.pass("refit");
+    bvh_.refit(random_walk::gather_scene_triangles(context.scene, context.time_seconds).triangles);
+    glNamedBufferSubData(nodes_, 0, static_cast<GLsizeiptr>(bvh_.nodes.size() * sizeof(shader::BvhNodeGPU)), bvh_.nodes.data());
+    glNamedBufferSubData(triangles_, 0, static_cast<GLsizeiptr>(bvh_.triangles.size() * sizeof(shader::TriangleGPU)),
+                         bvh_.triangles.data());
+    geometry_time_ = context.time_seconds;
+  }
+
+  void allocate_paths(std::size_t pixels) {
+    glDeleteBuffers(1, &paths_);
+    platform::require_device_memory(pixels * sizeof(shader::WalkPathGPU),
+                                    fmt::format("random-walk: the paths in flight of {} pixels", pixels));
+    glCreateBuffers(1, &paths_);
+    glNamedBufferStorage(paths_, static_cast<GLsizeiptr>(pixels * sizeof(shader::WalkPathGPU)), nullptr, 0);
+    gpu::label_object(GL_BUFFER, paths_, "random-walk paths in flight");
+    path_capacity_ = pixels;
+  }
+
+  // The pinhole camera of the frame's projection: the ray through normalized device coordinates (x, y) is
+  // forward + x tan_x right + y tan_y up, as the references' camera_ray.
+  static void set_camera(const shader::FrameGPU& frame, shader::RandomWalkGPU& block) {
+    const glm::dmat4 world_from_clip = glm::inverse(glm::dmat4(frame.clip_from_world));
+    auto unproject = [&](double x, double y) {
+      const glm::dvec4 p = world_from_clip * glm::dvec4(x, y, -1.0, 1.0);
+      return glm::dvec3(p) / p.w;
+    };
+    const glm::dvec3 eye(frame.camera_position), centre = unproject(0.0, 0.0);
+    const glm::dvec3 to_right = unproject(1.0, 0.0) - centre, to_top = unproject(0.0, 1.0) - centre;
+    const double distance = glm::length(centre - eye);
+    const double tan_x = glm::length(to_right) / distance, tan_y = glm::length(to_top) / distance;
+    block.eye = glm::vec4(glm::vec3(eye), 1.0f);
+    block.forward = glm::vec4(glm::vec3(glm::normalize(centre - eye)), static_cast<float>(tan_y));
+    block.right = glm::vec4(glm::vec3(glm::normalize(to_right)), static_cast<float>(tan_x / tan_y));
+    block.up = glm::vec4(glm::vec3(glm::normalize(to_top)), 0.0f);
+  }
+
+  // Media the walk cannot represent are refused: blob surfaces (extracted on the GPU, not in the shared index
+  // buffer) and translucent objects whose boxes overlap (nested or intersecting media: a path inside one medium
+  // would cross into the other without a boundary event, as in volpath, which does not support them either).
+  static void check_representable(const Scene& scene) {
+    std::vector<std::pair<glm::vec3, glm::vec3>> boxes(scene.objects.size());
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      const SceneObject& object = scene.objects[i];
+      if (object.blob_resolution > 0)
+        throw Error(fmt::format("{}: /objects/{}: method 'random-walk' does not trace blob surfaces (extracted on the "
+                                "GPU each frame); the other methods and the references do",
+                                scene.source, i));
+      if (!object.translucent()) continue;
+      const TriangleMesh world = transformed(object.mesh, object.world_from_object);
+      glm::vec3 lower(1e30f), upper(-1e30f);
+      for (const glm::vec3& p : world.positions) lower = glm::min(lower, p), upper = glm::max(upper, p);
+      boxes[i] = {lower, upper};
+      for (std::size_t j = 0; j < i; ++j) {
+        if (!scene.objects[j].translucent()) continue;
+        const bool overlap = glm::all(glm::lessThan(boxes[j].first, upper)) && glm::all(glm::lessThan(lower, boxes[j].second));
+        if (overlap && world_meshes_intersect(scene, i, j))
+          throw Error(fmt::format("{}: /objects/{} and /objects/{}: nested or intersecting media; method 'random-walk' "
+                                  "(like the volpath reference) needs each translucent object's interior to be its own",
+                                  scene.source, j, i));
+      }
+    }
+  }
+
+  // Whether object i has a vertex inside object j's closed surface or j one inside i's (nested or intersecting).
+  static bool world_meshes_intersect(const Scene& scene, std::size_t i, std::size_t j) {
+    const TriangleMesh a = transformed(scene.objects[i].mesh, scene.objects[i].world_from_object);
+    const TriangleMesh b = transformed(scene.objects[j].mesh, scene.objects[j].world_from_object);
+    auto any_inside = [](const TriangleMesh& points, const TriangleMesh& surface) {
+      if (open_edge_count(surface) != 0) return false;
+      const std::size_t step = std::max<std::size_t>(1, points.positions.size() / 64);
+      for (std::size_t v = 0; v < points.positions.size(); v += step)
+        if (encloses(surface, glm::dvec3(points.positions[v]))) return true;
+      return false;
+    };
+    return any_inside(a, b) || any_inside(b, a);
+  }
+
+  // Per FrameGPU light (directional lights first, then point and spot lights in the scene's order): the
+  // translucent object whose closed surface encloses it, or -1 (volpath's medium_of_point_light).
+  std::vector<int> point_light_media(const Scene& scene) const {
+    std::vector<int> media(lights_.size(), -1);
+    const std::size_t first_point = lights_.size() - scene.point_lights.size();
+    for (std::size_t l = 0; l < scene.point_lights.size(); ++l)
+      for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& object = scene.objects[i];
+        if (!object.translucent()) continue;
+        const TriangleMesh world = transformed(object.mesh, object.world_from_object);
+        if (open_edge_count(world) == 0 && encloses(world, glm::dvec3(scene.point_lights[l].position)))
+          media[first_point + l] = static_cast<int>(i);
+      }
+    return media;
+  }
+
+  const Scene& scene_;
+  const ParamValues& params_;
+  gpu::ShaderProgram program_;
+  std::vector<shader::LightGPU> lights_;
+  std::vector<int> light_media_;
+  render::ViewAccumulator accumulated_{"random-walk accumulated radiance"};
+  GLuint block_buffer_ = 0, nodes_ = 0, triangles_ = 0, objects_ = 0, paths_ = 0, counters_ = 0;
+  std::size_t path_capacity_ = 0;
+  unsigned loop_cap_ = 0, loop_budget_ = 0;
+  shader::WalkCountersGPU last_counters_{};
+  random_walk::TriangleBvh bvh_;
+  double geometry_time_ = 0.0;
+  unsigned samples_done_ = 0, samples_this_frame_ = 1;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> create_random_walk(const MethodSetup& setup) {
+  return std::make_unique<RandomWalk>(setup.scene, setup.scene_gpu);
+}
+
+}  // namespace lucent::methods

@@ -1,0 +1,50 @@
+// random_walk_info.cpp: the random-walk method as data: parameters, passes, statistics (no GL).
+#include "methods/method_info.h"
+
+namespace lucent::methods {
+namespace {
+
+constexpr ParamDecl kParams[] = {
+    {"samples_per_frame", ParamType::Int, "1", "paths/pixel", 1, 1024, "", "paths traced per pixel each frame", kLive},
+    {"sphere_jumps", ParamType::Bool, "true", "", 0, 1, "",
+     "deep inside homogeneous media, jump across spheres that lie wholly inside the medium (exact: sampled sphere "
+     "exits) instead of stepping through every scattering event",
+     kLive},
+    {"max_scatter", ParamType::Int, "0", "events", 0, 1000000, "",
+     "paths end after this many scattering events in media (0: no limit; 1: single scattering), as volpath's "
+     "--max-scatter",
+     kLive},
+    {"distance_grid", ParamType::Int, "64", "cells/axis", 8, 256, "",
+     "resolution of the distance field that bounds the sphere jumps (cells along the longest axis)"},
+};
+
+constexpr PassDecl kPasses[] = {
+    {"sphere_walks", "the frame's sphere-jump records: walks from a sphere's centre to its surface, per level"},
+    {"refit", "animated scenes: the deformed triangles gathered and the hierarchy's boxes refitted (CPU), uploaded"},
+    {"trace", "volumetric path tracing of every pixel through the bounding volume hierarchy"},
+};
+
+constexpr StatDecl kStats[] = {
+    {"steps_per_path", "", "mean walk steps per path (free flights, null collisions and sphere jumps in media)"},
+    {"paths_per_second", "1/s", "paths traced per second of the trace pass"},
+    {"steps_per_second", "1/s", "walk steps per second of the trace pass"},
+    {"loop_limited_paths", "", "paths dropped this frame because one event ran past the driver's loop cap (llvmpipe)"},
+};
+
+}  // namespace
+
+extern const MethodInfo random_walk_info;
+const MethodInfo random_walk_info{
+    "random-walk",
+    "the physics on the GPU: volumetric path tracing with sphere jumps, converging to the volpath reference",
+    kParams,
+    kPasses,
+    kStats,
+    R"({"samples_per_frame": 4})",
+    // Compared with the bssrdf reference (the conformance test's reference): the physics differs from the
+    // diffusion model on the conformance sphere.
+    0.25,
+    false,
+};
+
+}  // namespace lucent::methods

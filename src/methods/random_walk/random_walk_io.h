@@ -1,0 +1,105 @@
+// random_walk_io.h: the random-walk method's GPU data (C++ and GLSL): its uniform block (at LUCENT_BINDING_METHOD),
+// the scene's bounding volume hierarchy and triangles, each object's medium, and its binding points inside the
+// method ranges of shared/bindings.h.
+#ifndef LUCENT_METHODS_RANDOM_WALK_IO_H
+#define LUCENT_METHODS_RANDOM_WALK_IO_H
+#include "shared/shader_io.h"
+
+#define LUCENT_BINDING_WALK_NODES 20      // BvhNodeGPU[] (std430)
+#define LUCENT_BINDING_WALK_TRIANGLES 21  // TriangleGPU[] (std430)
+#define LUCENT_BINDING_WALK_OBJECTS 22    // WalkObjectGPU[] per scene object (std430)
+#define LUCENT_BINDING_WALK_SPHERES 23    // SphereWalkGPU[]: the frame's sphere-jump records (std430)
+#define LUCENT_BINDING_WALK_PATHS 24      // WalkPathGPU[] per pixel: the paths in flight (std430)
+#define LUCENT_BINDING_WALK_COUNTERS 25   // WalkCountersGPU (std430)
+#define LUCENT_IMAGE_WALK_SUM 2           // RGBA32F: rgb the sum of the path samples, a their count
+#define LUCENT_TEX_WALK_DISTANCE 8        // R32F 3D: distance from each cell centre to the nearest surface
+
+// WalkObjectGPU.g.w: the medium's heterogeneous field (kField* of media/heterogeneous_field.h).
+// RandomWalkGPU.flags bits.
+#define LUCENT_WALK_SPHERE_JUMPS 1
+
+LUCENT_SHADER_BEGIN
+
+// One node of the bounding volume hierarchy, depth first: an interior node's left child follows it.
+struct BvhNodeGPU {
+  vec4 lower;  // xyz: box [scene units]; w: float bits of the first triangle (leaf) or the right child (interior)
+  vec4 upper;  // xyz: box; w: float bits of the triangle count (0: interior)
+};
+
+// One triangle in the hierarchy's order (96 bytes).
+struct TriangleGPU {
+  vec4 p0;  // xyz: a corner [scene units]; w: float bits of the object index
+  vec4 e1;  // xyz: p1 - p0
+  vec4 e2;  // xyz: p2 - p0
+  vec4 n0;  // xyz: shading normals at the corners; n0.w: float bits of the triangle's index in the scene's order
+  vec4 n1;
+  vec4 n2;
+};
+
+// One scene object as the walk sees it (std430, 144 bytes): a medium behind a dielectric boundary, or a
+// Lambertian surface. Coefficients in 1/scene unit, unreduced sigma_s.
+struct WalkObjectGPU {
+  vec4 sigma_a;   // xyz; w: eta (relative index)
+  vec4 sigma_s;   // xyz; w: 1 translucent, 0 opaque
+  vec4 g;         // xyz: Henyey-Greenstein g per band; w: the field (kField*)
+  vec4 albedo;    // rgb: an opaque object's diffuse albedo
+  vec4 lower;     // xyz: the field's world box [scene units]; w: the field's feature size [scene units]
+  vec4 upper;     // xyz; w: the field's contrast
+  vec4 majorant;  // xyz: max m sigma_t per band; w: unused
+  vec4 mesh_lower;  // xyz: the mesh's own world box (a vertex outside it has leaked out of a closed mesh)
+  vec4 mesh_upper;
+};
+
+// One pixel's path in flight between dispatches (std430, 112 bytes): a frame's paths advance over several
+// dispatches, each invocation running events only while its loop iterations stay under the driver's cap.
+struct WalkPathGPU {
+  vec4 origin;      // xyz [scene units]; w: the surface bounces so far
+  vec4 direction;   // xyz: unit
+  vec4 throughput;  // xyz: per band, divided by the hero band's path pdf
+  vec4 r_u;         // xyz: each band's path pdf over the hero's
+  vec4 radiance;    // xyz: what the path gathered so far
+  ivec4 info;       // x: hero band, y: medium (object index, -1 outside), z: events, w: scattering events
+  uvec4 state;      // x: random stream key, y: random numbers drawn, z: walk steps, w: paths left for this frame
+};
+
+// What the dispatches of a frame count (std430), zeroed each frame; `active` each dispatch.
+struct WalkCountersGPU {
+  uint active;        // pixels with paths left after the dispatch
+  uint loop_limited;  // paths that ran past the driver's loop cap (their value is unreliable)
+  uint paths;         // finished paths of the pixels the statistics count
+  uint steps;         // their walk steps
+};
+
+struct RandomWalkGPU {
+  vec4 eye;              // xyz: camera position [scene units]
+  vec4 forward;          // xyz: unit view direction; w: tan(fov_y / 2)
+  vec4 right;            // xyz: unit right; w: aspect ratio
+  vec4 up;               // xyz: unit up
+  uvec4 samples;         // x: samples per pixel this frame, y: index of the first, z: user seed, w: flags (LUCENT_WALK_*)
+  ivec4 limits;          // x: surface bounces, y: events before Russian roulette, z: scattering events (0: no limit),
+                         // w: events per path
+  uvec4 dispatch;        // x: 1 in the frame's first dispatch; y: loop iterations under which an invocation starts
+                         // another event; z: the driver's loop cap per invocation (0: none); w: 2, the
+                         // iterations of the loop that detects the cap
+  vec4 distance_lower;   // xyz: the distance grid's first cell corner [scene units]; w: its cell size
+  ivec4 distance_size;   // xyz: cells per axis; w: sphere-walk records per level
+  vec4 jump_levels;      // optical radii of the first four sphere-jump levels
+  ivec4 jump_info;       // x: levels; y: the pixel stride (both axes) of the paths the statistics count; zw: unused
+  ivec4 light_media[LUCENT_MAX_LIGHTS / 4];  // per FrameGPU light: the object whose medium encloses it, or -1
+};
+
+LUCENT_SHADER_END
+
+#if defined(__cplusplus)
+static_assert(sizeof(lucent::shader::BvhNodeGPU) == 32);
+static_assert(sizeof(lucent::shader::TriangleGPU) == 96);
+static_assert(sizeof(lucent::shader::WalkObjectGPU) == 144);
+static_assert(sizeof(lucent::shader::RandomWalkGPU) == 176 + 4 * LUCENT_MAX_LIGHTS);
+static_assert(sizeof(lucent::shader::WalkPathGPU) == 112);
+static_assert(sizeof(lucent::shader::WalkCountersGPU) == 16);
+static_assert(LUCENT_BINDING_WALK_NODES >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_WALK_COUNTERS <= LUCENT_METHOD_STORAGE_LAST);
+static_assert(LUCENT_IMAGE_WALK_SUM >= LUCENT_METHOD_IMAGE_FIRST && LUCENT_IMAGE_WALK_SUM <= LUCENT_METHOD_IMAGE_LAST);
+static_assert(LUCENT_TEX_WALK_DISTANCE >= LUCENT_METHOD_TEX_FIRST && LUCENT_TEX_WALK_DISTANCE <= LUCENT_METHOD_TEX_LAST);
+#endif
+
+#endif

@@ -1,0 +1,570 @@
+// trace.comp: the random-walk method: volumetric path tracing of the scene as the CPU reference `volpath` defines it
+// (src/reference/volpath.cpp, docs/references.md), one or more paths per pixel and frame, accumulated while nothing
+// changes. Homogeneous media and procedural fields behind smooth dielectric boundaries (Fresnel, total internal
+// reflection), per-band Henyey-Greenstein phase functions with hero-band spectral MIS over the whole path, Lambertian
+// opaque surfaces with diffuse interreflection, and next-event estimation of every light through the refracting
+// boundary by the fixed-point refracted ray. Rays traverse the bounding volume hierarchy built on the CPU
+// (methods/random_walk/triangle_bvh.h). The walk's steps are the shared ones of transport/volume_walk.h; dense
+// media jump across spheres inside the medium (sphere_jump.glsl).
+#include "common/frame.glsl"
+#include "bssrdf/fresnel.h"
+#include "lights/point_light.h"
+#include "media/heterogeneous_field.h"
+#include "shared/random.h"
+#include "transport/volume_walk.h"
+#include "methods/random_walk/random_walk_io.h"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+layout(std140, binding = LUCENT_BINDING_METHOD) uniform MethodBlock { RandomWalkGPU method; };
+layout(std430, binding = LUCENT_BINDING_WALK_NODES) readonly buffer NodeBlock { BvhNodeGPU nodes[]; };
+layout(std430, binding = LUCENT_BINDING_WALK_TRIANGLES) readonly buffer TriangleBlock { TriangleGPU triangles[]; };
+layout(std430, binding = LUCENT_BINDING_WALK_OBJECTS) readonly buffer WalkObjectBlock { WalkObjectGPU walk_objects[]; };
+layout(rgba32f, binding = LUCENT_IMAGE_WALK_SUM) uniform image2D accumulated;
+layout(rgba32f, binding = LUCENT_IMAGE_HDR) uniform writeonly image2D hdr;
+layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
+
+const int kMaxShadowCrossings = 64;       // index-matched media a shadow ray crosses at most (as volpath)
+const int kMaxTraversalSteps = 60000;     // BVH nodes one ray visits at most (under llvmpipe's 65,535 iterations)
+const int kMaxRatioTrackingSteps = 60000; // tentative collisions of one transmittance estimate at most
+const float kRefractionTolerance = 1e-6f; // fixed-point refraction: converged when the direction moves less [rad]
+// Self-intersection offsets relative to the largest coordinate involved (volpath: 1e-6 in double; the GPU
+// intersects and rebuilds hit points in float, a few rounding steps of 6e-8 each).
+const float kRelativeOffset = 2e-6f;
+
+// ---- random numbers: one counter-based stream per (seed, pixel, sample) ---------------------------------------
+uint rng_key = 0u, rng_count = 0u;
+float rnd() {
+  rng_count += 1u;
+  return next_float(rng_key ^ pcg_hash(rng_count));
+}
+
+// Loop iterations this invocation has run: llvmpipe ends every loop of an invocation once their iterations
+// together pass 65,535 (one counter per invocation, never reset), so an invocation starts another event only
+// well under that, and a path that went past it is counted as unreliable.
+uint loop_count = 0u;
+
+// Whether the driver's loop cap has ended this invocation's loops: a loop of dispatch.w (2) iterations, a count the
+// compiler cannot unroll, then runs one at most. (The per-lane loop_count undercounts the driver's counter, which
+// counts the iterations of the SIMD loop over 8 or 16 invocations at once.)
+bool loops_were_cut() {
+  uint n = 0u;
+  for (uint i = 0u; i < method.dispatch.w; ++i) ++n;
+  return n != method.dispatch.w;
+}
+
+float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
+float mean3(vec3 v) { return (v.x + v.y + v.z) / 3.0f; }
+float largest_abs(vec3 v) { return max3(abs(v)); }
+float offset_at(vec3 p) { return kRelativeOffset * largest_abs(p); }
+
+// ---- rays -------------------------------------------------------------------------------------------------------
+struct Hit {
+  float t;
+  int object;  // -1: miss
+  vec3 position, normal, geometric_normal;  // normal: interpolated, out of the object; geometric: on its side
+  float offset;
+};
+
+// Slab test: the entry distance of the ray into the box, or a negative value when it misses within [0, t_max].
+float box_entry(vec3 lower, vec3 upper, vec3 origin, vec3 inv_direction, float t_max) {
+  vec3 t0 = (lower - origin) * inv_direction, t1 = (upper - origin) * inv_direction;
+  vec3 near = min(t0, t1), far = max(t0, t1);
+  float enter = max(max(near.x, near.y), max(near.z, 0.0f));
+  float leave = min(min(far.x, far.y), min(far.z, t_max));
+  return enter <= leave ? enter : -1.0f;
+}
+
+// The closest hit in (t_min, t_max].
+Hit trace(vec3 origin, vec3 direction, float t_max, float t_min) {
+  Hit hit;
+  hit.object = -1;
+  hit.t = t_max;
+  vec3 inv_direction = 1.0f / mix(direction, vec3(1e-30f), lessThan(abs(direction), vec3(1e-30f)));
+  int best = -1;
+  vec2 best_uv = vec2(0.0f);
+  int stack[64];
+  int depth = 0, node = 0;
+  if (box_entry(nodes[0].lower.xyz, nodes[0].upper.xyz, origin, inv_direction, t_max) < 0.0f) return hit;
+  for (int step = 0; step < kMaxTraversalSteps; ++step) {
+    ++loop_count;
+    BvhNodeGPU n = nodes[node];
+    int count = floatBitsToInt(n.upper.w);
+    if (count > 0) {
+      int first = floatBitsToInt(n.lower.w);
+      for (int i = first; i < first + count; ++i) {
+        ++loop_count;
+        TriangleGPU tri = triangles[i];
+        vec3 p = cross(direction, tri.e2.xyz);
+        float det = dot(tri.e1.xyz, p);
+        if (det == 0.0f) continue;
+        float inv_det = 1.0f / det;
+        vec3 s = origin - tri.p0.xyz;
+        float u = dot(s, p) * inv_det;
+        if (u < 0.0f || u > 1.0f) continue;
+        vec3 q = cross(s, tri.e1.xyz);
+        float v = dot(direction, q) * inv_det;
+        if (v < 0.0f || u + v > 1.0f) continue;
+        float t = dot(tri.e2.xyz, q) * inv_det;
+        if (t > t_min && t <= hit.t) hit.t = t, best = i, best_uv = vec2(u, v);
+      }
+    } else {
+      int left = node + 1, right = floatBitsToInt(n.lower.w);
+      float t_left = box_entry(nodes[left].lower.xyz, nodes[left].upper.xyz, origin, inv_direction, hit.t);
+      float t_right = box_entry(nodes[right].lower.xyz, nodes[right].upper.xyz, origin, inv_direction, hit.t);
+      if (t_left >= 0.0f && t_right >= 0.0f) {
+        bool left_first = t_left <= t_right;
+        if (depth < 64) stack[depth++] = left_first ? right : left;
+        node = left_first ? left : right;
+        continue;
+      }
+      if (t_left >= 0.0f || t_right >= 0.0f) {
+        node = t_left >= 0.0f ? left : right;
+        continue;
+      }
+    }
+    if (depth == 0) break;
+    node = stack[--depth];
+  }
+  if (best < 0) return hit;
+  TriangleGPU tri = triangles[best];
+  float u = best_uv.x, v = best_uv.y;
+  hit.object = floatBitsToInt(tri.p0.w);
+  hit.position = tri.p0.xyz + u * tri.e1.xyz + v * tri.e2.xyz;
+  hit.normal = normalize((1.0f - u - v) * tri.n0.xyz + u * tri.n1.xyz + v * tri.n2.xyz);
+  vec3 ng = normalize(cross(tri.e1.xyz, tri.e2.xyz));
+  hit.geometric_normal = dot(ng, hit.normal) < 0.0f ? -ng : ng;
+  float magnitude = max(max(largest_abs(tri.p0.xyz), largest_abs(tri.p0.xyz + tri.e1.xyz)),
+                        max(largest_abs(tri.p0.xyz + tri.e2.xyz), largest_abs(hit.position)));
+  hit.offset = kRelativeOffset * magnitude;
+  return hit;
+}
+Hit trace_from_surface(vec3 origin, vec3 direction, float t_max) {
+  return trace(origin, direction, t_max, offset_at(origin));
+}
+
+// ---- media ------------------------------------------------------------------------------------------------------
+bool translucent(int object) { return walk_objects[object].sigma_s.w > 0.5f; }
+float eta_of(int object) { return walk_objects[object].sigma_a.w; }
+bool heterogeneous(int object) { return int(walk_objects[object].g.w) != kFieldNone; }
+vec3 sigma_a_of(int object) { return walk_objects[object].sigma_a.xyz; }
+vec3 sigma_s_of(int object) { return walk_objects[object].sigma_s.xyz; }
+vec3 sigma_t_of(int object) { return sigma_a_of(object) + sigma_s_of(object); }
+float multiplier(int object, vec3 x) {
+  WalkObjectGPU o = walk_objects[object];
+  return field_multiplier(int(o.g.w), x, o.lower.xyz, o.upper.xyz, o.lower.w, o.upper.w);
+}
+
+// Transmittance between a and b inside `object`: exact when homogeneous, ratio tracking against the largest band
+// majorant otherwise (unbiased, in [0, 1]).
+vec3 transmittance(int object, vec3 a, vec3 b) {
+  float length_ab = length(b - a);
+  if (!heterogeneous(object)) return exp(-sigma_t_of(object) * length_ab);
+  float mu = max3(walk_objects[object].majorant.xyz);
+  vec3 direction = (b - a) / max(length_ab, 1e-30f), sigma_t = sigma_t_of(object);
+  vec3 T = vec3(1.0f);
+  float t = free_flight(mu, rnd());
+  for (int i = 0; i < kMaxRatioTrackingSteps && t < length_ab; ++i) {
+    ++loop_count;
+    T *= max(vec3(0.0f), 1.0f - multiplier(object, a + t * direction) * sigma_t / mu);
+    if (max3(T) <= 0.0f) break;
+    t += free_flight(mu, rnd());
+  }
+  return T;
+}
+
+// The straight shadow ray from `origin` (outside every medium): opaque surfaces and refracting boundaries block
+// it, index-matched media attenuate it.
+vec3 shadow_transmittance(vec3 origin, vec3 direction, float t_max) {
+  vec3 T = vec3(1.0f);
+  for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
+    ++loop_count;
+    Hit enter = trace_from_surface(origin, direction, t_max);
+    if (enter.object < 0) return T;
+    if (!translucent(enter.object) || eta_of(enter.object) != 1.0f) return vec3(0.0f);
+    Hit leave = trace_from_surface(enter.position, direction, t_max - enter.t);
+    if (leave.object != enter.object) return vec3(0.0f);
+    T *= transmittance(enter.object, enter.position, leave.position);
+    if (max3(T) <= 0.0f) return T;
+    origin = leave.position;
+    t_max -= enter.t + leave.t;
+  }
+  return vec3(0.0f);
+}
+
+// ---- lights -----------------------------------------------------------------------------------------------------
+int light_medium(int l) { return method.light_media[l / 4][l % 4]; }
+
+vec3 point_intensity(LightGPU light, vec3 direction) {
+  vec3 I = light.power.rgb;
+  if (int(light.position.w) == LUCENT_LIGHT_SPOT) I *= spot_falloff(dot(direction, light.axis.xyz), light.power.w, light.axis.w);
+  return I;
+}
+
+// The refracted path from a light to medium point x, by fixed-point iteration on the refracted direction
+// (volpath's find_refracted_beam and find_refracted_point_beam): entry point, direction inside, the irradiance
+// factor and the entry's offset. `point`: x_l is a point light's position, else light_dir its travel direction.
+struct Beam {
+  bool found;
+  vec3 entry, direction, light_dir;
+  float irradiance_factor, offset;
+};
+Beam refracted_beam(int object, vec3 x, bool point, vec3 x_l, vec3 light_dir) {
+  Beam beam;
+  beam.found = false;
+  float eta = eta_of(object);
+  vec3 toward = point ? normalize(x_l - x) : -light_dir, inside = vec3(0.0f);
+  Hit hit;
+  bool converged = false;
+  int iterations = point ? 32 : 16;
+  for (int iteration = 0; iteration < iterations && !converged; ++iteration) {
+    ++loop_count;
+    hit = trace_from_surface(x, toward, 1e30f);
+    if (hit.object != object) return beam;
+    if (point) light_dir = normalize(hit.position - x_l);
+    if (dot(hit.normal, light_dir) >= 0.0f) return beam;
+    inside = refract_direction(light_dir, hit.normal, eta);
+    converged = length(-inside - toward) < kRefractionTolerance;
+    toward = -inside;
+  }
+  if (!converged) {
+    hit = trace_from_surface(x, toward, 1e30f);
+    if (hit.object != object) return beam;
+    if (point) light_dir = normalize(hit.position - x_l);
+    if (dot(hit.normal, light_dir) >= 0.0f) return beam;
+    inside = refract_direction(light_dir, hit.normal, eta);
+    if (dot(inside, -toward) < 1.0f - 1e-6f) return beam;
+  }
+  float cos_i = -dot(light_dir, hit.normal), cos_t = -dot(inside, hit.normal);
+  float T12 = 1.0f - fresnel_reflectance(eta, abs(cos_i));
+  if (point) {
+    if (cos_i <= 1e-9f || cos_t <= 1e-9f) return beam;
+    float D = length(hit.position - x_l) * cos_i, d = hit.t * cos_t;
+    beam.irradiance_factor = T12 * refracted_point_irradiance(D, d, cos_i, cos_t, eta);
+  } else {
+    beam.irradiance_factor = T12 * cos_i / max(1e-9f, cos_t);
+  }
+  beam.entry = hit.position;
+  beam.direction = inside;
+  beam.light_dir = light_dir;
+  beam.offset = hit.offset;
+  beam.found = true;
+  return beam;
+}
+
+// Light in-scattered at medium vertex x of `object` toward -path_dir (phase functions per band).
+vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
+  vec3 g = walk_objects[object].g.xyz;
+  vec3 L = vec3(0.0f);
+  for (int l = 0; l < frame.light_counts.x; ++l) {
+    ++loop_count;
+    LightGPU light = frame.lights[l];
+    bool point = int(light.position.w) != LUCENT_LIGHT_DIRECTIONAL;
+    vec3 x_l = light.position.xyz;
+    if (point) {
+      int medium = light_medium(l);
+      if (medium == object) {  // inside this medium: straight to it unless the boundary is in between
+        vec3 to_light = x_l - x;
+        float d = length(to_light);
+        if (!(d > 0.0f) || trace(x, to_light / d, d, 0.0f).object >= 0) continue;
+        vec3 light_dir = -to_light / d;
+        L += point_intensity(light, light_dir) / (d * d) * transmittance(object, x_l, x) *
+             hg_phase_bands(dot(light_dir, -path_dir), g);
+        continue;
+      }
+      if (medium >= 0) continue;  // inside another medium
+    }
+    Beam beam = refracted_beam(object, x, point, x_l, light.position.xyz);
+    if (!beam.found) continue;
+    vec3 entry_outside = beam.entry - beam.offset * beam.light_dir * 2.0f;
+    float t_max = point ? length(x_l - entry_outside) - offset_at(x_l) : 1e30f;
+    vec3 outside = shadow_transmittance(entry_outside, -beam.light_dir, t_max);
+    if (max3(outside) <= 0.0f) continue;
+    vec3 radiance = point ? point_intensity(light, beam.light_dir) : light.power.rgb;
+    L += radiance * beam.irradiance_factor * outside * transmittance(object, beam.entry, x) *
+         hg_phase_bands(dot(beam.direction, -path_dir), g);
+  }
+  return L;
+}
+
+// Direct light on an opaque Lambertian point (shadow rays through index-matched media).
+vec3 lambertian_next_event(Hit hit, vec3 n, vec3 albedo) {
+  vec3 L = vec3(0.0f);
+  vec3 origin = hit.position + hit.offset * n;
+  for (int l = 0; l < frame.light_counts.x; ++l) {
+    ++loop_count;
+    LightGPU light = frame.lights[l];
+    if (int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL) {
+      vec3 to_light = -light.position.xyz;
+      float cos_l = dot(n, to_light);
+      if (cos_l <= 0.0f) continue;
+      L += albedo / kWalkPi * light.power.rgb * cos_l * shadow_transmittance(origin, to_light, 1e30f);
+    } else {
+      vec3 to_light = light.position.xyz - hit.position;
+      float d = length(to_light);
+      to_light /= d;
+      float cos_l = dot(n, to_light);
+      if (cos_l <= 0.0f) continue;
+      L += albedo / kWalkPi * point_intensity(light, -to_light) * cos_l / (d * d) *
+           shadow_transmittance(origin, to_light, d - offset_at(light.position.xyz));
+    }
+  }
+  return L;
+}
+
+// ---- the path ---------------------------------------------------------------------------------------------------
+// Hero-band spectral MIS over the whole path (volpath's PathState): contributions are throughput / mean(r_u).
+vec3 path_origin, path_direction, path_throughput, path_r_u, path_radiance;
+int path_hero, path_medium, path_events, path_scatterings;
+uint path_steps;
+
+vec3 path_weight() { return path_throughput / mean3(path_r_u); }
+void path_add(vec3 incoming) { path_radiance += path_weight() * incoming; }
+
+bool roulette() {
+  if (++path_events < method.limits.y) return true;
+  float survive = min(1.0f, max3(path_weight()));
+  if (survive >= 1.0f) return true;
+  if (survive <= 0.0f || rnd() >= survive) return false;
+  path_throughput /= survive;
+  return true;
+}
+
+bool leave_or_reflect(Hit boundary) {
+  float eta = eta_of(path_medium);
+  float F = fresnel_reflectance(1.0f / eta, abs(dot(path_direction, boundary.normal)));
+  path_origin = boundary.position;
+  if (rnd() < F) {
+    path_direction = mirror_direction(path_direction, boundary.normal);
+    path_origin -= boundary.offset * boundary.geometric_normal;
+  } else {
+    path_direction = refract_direction(path_direction, boundary.normal, 1.0f / eta);
+    path_throughput *= eta * eta;
+    path_origin += boundary.offset * boundary.geometric_normal;
+    path_medium = -1;
+  }
+  return roulette();
+}
+
+// A scattering vertex at x: next-event estimation, then the hero band's phase sampling.
+bool scatter(vec3 x) {
+  path_add(medium_next_event(path_medium, x, path_direction));
+  if (method.limits.z > 0 && ++path_scatterings >= method.limits.z) return false;
+  vec3 g = walk_objects[path_medium].g.xyz;
+  vec3 next = sample_hg(path_direction, g[path_hero], rnd(), rnd());
+  vec3 phase = hg_phase_bands(dot(next, path_direction), g);
+  path_throughput *= phase / phase[path_hero];
+  path_r_u *= phase / phase[path_hero];
+  path_origin = x;
+  path_direction = next;
+  return roulette();
+}
+
+// Delta tracking against the band majorants with null collisions (volpath's delta_track). 0 absorbed,
+// 1 scattered at x, 2 reached the boundary.
+int delta_track(float boundary_t, out vec3 x) {
+  int object = path_medium;
+  vec3 sigma_maj = walk_objects[object].majorant.xyz, sigma_t = sigma_t_of(object), sigma_s = sigma_s_of(object);
+  float mu = sigma_maj[path_hero];
+  float t = 0.0f;
+  x = path_origin;
+  for (int i = 0; i < kMaxRatioTrackingSteps; ++i) {
+    ++loop_count;
+    float dt = free_flight(mu, rnd());
+    if (t + dt >= boundary_t) {
+      vec3 T = exp(-sigma_maj * (boundary_t - t));
+      path_throughput *= T / T[path_hero];
+      path_r_u *= T / T[path_hero];
+      return 2;
+    }
+    t += dt;
+    ++path_steps;
+    x = path_origin + t * path_direction;
+    float m = multiplier(object, x);
+    vec3 sigma_t_x = m * sigma_t, sigma_s_x = min(m, 1.0f) * sigma_s;
+    vec3 sigma_a_x = sigma_t_x - sigma_s_x;
+    vec3 sigma_n = max(vec3(0.0f), sigma_maj - sigma_t_x);
+    vec3 T = exp(-sigma_maj * dt);
+    float u = rnd() * mu;
+    if (u < sigma_a_x[path_hero]) return 0;
+    if (u < sigma_a_x[path_hero] + sigma_s_x[path_hero]) {
+      float pdf = T[path_hero] * sigma_s_x[path_hero];
+      path_throughput *= T * sigma_s_x / pdf;
+      path_r_u *= T * sigma_s_x / pdf;
+      return 1;
+    }
+    float pdf = T[path_hero] * sigma_n[path_hero];
+    if (!(pdf > 0.0f)) return 0;
+    path_throughput *= T * sigma_n / pdf;
+    path_r_u *= T * sigma_n / pdf;
+    if (max3(path_throughput) <= 0.0f) return 0;
+  }
+  return 0;  // the step bound: the path ends (a bias below any measurable level; see the method's doc)
+}
+
+bool medium_step() {
+  int object = path_medium;
+  ++path_steps;
+  if (heterogeneous(object)) {
+    Hit boundary = trace(path_origin, path_direction, 1e30f, 0.0f);
+    if (boundary.object < 0) return false;
+    vec3 x;
+    int flight = delta_track(boundary.t, x);
+    if (flight == 0) return false;
+    if (flight == 1) return scatter(x);
+    return leave_or_reflect(boundary);
+  }
+  vec3 sigma_t = sigma_t_of(object);
+  float t = free_flight(sigma_t[path_hero], rnd());
+  Hit boundary = trace(path_origin, path_direction, t, 0.0f);
+  if (boundary.object < 0) {
+    vec3 x = path_origin + t * path_direction;
+    WalkObjectGPU o = walk_objects[object];
+    if (isinf(t) || any(lessThan(x, o.mesh_lower.xyz)) || any(greaterThan(x, o.mesh_upper.xyz))) return false;
+    vec3 attenuation = exp(-sigma_t * t);
+    vec3 pdf = sigma_t * attenuation;
+    path_throughput *= sigma_s_of(object) * attenuation / pdf[path_hero];
+    path_r_u *= pdf / pdf[path_hero];
+    return scatter(x);
+  }
+  vec3 attenuation = exp(-sigma_t * boundary.t);
+  path_throughput *= attenuation / attenuation[path_hero];
+  path_r_u *= attenuation / attenuation[path_hero];
+  return leave_or_reflect(boundary);
+}
+
+bool surface_step(int bounce, Hit hit) {
+  if (hit.object < 0) {
+    if (bounce == 0) path_add(frame.background.rgb);
+    return false;
+  }
+  WalkObjectGPU o = walk_objects[hit.object];
+  vec3 n = hit.normal, ng = hit.geometric_normal;
+  if (o.sigma_s.w < 0.5f) {
+    if (dot(n, path_direction) > 0.0f) n = -n, ng = -ng;
+    path_add(lambertian_next_event(hit, n, o.albedo.rgb));
+    path_direction = sample_cosine(n, rnd(), rnd());
+    path_origin = hit.position + hit.offset * ng;
+    path_throughput *= o.albedo.rgb;
+    return roulette();
+  }
+  if (dot(ng, path_direction) > 0.0f) return false;  // an inside face seen from outside: a leaky mesh
+  float eta = o.sigma_a.w;
+  float F = fresnel_reflectance(eta, abs(dot(path_direction, n)));
+  if (rnd() < F) {
+    path_direction = mirror_direction(path_direction, n);
+    path_origin = hit.position + hit.offset * ng;
+  } else {
+    path_direction = refract_direction(path_direction, n, eta);
+    path_throughput /= eta * eta;
+    path_origin = hit.position - hit.offset * ng;
+    path_medium = hit.object;
+  }
+  return true;
+}
+
+// ---- paths in flight ----------------------------------------------------------------------------------------
+layout(std430, binding = LUCENT_BINDING_WALK_PATHS) buffer PathBlock { WalkPathGPU paths[]; };
+layout(std430, binding = LUCENT_BINDING_WALK_COUNTERS) buffer WalkCounterBlock { WalkCountersGPU walk_counters; };
+
+int path_bounce;
+uint path_samples_left;
+vec3 camera_origin, camera_direction;
+Hit camera_hit;
+
+void start_path(uint pixel_index, uint sample_index) {
+  rng_key = seed_from(method.samples.z, pixel_index, sample_index, 0x5157a1u);
+  rng_count = 0u;
+  path_origin = camera_origin, path_direction = camera_direction;
+  path_throughput = vec3(1.0f), path_r_u = vec3(1.0f), path_radiance = vec3(0.0f);
+  path_hero = min(2, int(rnd() * 3.0f));
+  path_medium = -1, path_events = 0, path_scatterings = 0, path_bounce = 0;
+  path_steps = 0u;
+}
+
+void load_path(uint index) {
+  WalkPathGPU p = paths[index];
+  path_origin = p.origin.xyz, path_bounce = int(p.origin.w);
+  path_direction = p.direction.xyz, path_throughput = p.throughput.xyz, path_r_u = p.r_u.xyz;
+  path_radiance = p.radiance.xyz;
+  path_hero = p.info.x, path_medium = p.info.y, path_events = p.info.z, path_scatterings = p.info.w;
+  rng_key = p.state.x, rng_count = p.state.y, path_steps = p.state.z, path_samples_left = p.state.w;
+}
+
+void store_path(uint index) {
+  WalkPathGPU p;
+  p.origin = vec4(path_origin, float(path_bounce));
+  p.direction = vec4(path_direction, 0.0f);
+  p.throughput = vec4(path_throughput, 0.0f);
+  p.r_u = vec4(path_r_u, 0.0f);
+  p.radiance = vec4(path_radiance, 0.0f);
+  p.info = ivec4(path_hero, path_medium, path_events, path_scatterings);
+  p.state = uvec4(rng_key, rng_count, path_steps, path_samples_left);
+  paths[index] = p;
+}
+
+// One event of the path: a medium step or a surface interaction. False when the path ended.
+bool path_event() {
+  if (path_events >= method.limits.w) return false;  // never reached by a physical path (see the method's doc)
+  if (path_medium >= 0) return medium_step();
+  if (path_bounce >= method.limits.x) return false;
+  Hit hit = path_bounce == 0 ? camera_hit : trace_from_surface(path_origin, path_direction, 1e30f);
+  return surface_step(path_bounce++, hit);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = frame.output_size.xy;
+  if (pixel.x >= size.x || pixel.y >= size.y) return;
+  uint index = uint(pixel.y * size.x + pixel.x);
+  // The ray through the pixel's centre (row 0 of the image is the bottom one, of the references the top one).
+  float sx = (2.0f * (float(pixel.x) + 0.5f) / float(size.x) - 1.0f) * method.forward.w * method.right.w;
+  float sy = (2.0f * (float(pixel.y) + 0.5f) / float(size.y) - 1.0f) * method.forward.w;
+  camera_origin = method.eye.xyz;
+  camera_direction = normalize(method.forward.xyz + sx * method.right.xyz + sy * method.up.xyz);
+  camera_hit = trace_from_surface(camera_origin, camera_direction, 1e30f);
+  uint pixel_index = uint((size.y - 1 - pixel.y) * size.x + pixel.x);
+  uint samples = method.samples.x;
+  if (method.dispatch.x != 0u) {
+    path_samples_left = samples;
+    start_path(pixel_index, method.samples.y);
+    if (camera_hit.object >= 0 && translucent(camera_hit.object)) {
+      atomicAdd(counters.translucent_pixels, 1u);
+      atomicAdd(counters.covered_pixels, 1u);
+    }
+  } else {
+    load_path(index);
+    if (path_samples_left == 0u) return;
+  }
+  bool counted = pixel.x % method.jump_info.y == 0 && pixel.y % method.jump_info.y == 0;
+  bool limited = false;
+  // Events while the loop iterations stay under the budget (each event stays far below the cap minus it).
+  for (int event = 0; event < 1000000 && loop_count < method.dispatch.y; ++event) {
+    ++loop_count;
+    bool alive = path_event();
+    if (method.dispatch.z != 0u && loops_were_cut()) limited = true;
+    if (alive && !limited) continue;
+    vec4 sum = frame.seeds.z != 0u && path_samples_left == samples ? vec4(0.0f) : imageLoad(accumulated, pixel);
+    bool finite = all(greaterThanEqual(path_radiance, vec3(0.0f))) && all(lessThan(path_radiance, vec3(1e30f)));
+    // A path past the loop cap is dropped and counted (the loop_limited_paths statistic); a non-finite one (never
+    // expected) counts as black.
+    if (limited) atomicAdd(walk_counters.loop_limited, 1u);
+    else sum += vec4(finite ? path_radiance : vec3(0.0f), 1.0f);
+    imageStore(accumulated, pixel, sum);
+    if (counted) {
+      atomicAdd(walk_counters.paths, 1u);
+      atomicAdd(walk_counters.steps, path_steps);
+    }
+    if (--path_samples_left == 0u) {
+      imageStore(hdr, pixel, vec4(sum.rgb / max(sum.a, 1.0f), camera_hit.object >= 0 ? 1.0f : 0.0f));
+      break;
+    }
+    if (limited) {  // the cap ended every loop of this invocation: the next path starts in the next dispatch
+      start_path(pixel_index, method.samples.y + samples - path_samples_left);
+      break;
+    }
+    start_path(pixel_index, method.samples.y + samples - path_samples_left);
+  }
+  store_path(index);
+  if (path_samples_left > 0u) atomicAdd(walk_counters.active, 1u);
+}

