@@ -1,0 +1,60 @@
+// distance_grid.cpp: the random-walk method's distance grid (see distance_grid.h).
+#include "methods/random_walk/distance_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "lucent/error.h"
+
+namespace lucent::methods::random_walk {
+
+DistanceGrid build_distance_grid(const TriangleBvh& bvh, glm::vec3 lower, glm::vec3 upper,
+                                 const DistanceGridOptions& options) {
+  if (options.max_cells_per_axis < 1 || options.max_cells_per_axis > 1024)
+    throw Error(fmt::format("distance grid: {} cells per axis, outside [1, 1024]", options.max_cells_per_axis));
+  if (!(options.margin >= 0.0f))
+    throw Error(fmt::format("distance grid: negative margin {}", options.margin));
+  DistanceGrid grid;
+  if (bvh.nodes.empty() || !(lower.x <= upper.x && lower.y <= upper.y && lower.z <= upper.z)) return grid;
+  const glm::vec3 extent = upper - lower;
+  const float longest = std::max({extent.x, extent.y, extent.z, 1e-6f * std::max(1.0f, glm::length(lower))});
+  const float margin = options.margin * longest;
+  grid.cell_size = (longest + 2.0f * margin) / static_cast<float>(options.max_cells_per_axis);
+  for (int a = 0; a < 3; ++a)
+    grid.cells[a] = std::clamp(static_cast<int>(std::ceil((extent[a] + 2.0f * margin) / grid.cell_size)), 1,
+                               options.max_cells_per_axis);
+  grid.origin = 0.5f * (lower + upper) - 0.5f * grid.cell_size * glm::vec3(grid.cells);
+  grid.distances.resize(static_cast<std::size_t>(grid.cells.x) * static_cast<std::size_t>(grid.cells.y) *
+                        static_cast<std::size_t>(grid.cells.z));
+  // Along a row, the previous centre's distance plus one cell bounds this one's (1-Lipschitz): a search radius
+  // that prunes most of the tree. A search that finds nothing within it (rounding) is redone unbounded.
+  std::size_t i = 0;
+  for (int z = 0; z < grid.cells.z; ++z)
+    for (int y = 0; y < grid.cells.y; ++y)
+      for (int x = 0; x < grid.cells.x; ++x, ++i) {
+        const glm::vec3 c = grid.cell_centre({x, y, z});
+        float d = std::numeric_limits<float>::infinity();
+        if (x > 0) {
+          const float bound = (grid.distances[i - 1] + grid.cell_size) * (1.0f + 1e-4f);
+          d = bvh.distance_to_nearest(c, bound);
+          if (d >= bound) d = std::numeric_limits<float>::infinity();
+        }
+        if (std::isinf(d)) d = bvh.distance_to_nearest(c);
+        grid.distances[i] = d;
+      }
+  return grid;
+}
+
+float DistanceGrid::lower_bound_distance(glm::vec3 p) const {
+  if (distances.empty() || !std::isfinite(p.x + p.y + p.z)) return 0.0f;
+  // Clamped as floats before the conversion, so that far points convert in range.
+  const glm::ivec3 cell(glm::clamp(glm::floor((p - origin) / cell_size), glm::vec3(0.0f), glm::vec3(cells - 1)));
+  const std::size_t i = static_cast<std::size_t>(cell.x) +
+                        static_cast<std::size_t>(cells.x) *
+                            (static_cast<std::size_t>(cell.y) + static_cast<std::size_t>(cells.y) * static_cast<std::size_t>(cell.z));
+  return std::max(0.0f, distances[i] - glm::length(p - cell_centre(cell)));
+}
+
+}  // namespace lucent::methods::random_walk
