@@ -28,22 +28,21 @@ DistanceGrid build_distance_grid(const TriangleBvh& bvh, glm::vec3 lower, glm::v
   grid.origin = 0.5f * (lower + upper) - 0.5f * grid.cell_size * glm::vec3(grid.cells);
   grid.distances.resize(static_cast<std::size_t>(grid.cells.x) * static_cast<std::size_t>(grid.cells.y) *
                         static_cast<std::size_t>(grid.cells.z));
-  // Along a row, the previous centre's distance plus one cell bounds this one's (1-Lipschitz): a search radius
-  // that prunes most of the tree. A search that finds nothing within it (rounding) is redone unbounded.
+  // Neighbouring centres mostly share their nearest triangle: the previous one's (along the row, or the row
+  // before's first at a row's start) starts each search with a radius close to the answer.
   std::size_t i = 0;
+  std::uint32_t row_guess = kNoTriangle;
   for (int z = 0; z < grid.cells.z; ++z)
-    for (int y = 0; y < grid.cells.y; ++y)
+    for (int y = 0; y < grid.cells.y; ++y) {
+      std::uint32_t guess = row_guess;
       for (int x = 0; x < grid.cells.x; ++x, ++i) {
-        const glm::vec3 c = grid.cell_centre({x, y, z});
-        float d = std::numeric_limits<float>::infinity();
-        if (x > 0) {
-          const float bound = (grid.distances[i - 1] + grid.cell_size) * (1.0f + 1e-4f);
-          d = bvh.distance_to_nearest(c, bound);
-          if (d >= bound) d = std::numeric_limits<float>::infinity();
-        }
-        if (std::isinf(d)) d = bvh.distance_to_nearest(c);
-        grid.distances[i] = d;
+        const std::optional<NearestTriangle> nearest = bvh.nearest_triangle(grid.cell_centre({x, y, z}),
+                                                                            std::numeric_limits<float>::infinity(), guess);
+        grid.distances[i] = nearest->distance;  // never empty: the tree has triangles and no bound
+        guess = nearest->triangle;
+        if (x == 0) row_guess = guess;
       }
+    }
   return grid;
 }
 

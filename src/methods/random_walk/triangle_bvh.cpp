@@ -368,9 +368,25 @@ std::optional<BvhHit> TriangleBvh::closest_hit(glm::vec3 origin, glm::vec3 dir, 
 }
 
 float TriangleBvh::distance_to_nearest(glm::vec3 p, float max_distance) const {
-  if (nodes.empty()) return max_distance;
+  std::optional<NearestTriangle> nearest = nearest_triangle(p, max_distance);
+  return nearest ? nearest->distance : max_distance;
+}
+
+std::optional<NearestTriangle> TriangleBvh::nearest_triangle(glm::vec3 p, float max_distance,
+                                                             std::uint32_t guess) const {
+  if (nodes.empty()) return std::nullopt;
   float best2 = max_distance * max_distance;  // squared; infinity stays infinity
-  if (box_distance_squared(node_box(nodes[0]), p) >= best2) return max_distance;
+  std::uint32_t best = kNoTriangle;
+  auto try_triangle = [&](std::uint32_t t) {
+    const glm::vec3 d = p - closest_point_on_triangle(triangles[t], p);
+    if (const float d2 = glm::dot(d, d); d2 < best2) best2 = d2, best = t;
+  };
+  auto result = [&]() -> std::optional<NearestTriangle> {
+    if (best == kNoTriangle) return std::nullopt;
+    return NearestTriangle{std::sqrt(best2), best};
+  };
+  if (guess < triangles.size()) try_triangle(guess);
+  if (box_distance_squared(node_box(nodes[0]), p) >= best2) return result();
   std::array<std::uint32_t, kStackSize> stack;
   int top = 0;
   std::uint32_t current = 0;
@@ -378,10 +394,7 @@ float TriangleBvh::distance_to_nearest(glm::vec3 p, float max_distance) const {
     const BvhNodeGPU& n = nodes[current];
     if (const std::uint32_t count = node_count(n); count > 0) {
       const std::uint32_t first = node_offset(n);
-      for (std::uint32_t t = first; t < first + count; ++t) {
-        const glm::vec3 d = p - closest_point_on_triangle(triangles[t], p);
-        best2 = std::min(best2, glm::dot(d, d));
-      }
+      for (std::uint32_t t = first; t < first + count; ++t) try_triangle(t);
     } else {
       const std::uint32_t left = current + 1, right = node_offset(n);
       const float d_left = box_distance_squared(node_box(nodes[left]), p);
@@ -409,7 +422,7 @@ float TriangleBvh::distance_to_nearest(glm::vec3 p, float max_distance) const {
     }
     if (!found) break;
   }
-  return best2 < max_distance * max_distance ? std::sqrt(best2) : max_distance;
+  return result();
 }
 
 }  // namespace lucent::methods::random_walk

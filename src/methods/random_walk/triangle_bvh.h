@@ -67,6 +67,13 @@ struct BvhHit {
   std::uint32_t triangle;  // index into TriangleBvh::triangles
 };
 
+struct NearestTriangle {
+  float distance;
+  std::uint32_t triangle;  // index into TriangleBvh::triangles
+};
+
+inline constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
+
 struct TriangleBvh {
   std::vector<BvhNodeGPU> nodes;        // depth-first; nodes[0] the root; empty when there are no triangles
   std::vector<TriangleGPU> triangles;   // the input, reordered so that each leaf's triangles are contiguous
@@ -82,6 +89,12 @@ struct TriangleBvh {
   // The exact unsigned distance from p to the nearest triangle when it is below `max_distance`; else
   // `max_distance`.
   float distance_to_nearest(glm::vec3 p, float max_distance = std::numeric_limits<float>::infinity()) const;
+  // The same with the triangle (index into `triangles`); nothing when none is closer than `max_distance`.
+  // `guess`, a triangle likely to be the nearest (a neighbouring point's), only speeds the search up: its
+  // distance is the first search radius.
+  std::optional<NearestTriangle> nearest_triangle(glm::vec3 p,
+                                                  float max_distance = std::numeric_limits<float>::infinity(),
+                                                  std::uint32_t guess = kNoTriangle) const;
 };
 
 TriangleBvh build_triangle_bvh(std::span<const TriangleGPU> triangles, const BvhBuildOptions& options = {});
