@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -298,11 +299,16 @@ TEST(RandomWalkBvh, BunnyBuildAndDistanceGrid) {
   auto t1 = clock::now();
   DistanceGrid grid = build_distance_grid(bvh, triangles.translucent_lower, triangles.translucent_upper);
   auto t2 = clock::now();
-  const double build_s = std::chrono::duration<double>(t1 - t0).count();
-  const double grid_s = std::chrono::duration<double>(t2 - t1).count();
-  std::printf("bunny: %zu triangles, %zu nodes, depth %d, build %.3f s; distance grid %dx%dx%d in %.3f s\n",
-              bvh.triangles.size(), bvh.nodes.size(), bvh.depth, build_s, grid.cells.x, grid.cells.y, grid.cells.z,
-              grid_s);
+  DistanceGridOptions serial;
+  serial.threads = 1;
+  DistanceGrid serial_grid = build_distance_grid(bvh, triangles.translucent_lower, triangles.translucent_upper, serial);
+  auto t3 = clock::now();
+  EXPECT_EQ(serial_grid.distances, grid.distances) << "the same with one thread";
+  auto seconds = [](clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  std::printf("bunny: %zu triangles, %zu nodes, depth %d, build %.3f s; distance grid %dx%dx%d in %.3f s "
+              "(%u hardware threads), %.3f s on one\n",
+              bvh.triangles.size(), bvh.nodes.size(), bvh.depth, seconds(t1 - t0), grid.cells.x, grid.cells.y,
+              grid.cells.z, seconds(t2 - t1), std::thread::hardware_concurrency(), seconds(t3 - t2));
   EXPECT_EQ(std::max({grid.cells.x, grid.cells.y, grid.cells.z}), 64);
   std::mt19937 rng(13);
   glm::vec3 centre = 0.5f * (triangles.translucent_lower + triangles.translucent_upper);

@@ -2,7 +2,9 @@
 #include "methods/random_walk/distance_grid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -29,20 +31,34 @@ DistanceGrid build_distance_grid(const TriangleBvh& bvh, glm::vec3 lower, glm::v
   grid.distances.resize(static_cast<std::size_t>(grid.cells.x) * static_cast<std::size_t>(grid.cells.y) *
                         static_cast<std::size_t>(grid.cells.z));
   // Neighbouring centres mostly share their nearest triangle: the previous one's (along the row, or the row
-  // before's first at a row's start) starts each search with a radius close to the answer.
-  std::size_t i = 0;
-  std::uint32_t row_guess = kNoTriangle;
-  for (int z = 0; z < grid.cells.z; ++z)
+  // before's first at a row's start) starts each search with a radius close to the answer. Each z layer starts
+  // afresh, so the layers are independent: threads take them in turn, and the result does not depend on how many.
+  auto fill_layer = [&](int z) {
+    std::size_t i = static_cast<std::size_t>(z) * static_cast<std::size_t>(grid.cells.x) *
+                    static_cast<std::size_t>(grid.cells.y);
+    std::uint32_t row_guess = kNoTriangle;
     for (int y = 0; y < grid.cells.y; ++y) {
       std::uint32_t guess = row_guess;
       for (int x = 0; x < grid.cells.x; ++x, ++i) {
-        const std::optional<NearestTriangle> nearest = bvh.nearest_triangle(grid.cell_centre({x, y, z}),
-                                                                            std::numeric_limits<float>::infinity(), guess);
+        const std::optional<NearestTriangle> nearest =
+            bvh.nearest_triangle(grid.cell_centre({x, y, z}), std::numeric_limits<float>::infinity(), guess);
         grid.distances[i] = nearest->distance;  // never empty: the tree has triangles and no bound
         guess = nearest->triangle;
         if (x == 0) row_guess = guess;
       }
     }
+  };
+  const int threads = std::clamp(options.threads > 0 ? options.threads
+                                                     : static_cast<int>(std::thread::hardware_concurrency()),
+                                 1, std::min(64, grid.cells.z));
+  std::atomic<int> next_layer{0};
+  auto work = [&] {
+    for (int z = next_layer++; z < grid.cells.z; z = next_layer++) fill_layer(z);
+  };
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+  work();
+  for (std::thread& w : workers) w.join();
   return grid;
 }
 

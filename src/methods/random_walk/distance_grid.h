@@ -15,6 +15,7 @@ namespace lucent::methods::random_walk {
 struct DistanceGridOptions {
   int max_cells_per_axis = 64;  // along the box's longest axis; the others get as many cells as cover them
   float margin = 0.05f;         // added on every side, as a fraction of the box's longest side
+  int threads = 0;              // filling the grid (the same result with any number); 0: one per hardware thread
 };
 
 struct DistanceGrid {

@@ -259,7 +259,9 @@ std::optional<TriangleHit> intersect_triangle(const TriangleGPU& triangle, glm::
   return TriangleHit{t, u, v};
 }
 
-glm::vec3 closest_point_on_triangle(const TriangleGPU& triangle, glm::vec3 p) {
+namespace {
+
+inline glm::vec3 closest_point(const TriangleGPU& triangle, glm::vec3 p) {
   // Relative to corner 0: q = p - p0 and the corners 0, e1, e2.
   const glm::vec3 p0(triangle.p0), e1(triangle.e1), e2(triangle.e2);
   const glm::vec3 q = p - p0;
@@ -286,6 +288,10 @@ glm::vec3 closest_point_on_triangle(const TriangleGPU& triangle, glm::vec3 p) {
   }
   return p0 + best;
 }
+
+}  // namespace
+
+glm::vec3 closest_point_on_triangle(const TriangleGPU& triangle, glm::vec3 p) { return closest_point(triangle, p); }
 
 TriangleBvh build_triangle_bvh(std::span<const TriangleGPU> triangles, const BvhBuildOptions& options) {
   if (options.max_depth < 0 || options.max_depth > kStackSize - 2)
@@ -378,7 +384,7 @@ std::optional<NearestTriangle> TriangleBvh::nearest_triangle(glm::vec3 p, float 
   float best2 = max_distance * max_distance;  // squared; infinity stays infinity
   std::uint32_t best = kNoTriangle;
   auto try_triangle = [&](std::uint32_t t) {
-    const glm::vec3 d = p - closest_point_on_triangle(triangles[t], p);
+    const glm::vec3 d = p - closest_point(triangles[t], p);
     if (const float d2 = glm::dot(d, d); d2 < best2) best2 = d2, best = t;
   };
   auto result = [&]() -> std::optional<NearestTriangle> {
