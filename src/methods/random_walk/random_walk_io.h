@@ -20,20 +20,23 @@
 
 LUCENT_SHADER_BEGIN
 
-// One node of the bounding volume hierarchy, depth first: an interior node's left child follows it.
+// One node of the flattened BVH (methods/random_walk/triangle_bvh.h), depth-first: an interior node's left child
+// is the next node (index + 1). The integer fields are stored as float bits (intBitsToFloat / floatBitsToInt in
+// GLSL, std::bit_cast in C++).
 struct BvhNodeGPU {
-  vec4 lower;  // xyz: box [scene units]; w: float bits of the first triangle (leaf) or the right child (interior)
-  vec4 upper;  // xyz: box; w: float bits of the triangle count (0: interior)
+  vec4 lower;  // xyz: box minimum [scene units]; w: leaf: index of its first triangle; interior: right child's index
+  vec4 upper;  // xyz: box maximum [scene units]; w: triangle count (0: interior node)
 };
 
-// One triangle in the hierarchy's order (96 bytes).
+// One world-space triangle, in the BVH's leaf order.
 struct TriangleGPU {
-  vec4 p0;  // xyz: a corner [scene units]; w: float bits of the object index
-  vec4 e1;  // xyz: p1 - p0
-  vec4 e2;  // xyz: p2 - p0
-  vec4 n0;  // xyz: shading normals at the corners; n0.w: float bits of the triangle's index in the scene's order
-  vec4 n1;
-  vec4 n2;
+  vec4 p0;  // xyz: corner 0 [scene units]; w: the scene object's index (float bits)
+  vec4 e1;  // xyz: corner 1 - corner 0; w: 0
+  vec4 e2;  // xyz: corner 2 - corner 0; w: 0
+  vec4 n0;  // xyz: unit shading normal at corner 0; w: the triangle's index before the BVH reordered them
+            // (float bits)
+  vec4 n1;  // xyz: unit shading normal at corner 1; w: 0
+  vec4 n2;  // xyz: unit shading normal at corner 2; w: 0
 };
 
 // One scene object as the walk sees it (std430, 144 bytes): a medium behind a dielectric boundary, or a
@@ -91,8 +94,12 @@ struct RandomWalkGPU {
 LUCENT_SHADER_END
 
 #if defined(__cplusplus)
+#include <cstddef>
 static_assert(sizeof(lucent::shader::BvhNodeGPU) == 32);
+static_assert(offsetof(lucent::shader::BvhNodeGPU, upper) == 16);
 static_assert(sizeof(lucent::shader::TriangleGPU) == 96);
+static_assert(offsetof(lucent::shader::TriangleGPU, n0) == 48);
+static_assert(offsetof(lucent::shader::TriangleGPU, n2) == 80);
 static_assert(sizeof(lucent::shader::WalkObjectGPU) == 144);
 static_assert(sizeof(lucent::shader::RandomWalkGPU) == 176 + 4 * LUCENT_MAX_LIGHTS);
 static_assert(sizeof(lucent::shader::WalkPathGPU) == 112);
