@@ -110,19 +110,19 @@ constexpr const char* kChromaticForward =
 
 TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromTheFront) {
   expect_agreement("sphere lit from the front",
-                   walk_sphere(kGreyMedium, R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })"), 8, 8, 64);
+                   walk_sphere(kGreyMedium, R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })"), 8, 16, 128);
 }
 
 TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromBehind) {
   expect_agreement("sphere lit from behind",
-                   walk_sphere(kGreyMedium, R"({ "direction": [0.2, 0.1, 1], "radiance": [1, 1, 1] })"), 8, 8, 64);
+                   walk_sphere(kGreyMedium, R"({ "direction": [0.2, 0.1, 1], "radiance": [1, 1, 1] })"), 8, 16, 128);
 }
 
 TEST(RandomWalk, AgreesWithVolpathOnAChromaticForwardScatteringMediumUnderAPointLight) {
   expect_agreement("chromatic g = 0.8, point light",
                    walk_sphere(kChromaticForward,
                                R"({ "type": "point", "position": [1.5, 1.2, 1.5], "intensity": [2e-6, 2e-6, 2e-6] })"),
-                   8, 8, 64);
+                   8, 16, 128);
 }
 
 }  // namespace

@@ -156,7 +156,7 @@ class RandomWalk final : public Method {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                       GL_TEXTURE_FETCH_BARRIER_BIT);
       glGetNamedBufferSubData(counters_, 0, sizeof(last_counters_), &last_counters_);
-      if (last_counters_.active == 0) break;
+      if (last_counters_.active_pixels == 0) break;
     }
   }
 

@@ -67,7 +67,7 @@ struct WalkPathGPU {
 
 // What the dispatches of a frame count (std430), zeroed each frame; `active` each dispatch.
 struct WalkCountersGPU {
-  uint active;        // pixels with paths left after the dispatch
+  uint active_pixels; // pixels with paths left after the dispatch
   uint loop_limited;  // paths that ran past the driver's loop cap (their value is unreliable)
   uint paths;         // finished paths of the pixels the statistics count
   uint steps;         // their walk steps

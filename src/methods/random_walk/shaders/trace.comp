@@ -4,14 +4,14 @@
 // reflection), per-band Henyey-Greenstein phase functions with hero-band spectral MIS over the whole path, Lambertian
 // opaque surfaces with diffuse interreflection, and next-event estimation of every light through the refracting
 // boundary by the fixed-point refracted ray. Rays traverse the bounding volume hierarchy built on the CPU
-// (methods/random_walk/triangle_bvh.h). The walk's steps are the shared ones of transport/volume_walk.h; dense
+// (methods/random_walk/triangle_bvh.h). The walk's steps are the shared ones of shared/volume_walk.h; dense
 // media jump across spheres inside the medium (sphere_jump.glsl).
 #include "common/frame.glsl"
 #include "bssrdf/fresnel.h"
 #include "lights/point_light.h"
 #include "media/heterogeneous_field.h"
 #include "shared/random.h"
-#include "transport/volume_walk.h"
+#include "shared/volume_walk.h"
 #include "methods/random_walk/random_walk_io.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -566,5 +566,5 @@ void main() {
     start_path(pixel_index, method.samples.y + samples - path_samples_left);
   }
   store_path(index);
-  if (path_samples_left > 0u) atomicAdd(walk_counters.active, 1u);
+  if (path_samples_left > 0u) atomicAdd(walk_counters.active_pixels, 1u);
 }

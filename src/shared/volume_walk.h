@@ -2,8 +2,8 @@
 // distances, Henyey-Greenstein phase sampling, reflection and refraction at a smooth dielectric boundary, and the
 // irradiance of a point light's pencil refracted by a locally flat boundary. The GPU path tracer (the random-walk
 // method) runs them in float; the sphere-jump tables are generated with them on both sides.
-#ifndef LUCENT_TRANSPORT_VOLUME_WALK_H
-#define LUCENT_TRANSPORT_VOLUME_WALK_H
+#ifndef LUCENT_SHARED_VOLUME_WALK_H
+#define LUCENT_SHARED_VOLUME_WALK_H
 #include "shared/bridge.h"
 
 LUCENT_SHADER_BEGIN
@@ -73,4 +73,4 @@ LUCENT_INLINE float refracted_point_irradiance(float D, float d, float cos_i, fl
 
 LUCENT_SHADER_END
 
-#endif  // LUCENT_TRANSPORT_VOLUME_WALK_H
+#endif  // LUCENT_SHARED_VOLUME_WALK_H
