@@ -143,8 +143,9 @@ class Builder {
     const int bins = std::clamp(options_.bins, 2, 64);
     std::array<Bin, 64> bin{};
     const float scale = static_cast<float>(bins) / extent;
-    auto bin_of = [&](std::uint32_t t) {
-      return std::min(bins - 1, static_cast<int>((centroids_[t][axis] - lower) * scale));
+    auto bin_of = [&](std::uint32_t t) {  // clamped as a float first: no out-of-range (or NaN) conversion
+      const float f = (centroids_[t][axis] - lower) * scale;
+      return f >= static_cast<float>(bins - 1) ? bins - 1 : (f > 0.0f ? static_cast<int>(f) : 0);
     };
     for (std::uint32_t i = begin; i < end; ++i) {
       Bin& b = bin[static_cast<std::size_t>(bin_of(order_[i]))];
