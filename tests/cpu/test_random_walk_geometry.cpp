@@ -164,6 +164,13 @@ TEST(RandomWalkBvh, CoincidentTrianglesSplitByMedian) {
     triangles.push_back(make_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, 0, i));
   TriangleBvh bvh = build_triangle_bvh(triangles);
   for (const BvhNodeGPU& n : bvh.nodes) EXPECT_LE(node_count(n), 4u);
+  BvhBuildOptions single;
+  single.leaf_triangles = single.max_leaf_triangles = 1;
+  TriangleBvh singles = build_triangle_bvh(triangles, single);
+  EXPECT_EQ(singles.nodes.size(), 2 * triangles.size() - 1);
+  BvhBuildOptions bad;
+  bad.leaf_triangles = 0;
+  EXPECT_THROW(build_triangle_bvh(triangles, bad), Error);
   auto hit = bvh.closest_hit({0.2f, 0.2f, 1.0f}, {0.0f, 0.0f, -1.0f}, 10.0f);
   ASSERT_TRUE(hit.has_value());
   EXPECT_FLOAT_EQ(hit->t, 1.0f);

@@ -297,6 +297,9 @@ glm::vec3 closest_point_on_triangle(const TriangleGPU& triangle, glm::vec3 p) { 
 TriangleBvh build_triangle_bvh(std::span<const TriangleGPU> triangles, const BvhBuildOptions& options) {
   if (options.max_depth < 0 || options.max_depth > kStackSize - 2)
     throw Error(fmt::format("triangle BVH: max depth {} outside [0, {}]", options.max_depth, kStackSize - 2));
+  if (options.leaf_triangles < 1 || options.max_leaf_triangles < options.leaf_triangles)
+    throw Error(fmt::format("triangle BVH: leaf sizes {} and {}: need 1 <= leaf_triangles <= max_leaf_triangles",
+                            options.leaf_triangles, options.max_leaf_triangles));
   if (triangles.size() >= (std::size_t{1} << 31))
     throw Error(fmt::format("triangle BVH: {} triangles, more than an index holds", triangles.size()));
   TriangleBvh bvh;
