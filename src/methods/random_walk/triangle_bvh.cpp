@@ -388,6 +388,10 @@ std::optional<NearestTriangle> TriangleBvh::nearest_triangle(glm::vec3 p, float 
   float best2 = max_distance * max_distance;  // squared; infinity stays infinity
   std::uint32_t best = kNoTriangle;
   auto try_triangle = [&](std::uint32_t t) {
+    // The distance to the triangle's plane, a lower bound, first: it rules most candidates out at less cost.
+    const glm::vec3 n = glm::cross(glm::vec3(triangles[t].e1), glm::vec3(triangles[t].e2));
+    const float h = glm::dot(p - glm::vec3(triangles[t].p0), n);
+    if (h * h >= best2 * glm::dot(n, n)) return;
     const glm::vec3 d = p - closest_point(triangles[t], p);
     if (const float d2 = glm::dot(d, d); d2 < best2) best2 = d2, best = t;
   };
