@@ -247,6 +247,23 @@ TEST(RandomWalkBvh, DistanceToNearestMatchesBruteForce) {
 
 // D(c) - |x - c| with c the nearest centre: never above the true distance, within one cell diagonal of it
 // inside the grid; still a lower bound outside it.
+// Degenerate triangles (segments, points) are found by the distance search though they have no plane.
+TEST(RandomWalkBvh, DistanceFindsDegenerateTriangles) {
+  std::vector<TriangleGPU> triangles;
+  for (std::uint32_t i = 0; i < 40; ++i) {
+    float x = static_cast<float>(i);
+    triangles.push_back(make_triangle({x, 0, 0}, {x + 0.5f, 0, 0}, {x + 1.0f, 0, 0}, {}, {}, {}, 0, 2 * i));
+    triangles.push_back(make_triangle({x, 5, 0}, {x + 1, 5, 0}, {x, 5, 1}, {}, {}, {}, 0, 2 * i + 1));
+  }
+  TriangleBvh bvh = build_triangle_bvh(triangles);
+  std::mt19937 rng(17);
+  for (int k = 0; k < 200; ++k) {
+    glm::vec3 p = rw_random_point(rng, 20.0f) + glm::vec3(20.0f, 2.5f, 0.0f);
+    EXPECT_FLOAT_EQ(bvh.distance_to_nearest(p), rw_brute_force_distance(triangles, p)) << k;
+  }
+  EXPECT_NEAR(bvh.distance_to_nearest({10.3f, 1.0f, 0.0f}), 1.0f, 1e-6f);
+}
+
 TEST(RandomWalkDistanceGrid, LowerBoundIsConservativeAndTight) {
   std::vector<TriangleGPU> triangles = rw_procedural_triangles();
   TriangleBvh bvh = build_triangle_bvh(triangles);

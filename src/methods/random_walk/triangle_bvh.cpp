@@ -390,8 +390,8 @@ std::optional<NearestTriangle> TriangleBvh::nearest_triangle(glm::vec3 p, float 
   auto try_triangle = [&](std::uint32_t t) {
     // The distance to the triangle's plane, a lower bound, first: it rules most candidates out at less cost.
     const glm::vec3 n = glm::cross(glm::vec3(triangles[t].e1), glm::vec3(triangles[t].e2));
-    const float h = glm::dot(p - glm::vec3(triangles[t].p0), n);
-    if (h * h >= best2 * glm::dot(n, n)) return;
+    const float h = glm::dot(p - glm::vec3(triangles[t].p0), n), n2 = glm::dot(n, n);
+    if (n2 > 0.0f && h * h >= best2 * n2) return;  // (a degenerate triangle has no plane)
     const glm::vec3 d = p - closest_point(triangles[t], p);
     if (const float d2 = glm::dot(d, d); d2 < best2) best2 = d2, best = t;
   };
