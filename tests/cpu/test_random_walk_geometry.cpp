@@ -69,6 +69,11 @@ void rw_expect_hits_match(const TriangleBvh& bvh, std::span<const TriangleGPU> r
   for (int r = 0; r < rays; ++r) {
     glm::vec3 o = rw_random_point(rng, 2.5f);
     glm::vec3 d = r % 2 ? rw_random_direction(rng) : glm::normalize(rw_random_point(rng, 1.0f) - o);
+    if (r % 5 == 0) {  // along an axis: infinite reciprocals in the box tests
+      d = glm::vec3(0.0f);
+      d[(r / 5) % 3] = (r / 5) % 2 ? 1.0f : -1.0f;
+      if (r % 10 == 0) o[(r / 5) % 3] = -2.0f * d[(r / 5) % 3];  // in front of the mesh
+    }
     float t_max = r % 7 == 0 ? 0.5f : 100.0f;
     auto expected = rw_brute_force_hit(reference, o, d, t_max);
     auto got = bvh.closest_hit(o, d, t_max);
@@ -79,6 +84,30 @@ void rw_expect_hits_match(const TriangleBvh& bvh, std::span<const TriangleGPU> r
     EXPECT_TRUE(intersect_triangle(bvh.triangles[got->triangle], o, d, t_max).has_value());
   }
   EXPECT_GT(hits, rays / 4);
+}
+
+// Each node's box holds its children's (interior) or its triangles' corners (leaf).
+void rw_expect_boxes_contain(const TriangleBvh& bvh) {
+  auto contains = [](const BvhNodeGPU& outer, glm::vec3 lower, glm::vec3 upper) {
+    return glm::all(glm::lessThanEqual(glm::vec3(outer.lower), lower)) &&
+           glm::all(glm::greaterThanEqual(glm::vec3(outer.upper), upper));
+  };
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i) {
+    const BvhNodeGPU& n = bvh.nodes[i];
+    if (std::uint32_t count = node_count(n); count > 0) {
+      for (std::uint32_t t = node_offset(n); t < node_offset(n) + count && t < bvh.triangles.size(); ++t) {
+        const TriangleGPU& tri = bvh.triangles[t];
+        glm::vec3 p0(tri.p0);
+        for (glm::vec3 p : {p0, p0 + glm::vec3(tri.e1), p0 + glm::vec3(tri.e2)}) EXPECT_TRUE(contains(n, p, p)) << i;
+      }
+    } else {
+      for (std::size_t c : {i + 1, std::size_t{node_offset(n)}}) {
+        if (c < bvh.nodes.size()) {
+          EXPECT_TRUE(contains(n, glm::vec3(bvh.nodes[c].lower), glm::vec3(bvh.nodes[c].upper))) << i << " " << c;
+        }
+      }
+    }
+  }
 }
 
 TEST(RandomWalkBvh, ClosestHitMatchesBruteForce) {
@@ -99,10 +128,7 @@ TEST(RandomWalkBvh, StructureIsDepthFirstWithEveryTriangleInOneLeaf) {
   ASSERT_FALSE(bvh.nodes.empty());
   EXPECT_LE(bvh.depth, 64);
   std::vector<int> in_leaves(triangles.size(), 0), original_seen(triangles.size(), 0);
-  auto contains = [](const BvhNodeGPU& outer, glm::vec3 lower, glm::vec3 upper) {
-    return glm::all(glm::lessThanEqual(glm::vec3(outer.lower), lower)) &&
-           glm::all(glm::greaterThanEqual(glm::vec3(outer.upper), upper));
-  };
+  rw_expect_boxes_contain(bvh);
   std::size_t leaves = 0;
   for (std::size_t i = 0; i < bvh.nodes.size(); ++i) {
     const BvhNodeGPU& n = bvh.nodes[i];
@@ -112,17 +138,12 @@ TEST(RandomWalkBvh, StructureIsDepthFirstWithEveryTriangleInOneLeaf) {
       for (std::uint32_t t = node_offset(n); t < node_offset(n) + count; ++t) {
         ASSERT_LT(t, triangles.size());
         ++in_leaves[t];
-        const TriangleGPU& tri = bvh.triangles[t];
-        glm::vec3 p0(tri.p0);
-        for (glm::vec3 p : {p0, p0 + glm::vec3(tri.e1), p0 + glm::vec3(tri.e2)}) EXPECT_TRUE(contains(n, p, p));
       }
     } else {
       const std::size_t right = node_offset(n);
       ASSERT_LT(i + 1, bvh.nodes.size());
       ASSERT_GT(right, i + 1);
       ASSERT_LT(right, bvh.nodes.size());
-      for (std::size_t c : {i + 1, right})
-        EXPECT_TRUE(contains(n, glm::vec3(bvh.nodes[c].lower), glm::vec3(bvh.nodes[c].upper))) << i << " " << c;
     }
   }
   EXPECT_EQ(bvh.nodes.size(), 2 * leaves - 1);
@@ -143,6 +164,13 @@ TEST(RandomWalkBvh, CoincidentTrianglesSplitByMedian) {
     triangles.push_back(make_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, 0, i));
   TriangleBvh bvh = build_triangle_bvh(triangles);
   for (const BvhNodeGPU& n : bvh.nodes) EXPECT_LE(node_count(n), 4u);
+  BvhBuildOptions single;
+  single.leaf_triangles = single.max_leaf_triangles = 1;
+  TriangleBvh singles = build_triangle_bvh(triangles, single);
+  EXPECT_EQ(singles.nodes.size(), 2 * triangles.size() - 1);
+  BvhBuildOptions bad;
+  bad.leaf_triangles = 0;
+  EXPECT_THROW(build_triangle_bvh(triangles, bad), Error);
   auto hit = bvh.closest_hit({0.2f, 0.2f, 1.0f}, {0.0f, 0.0f, -1.0f}, 10.0f);
   ASSERT_TRUE(hit.has_value());
   EXPECT_FLOAT_EQ(hit->t, 1.0f);
@@ -163,6 +191,7 @@ TEST(RandomWalkBvh, RefitAfterMovingVerticesMatchesRebuild) {
                       triangle_object(t), triangle_original_index(t));
   }
   bvh.refit(moved);
+  rw_expect_boxes_contain(bvh);
   TriangleBvh rebuilt = build_triangle_bvh(moved);
   std::mt19937 rng(7);
   for (int r = 0; r < 1000; ++r) {
@@ -218,6 +247,23 @@ TEST(RandomWalkBvh, DistanceToNearestMatchesBruteForce) {
 
 // D(c) - |x - c| with c the nearest centre: never above the true distance, within one cell diagonal of it
 // inside the grid; still a lower bound outside it.
+// Degenerate triangles (segments, points) are found by the distance search though they have no plane.
+TEST(RandomWalkBvh, DistanceFindsDegenerateTriangles) {
+  std::vector<TriangleGPU> triangles;
+  for (std::uint32_t i = 0; i < 40; ++i) {
+    float x = static_cast<float>(i);
+    triangles.push_back(make_triangle({x, 0, 0}, {x + 0.5f, 0, 0}, {x + 1.0f, 0, 0}, {}, {}, {}, 0, 2 * i));
+    triangles.push_back(make_triangle({x, 5, 0}, {x + 1, 5, 0}, {x, 5, 1}, {}, {}, {}, 0, 2 * i + 1));
+  }
+  TriangleBvh bvh = build_triangle_bvh(triangles);
+  std::mt19937 rng(17);
+  for (int k = 0; k < 200; ++k) {
+    glm::vec3 p = rw_random_point(rng, 20.0f) + glm::vec3(20.0f, 2.5f, 0.0f);
+    EXPECT_FLOAT_EQ(bvh.distance_to_nearest(p), rw_brute_force_distance(triangles, p)) << k;
+  }
+  EXPECT_NEAR(bvh.distance_to_nearest({10.3f, 1.0f, 0.0f}), 1.0f, 1e-6f);
+}
+
 TEST(RandomWalkDistanceGrid, LowerBoundIsConservativeAndTight) {
   std::vector<TriangleGPU> triangles = rw_procedural_triangles();
   TriangleBvh bvh = build_triangle_bvh(triangles);

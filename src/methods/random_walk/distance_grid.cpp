@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <system_error>
 #include <thread>
 
 #include <fmt/format.h>
@@ -56,7 +57,13 @@ DistanceGrid build_distance_grid(const TriangleBvh& bvh, glm::vec3 lower, glm::v
     for (int z = next_layer++; z < grid.cells.z; z = next_layer++) fill_layer(z);
   };
   std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+  for (int t = 1; t < threads; ++t) {
+    try {
+      workers.emplace_back(work);
+    } catch (const std::system_error&) {  // no more threads to be had: those started (and this one) do it all
+      break;
+    }
+  }
   work();
   for (std::thread& w : workers) w.join();
   return grid;

@@ -143,8 +143,9 @@ class Builder {
     const int bins = std::clamp(options_.bins, 2, 64);
     std::array<Bin, 64> bin{};
     const float scale = static_cast<float>(bins) / extent;
-    auto bin_of = [&](std::uint32_t t) {
-      return std::min(bins - 1, static_cast<int>((centroids_[t][axis] - lower) * scale));
+    auto bin_of = [&](std::uint32_t t) {  // clamped as a float first: no out-of-range (or NaN) conversion
+      const float f = (centroids_[t][axis] - lower) * scale;
+      return f >= static_cast<float>(bins - 1) ? bins - 1 : (f > 0.0f ? static_cast<int>(f) : 0);
     };
     for (std::uint32_t i = begin; i < end; ++i) {
       Bin& b = bin[static_cast<std::size_t>(bin_of(order_[i]))];
@@ -296,6 +297,9 @@ glm::vec3 closest_point_on_triangle(const TriangleGPU& triangle, glm::vec3 p) { 
 TriangleBvh build_triangle_bvh(std::span<const TriangleGPU> triangles, const BvhBuildOptions& options) {
   if (options.max_depth < 0 || options.max_depth > kStackSize - 2)
     throw Error(fmt::format("triangle BVH: max depth {} outside [0, {}]", options.max_depth, kStackSize - 2));
+  if (options.leaf_triangles < 1 || options.max_leaf_triangles < options.leaf_triangles)
+    throw Error(fmt::format("triangle BVH: leaf sizes {} and {}: need 1 <= leaf_triangles <= max_leaf_triangles",
+                            options.leaf_triangles, options.max_leaf_triangles));
   if (triangles.size() >= (std::size_t{1} << 31))
     throw Error(fmt::format("triangle BVH: {} triangles, more than an index holds", triangles.size()));
   TriangleBvh bvh;
@@ -384,6 +388,10 @@ std::optional<NearestTriangle> TriangleBvh::nearest_triangle(glm::vec3 p, float 
   float best2 = max_distance * max_distance;  // squared; infinity stays infinity
   std::uint32_t best = kNoTriangle;
   auto try_triangle = [&](std::uint32_t t) {
+    // The distance to the triangle's plane, a lower bound, first: it rules most candidates out at less cost.
+    const glm::vec3 n = glm::cross(glm::vec3(triangles[t].e1), glm::vec3(triangles[t].e2));
+    const float h = glm::dot(p - glm::vec3(triangles[t].p0), n), n2 = glm::dot(n, n);
+    if (n2 > 0.0f && h * h >= best2 * n2) return;  // (a degenerate triangle has no plane)
     const glm::vec3 d = p - closest_point(triangles[t], p);
     if (const float d2 = glm::dot(d, d); d2 < best2) best2 = d2, best = t;
   };
