@@ -11,12 +11,13 @@
 #include <gtest/gtest.h>
 
 #include "image_compare.h"
+#include "../test_paths.h"
 #include "lucent/lucent.h"
 #include "reference/reference_renderer.h"
 
 namespace {
 
-constexpr int kWalkSize = 24;
+int kWalkSize = 24;
 
 struct WalkEstimate {
   std::vector<double> mean, standard_error;  // per pixel and channel (RGB)
@@ -123,6 +124,31 @@ TEST(RandomWalk, AgreesWithVolpathOnAChromaticForwardScatteringMediumUnderAPoint
                    walk_sphere(kChromaticForward,
                                R"({ "type": "point", "position": [1.5, 1.2, 1.5], "intensity": [2e-6, 2e-6, 2e-6] })"),
                    8, 16, 128);
+}
+
+}  // namespace
+
+namespace {
+
+// A scene of the leaderboard suite (bench/leaderboard/) with the random-walk method, at the test's size.
+lucent::Scene leaderboard_scene(const std::string& name, const std::string& method_keys = "") {
+  const std::string path = std::string(LUCENT_SOURCE_DIR) + "/bench/leaderboard/" + name + ".json";
+  lucent::Scene scene =
+      lucent::load_scene(path, {fmt::format(R"(method={{"name": "random-walk"{}}})", method_keys)});
+  scene.render.width = scene.render.height = kWalkSize;
+  return scene;
+}
+
+// At 16 x 16 pixels: every scene of the suite in about half a minute on llvmpipe.
+TEST(RandomWalkSuite, AgreesWithVolpathOnTheLeaderboardScenes) {
+  kWalkSize = 16;
+  const char* only = std::getenv("LUCENT_WALK_SCENE");
+  for (const char* name : {"slab_backlit", "sphere_front", "sphere_back", "fin_backlit", "candle", "bunny_side",
+                           "marble_veins", "column_bending"}) {
+    if (only && std::string(only) != name) continue;
+    expect_agreement(name, leaderboard_scene(name), 8, 4, 64);
+  }
+  kWalkSize = 24;
 }
 
 }  // namespace

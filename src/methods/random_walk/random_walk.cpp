@@ -45,8 +45,10 @@ GLuint storage_buffer(const std::vector<T>& data, const char* label) {
   return buffer;
 }
 
-// Each object's medium or surface as the walk reads it (volpath's ObjectData, in float).
-std::vector<shader::WalkObjectGPU> walk_objects(const Scene& scene) {
+// Each object's medium or surface as the walk reads it at time `seconds` (volpath's ObjectData, in float): a
+// deforming mesh's box is the deformed one's, a field stays where the undeformed object is (scene_at_time).
+std::vector<shader::WalkObjectGPU> walk_objects(const Scene& animated_scene, double seconds) {
+  const Scene scene = scene_at_time(animated_scene, seconds);
   std::vector<shader::WalkObjectGPU> out(scene.objects.size(), shader::WalkObjectGPU{});
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
@@ -89,7 +91,7 @@ class RandomWalk final : public Method {
     if (bvh_.nodes.empty()) throw Error(fmt::format("{}: method 'random-walk' needs at least one triangle", scene.source));
     nodes_ = storage_buffer(bvh_.nodes, "random-walk BVH nodes");
     triangles_ = storage_buffer(bvh_.triangles, "random-walk triangles");
-    objects_ = storage_buffer(walk_objects(scene), "random-walk objects");
+    objects_ = storage_buffer(walk_objects(scene, 0.0), "random-walk objects");
     glCreateBuffers(1, &block_buffer_);
     glNamedBufferStorage(block_buffer_, sizeof(shader::RandomWalkGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, block_buffer_, "random-walk block");
@@ -179,7 +181,7 @@ class RandomWalk final : public Method {
     return true;
   }
   bool update_materials(const Scene& scene) override {
-    const std::vector<shader::WalkObjectGPU> objects = walk_objects(scene);
+    const std::vector<shader::WalkObjectGPU> objects = walk_objects(scene, geometry_time_);
     glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
     return true;
   }
@@ -197,6 +199,8 @@ class RandomWalk final : public Method {
     glNamedBufferSubData(triangles_, 0, static_cast<GLsizeiptr>(bvh_.triangles.size() * sizeof(shader::TriangleGPU)),
                          bvh_.triangles.data());
     geometry_time_ = context.time_seconds;
+    const std::vector<shader::WalkObjectGPU> objects = walk_objects(context.scene, geometry_time_);
+    glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
   }
 
   void allocate_paths(std::size_t pixels) {
