@@ -17,30 +17,37 @@
 
 namespace {
 
-int kWalkSize = 24;
+constexpr int kWalkSize = 24;
 
 struct WalkEstimate {
   std::vector<double> mean, standard_error;  // per pixel and channel (RGB)
+  // The image's mean and its standard error from the spread of the batches' image means: the pixels of one frame
+  // share the frame's sphere-walk records, so their errors are correlated and the per-pixel errors do not add up to
+  // the image mean's.
+  double image_mean = 0.0, image_mean_error = 0.0;
   double steps_per_path = 0.0;
 };
 
 // `batches` renders of `samples` paths per pixel with different seeds: the per-pixel mean and its standard error.
-WalkEstimate render_walk(lucent::Scene scene, int batches, int samples) {
-  const std::size_t n = static_cast<std::size_t>(kWalkSize) * kWalkSize * 3;
-  std::vector<double> sum(n, 0.0), sum2(n, 0.0);
+WalkEstimate render_walk(lucent::Scene scene, int batches, int samples, std::uint32_t first_seed = 1000) {
+  const int width = scene.render.width, height = scene.render.height;
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
+  std::vector<double> sum(n, 0.0), sum2(n, 0.0), batch_means;
   WalkEstimate out;
   for (int b = 0; b < batches; ++b) {
-    scene.render.seed = static_cast<std::uint32_t>(1000 + b);
+    scene.render.seed = first_seed + static_cast<std::uint32_t>(b);
     scene.method_params.set("samples_per_frame", static_cast<double>(samples));
-    lucent::OffscreenFramebuffer framebuffer(kWalkSize, kWalkSize);
+    lucent::OffscreenFramebuffer framebuffer(width, height);
     lucent::Renderer renderer(scene);
-    renderer.render(scene.camera, {framebuffer.id(), kWalkSize, kWalkSize});
+    renderer.render(scene.camera, {framebuffer.id(), width, height});
     const lucent::ImageRGBA32F image = renderer.read_radiance();
+    double image_sum = 0.0;
     for (std::size_t p = 0; p < n / 3; ++p)
       for (std::size_t c = 0; c < 3; ++c) {
         const double v = image.pixels[4 * p + c];
-        sum[3 * p + c] += v, sum2[3 * p + c] += v * v;
+        sum[3 * p + c] += v, sum2[3 * p + c] += v * v, image_sum += v;
       }
+    batch_means.push_back(image_sum / static_cast<double>(n));
     out.steps_per_path += renderer.last_frame_timings().stat("steps_per_path", 0.0) / batches;
   }
   out.mean.resize(n), out.standard_error.resize(n);
@@ -49,6 +56,10 @@ WalkEstimate render_walk(lucent::Scene scene, int batches, int samples) {
     const double variance = std::max(0.0, (sum2[i] - batches * out.mean[i] * out.mean[i]) / (batches - 1));
     out.standard_error[i] = std::sqrt(variance / batches);
   }
+  double m = 0.0, m2 = 0.0;
+  for (double b : batch_means) m += b, m2 += b * b;
+  out.image_mean = m / batches;
+  out.image_mean_error = std::sqrt(std::max(0.0, (m2 - batches * out.image_mean * out.image_mean) / (batches - 1)) / batches);
   return out;
 }
 
@@ -67,18 +78,25 @@ Agreement agreement(const WalkEstimate& gpu, const lucent::reference::ReferenceI
       sum += d, var_sum += var, sq += d * d;
     }
   const double count = static_cast<double>(pixels * 3);
-  return {sum / count, std::sqrt(var_sum) / count, std::sqrt(sq / count), std::sqrt(var_sum / count)};
+  // The CPU reference steps through every collision (no sphere-walk records): its pixels are independent.
+  double cpu_var = 0.0;
+  for (std::size_t p = 0; p < pixels; ++p)
+    for (std::size_t c = 0; c < 3; ++c)
+      cpu_var += static_cast<double>(cpu.standard_error.pixels[4 * p + c]) * cpu.standard_error.pixels[4 * p + c];
+  const double mean_se = std::sqrt(gpu.image_mean_error * gpu.image_mean_error + cpu_var / (count * count));
+  return {sum / count, mean_se, std::sqrt(sq / count), std::sqrt(var_sum / count)};
 }
 
+// LUCENT_WALK_PRECISION=k multiplies both sample counts by k (measurements for the method's doc).
 void expect_agreement(const std::string& name, const lucent::Scene& scene, int batches, int samples, int cpu_samples) {
   lucent::test::ensure_gl_context();
+  if (const char* k = std::getenv("LUCENT_WALK_PRECISION")) samples *= std::atoi(k), cpu_samples *= std::atoi(k);
   const WalkEstimate gpu = render_walk(scene, batches, samples);
   lucent::reference::ReferenceSettings settings;
   settings.samples_per_pixel = cpu_samples;
   settings.seed = 5;
-  lucent::Scene cpu_scene = scene;
-  cpu_scene.render.width = cpu_scene.render.height = kWalkSize;
-  const lucent::reference::ReferenceImage cpu = lucent::reference::render_reference(cpu_scene, settings);
+  settings.sphere_jumps = false;
+  const lucent::reference::ReferenceImage cpu = lucent::reference::render_reference(scene, settings);
   const Agreement a = agreement(gpu, cpu);
   double cpu_mean = 0.0;
   for (std::size_t i = 0; i < cpu.mean.pixels.size(); i += 4) cpu_mean += cpu.mean.pixels[i] + cpu.mean.pixels[i + 1] + cpu.mean.pixels[i + 2];
@@ -111,19 +129,19 @@ constexpr const char* kChromaticForward =
 
 TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromTheFront) {
   expect_agreement("sphere lit from the front",
-                   walk_sphere(kGreyMedium, R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })"), 8, 16, 128);
+                   walk_sphere(kGreyMedium, R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })"), 16, 8, 128);
 }
 
 TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromBehind) {
   expect_agreement("sphere lit from behind",
-                   walk_sphere(kGreyMedium, R"({ "direction": [0.2, 0.1, 1], "radiance": [1, 1, 1] })"), 8, 16, 128);
+                   walk_sphere(kGreyMedium, R"({ "direction": [0.2, 0.1, 1], "radiance": [1, 1, 1] })"), 16, 8, 128);
 }
 
 TEST(RandomWalk, AgreesWithVolpathOnAChromaticForwardScatteringMediumUnderAPointLight) {
   expect_agreement("chromatic g = 0.8, point light",
                    walk_sphere(kChromaticForward,
                                R"({ "type": "point", "position": [1.5, 1.2, 1.5], "intensity": [2e-6, 2e-6, 2e-6] })"),
-                   8, 16, 128);
+                   16, 8, 128);
 }
 
 }  // namespace
@@ -131,24 +149,77 @@ TEST(RandomWalk, AgreesWithVolpathOnAChromaticForwardScatteringMediumUnderAPoint
 namespace {
 
 // A scene of the leaderboard suite (bench/leaderboard/) with the random-walk method, at the test's size.
-lucent::Scene leaderboard_scene(const std::string& name, const std::string& method_keys = "") {
+lucent::Scene leaderboard_scene(const std::string& name, int size, const std::string& method_keys = "") {
   const std::string path = std::string(LUCENT_SOURCE_DIR) + "/bench/leaderboard/" + name + ".json";
   lucent::Scene scene =
       lucent::load_scene(path, {fmt::format(R"(method={{"name": "random-walk"{}}})", method_keys)});
-  scene.render.width = scene.render.height = kWalkSize;
+  scene.render.width = scene.render.height = size;
   return scene;
 }
 
 // At 16 x 16 pixels: every scene of the suite in about half a minute on llvmpipe.
 TEST(RandomWalkSuite, AgreesWithVolpathOnTheLeaderboardScenes) {
-  kWalkSize = 16;
   const char* only = std::getenv("LUCENT_WALK_SCENE");
   for (const char* name : {"slab_backlit", "sphere_front", "sphere_back", "fin_backlit", "candle", "bunny_side",
                            "marble_veins", "column_bending"}) {
     if (only && std::string(only) != name) continue;
-    expect_agreement(name, leaderboard_scene(name), 8, 4, 64);
+    expect_agreement(name, leaderboard_scene(name, 16), 16, 2, 256);
   }
-  kWalkSize = 24;
+}
+
+}  // namespace
+
+namespace {
+
+// Sphere jumps on against off, both on the GPU, on a dense sphere (optical radius 25) where they carry most of the
+// walk: g = 0 and 0.8, achromatic and chromatic.
+// Independent seeds for the two: the same seeds would share every path up to its first jump, and the difference
+// would be less noisy than the combined noise says.
+void expect_jumps_agree(const std::string& name, lucent::Scene scene) {
+  lucent::test::ensure_gl_context();
+  int batches = 16, samples = 2;
+  if (const char* k = std::getenv("LUCENT_WALK_PRECISION")) samples *= std::atoi(k);
+  scene.method_params.set("sphere_jumps", true);
+  const WalkEstimate on = render_walk(scene, batches, samples, 1000);
+  scene.method_params.set("sphere_jumps", false);
+  const WalkEstimate off = render_walk(scene, batches, samples, 2000);
+  double sum = 0.0, var = 0.0, sq = 0.0, mean_off = 0.0;
+  for (std::size_t i = 0; i < on.mean.size(); ++i) {
+    const double d = on.mean[i] - off.mean[i];
+    sum += d, sq += d * d, mean_off += off.mean[i];
+    var += on.standard_error[i] * on.standard_error[i] + off.standard_error[i] * off.standard_error[i];
+  }
+  const double n = static_cast<double>(on.mean.size());
+  const double se = std::hypot(on.image_mean_error, off.image_mean_error), rmse = std::sqrt(sq / n),
+               noise = std::sqrt(var / n);
+  fmt::print("{}: mean {:.5f}; jumps on - off {:+.5f} (combined standard error {:.5f}); per-pixel RMSE {:.5f}, combined "
+             "noise {:.5f} (ratio {:.3f}); steps per path {:.1f} with jumps, {:.1f} without ({:.1f}x fewer)\n",
+             name, mean_off / n, sum / n, se, rmse, noise, rmse / noise, on.steps_per_path, off.steps_per_path,
+             off.steps_per_path / std::max(on.steps_per_path, 1e-9));
+  EXPECT_LE(std::fabs(sum / n), 3.0 * se) << name;
+  EXPECT_LE(rmse, 1.25 * noise) << name;
+  EXPECT_LT(on.steps_per_path, off.steps_per_path) << name;
+}
+
+constexpr const char* kJumpLight = R"({ "direction": [-0.5, -0.3, -0.8], "radiance": [1, 1, 1] })";
+
+// Batches: 16 (the image mean's standard error comes from their spread).
+TEST(RandomWalkJumps, AgreeWithStepsOnADenseIsotropicGreyMedium) {
+  expect_jumps_agree("g = 0, grey",
+                     walk_sphere(R"({ "sigma_a": [0.01, 0.01, 0.01], "sigma_s": [25, 25, 25], "g": 0, "eta": 1.4 })",
+                                 kJumpLight));
+}
+TEST(RandomWalkJumps, AgreeWithStepsOnADenseForwardScatteringChromaticMedium) {
+  expect_jumps_agree("g = 0.8, chromatic",
+                     walk_sphere(R"({ "sigma_a": [0.01, 0.03, 0.1], "sigma_s": [60, 50, 40], "g": 0.8, "eta": 1.4 })",
+                                 kJumpLight));
+}
+TEST(RandomWalkJumps, AgreeWithStepsOnTheLeaderboardScenes) {
+  const char* only = std::getenv("LUCENT_WALK_SCENE");
+  for (const char* name : {"bunny_side", "column_bending"}) {
+    if (only && std::string(only) != name) continue;
+    expect_jumps_agree(name, leaderboard_scene(name, 16));
+  }
 }
 
 }  // namespace

@@ -17,10 +17,12 @@
 #include "lucent/error.h"
 #include "media/heterogeneous_field.h"
 #include "platform/gl_capabilities.h"
+#include "methods/random_walk/distance_grid.h"
 #include "methods/random_walk/random_walk_io.h"
 #include "methods/random_walk/triangle_bvh.h"
 #include "render/light_views.h"
 #include "render/view_accumulator.h"
+#include "shared/sphere_walk.h"
 #include "scene/mesh_enclosure.h"
 
 namespace lucent::methods {
@@ -30,6 +32,7 @@ namespace {
 // counters from overflowing at 1080p with thousands of steps per path.
 constexpr int kStatisticsStride = 4;
 constexpr int kMaxSurfaceBounces = 64;  // as volpath
+constexpr int kSphereWalkRecords = 1024;  // sphere-walk records of the smaller levels per bank and frame
 constexpr int kRouletteAfter = 8;       // as volpath
 // Events of one path at most (a path spans dispatches, so llvmpipe's loop cap does not bound it): far beyond any
 // physical path's (roulette ends them), a guard against a path that never ends.
@@ -47,8 +50,22 @@ GLuint storage_buffer(const std::vector<T>& data, const char* label) {
 
 // Each object's medium or surface as the walk reads it at time `seconds` (volpath's ObjectData, in float): a
 // deforming mesh's box is the deformed one's, a field stays where the undeformed object is (scene_at_time).
+// The distinct Henyey-Greenstein g of the homogeneous media whose bands share one g: the sphere-jump banks (at most
+// LUCENT_WALK_MAX_JUMP_BANKS; media beyond them step through every collision).
+std::vector<float> jump_bank_g(const Scene& scene) {
+  std::vector<float> banks;
+  for (const SceneObject& object : scene.objects) {
+    if (!object.material || object.material->field.heterogeneous()) continue;
+    const glm::vec3 g = object.material->g;
+    if (g.x != g.y || g.x != g.z || std::find(banks.begin(), banks.end(), g.x) != banks.end()) continue;
+    if (banks.size() < LUCENT_WALK_MAX_JUMP_BANKS) banks.push_back(g.x);
+  }
+  return banks;
+}
+
 std::vector<shader::WalkObjectGPU> walk_objects(const Scene& animated_scene, double seconds) {
   const Scene scene = scene_at_time(animated_scene, seconds);
+  const std::vector<float> banks = jump_bank_g(scene);
   std::vector<shader::WalkObjectGPU> out(scene.objects.size(), shader::WalkObjectGPU{});
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
@@ -71,7 +88,10 @@ std::vector<shader::WalkObjectGPU> walk_objects(const Scene& animated_scene, dou
     if (m.field.has_bounds) lower = m.field.bounds_lower, upper = m.field.bounds_upper;
     o.lower = glm::vec4(lower, m.field.scale_mm / scale);
     o.upper = glm::vec4(upper, m.field.contrast);
-    o.majorant = glm::vec4(m.field.max_multiplier() * (m.sigma_a + m.sigma_s) * scale, 0.0f);
+    const auto bank = std::find(banks.begin(), banks.end(), m.g.x);
+    const bool jumps = !m.field.heterogeneous() && m.g.x == m.g.y && m.g.x == m.g.z && bank != banks.end();
+    o.majorant = glm::vec4(m.field.max_multiplier() * (m.sigma_a + m.sigma_s) * scale,
+                           jumps ? static_cast<float>(bank - banks.begin()) : -1.0f);
   }
   return out;
 }
@@ -87,8 +107,26 @@ class RandomWalk final : public Method {
     lights_ = light_views.lights;
     light_media_ = point_light_media(scene);
 
-    bvh_ = random_walk::build_triangle_bvh(random_walk::gather_scene_triangles(scene).triangles);
+    random_walk::SceneTriangles gathered = random_walk::gather_scene_triangles(scene);
+    bvh_ = random_walk::build_triangle_bvh(gathered.triangles);
     if (bvh_.nodes.empty()) throw Error(fmt::format("{}: method 'random-walk' needs at least one triangle", scene.source));
+    rest_triangles_ = std::move(gathered.triangles);
+    jump_banks_ = jump_bank_g(scene);
+    if (!jump_banks_.empty()) {
+      random_walk::DistanceGridOptions options;
+      options.max_cells_per_axis = params_.integer("distance_grid");
+      grid_ = random_walk::build_distance_grid(bvh_, gathered.translucent_lower, gathered.translucent_upper, options);
+      upload_distance_grid();
+      records_per_level_ = kSphereWalkRecords;
+      for (int l = 0; l < shader::kSphereJumpLevelCount; ++l) jump_records_[l] = sphere_walk_records(l);
+      const std::size_t bytes = jump_banks_.size() * shader::kSphereJumpLevelCount *
+                                static_cast<std::size_t>(records_per_level_) * sizeof(shader::SphereWalkGPU);
+      glCreateBuffers(1, &spheres_);
+      glNamedBufferStorage(spheres_, static_cast<GLsizeiptr>(bytes), nullptr, 0);
+      gpu::label_object(GL_BUFFER, spheres_, "random-walk sphere-walk records");
+      sphere_bytes_ = bytes;
+      sphere_program_ = gpu::ShaderProgram::compute("methods/random_walk/shaders/sphere_walks.comp");
+    }
     nodes_ = storage_buffer(bvh_.nodes, "random-walk BVH nodes");
     triangles_ = storage_buffer(bvh_.triangles, "random-walk triangles");
     objects_ = storage_buffer(walk_objects(scene, 0.0), "random-walk objects");
@@ -110,6 +148,8 @@ class RandomWalk final : public Method {
     glDeleteBuffers(1, &nodes_);
     glDeleteBuffers(1, &triangles_);
     glDeleteBuffers(1, &objects_);
+    glDeleteBuffers(1, &spheres_);
+    glDeleteTextures(1, &distance_texture_);
   }
 
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
@@ -125,7 +165,12 @@ class RandomWalk final : public Method {
     block.samples = glm::uvec4(samples_this_frame_, samples_done_, frame.seeds.x,
                                params_.boolean("sphere_jumps") ? LUCENT_WALK_SPHERE_JUMPS : 0u);
     block.limits = glm::ivec4(kMaxSurfaceBounces, kRouletteAfter, params_.integer("max_scatter"), kMaxPathEvents);
-    block.jump_info = glm::ivec4(0, kStatisticsStride, 0, 0);
+    block.jump_info = glm::ivec4(static_cast<int>(jump_banks_.size()), kStatisticsStride, 0, 0);
+    block.distance_lower = glm::vec4(grid_.origin, grid_.cell_size);
+    block.distance_size = glm::ivec4(grid_.cells, records_per_level_);
+    for (std::size_t b = 0; b < jump_banks_.size(); ++b) block.jump_g[static_cast<int>(b)] = jump_banks_[b];
+    block.jump_bound = glm::vec4(surface_moved_, distance_texture_ != 0 ? 1.0f : 0.0f, 0.0f, 0.0f);
+    for (int l = 0; l < shader::kSphereJumpLevelCount; ++l) block.jump_records[l / 4][l % 4] = jump_records_[l];
     for (std::size_t l = 0; l < LUCENT_MAX_LIGHTS; ++l)
       block.light_media[l / 4][static_cast<int>(l % 4)] = l < light_media_.size() ? light_media_[l] : -1;
     glNamedBufferSubData(block_buffer_, 0, sizeof(block), &block);
@@ -134,6 +179,15 @@ class RandomWalk final : public Method {
 
   void render(const FrameContext& context) override {
     if (context.scene_gpu.animated() && context.time_seconds != geometry_time_) follow_animation(context);
+    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
+    if (spheres_ != 0 && params_.boolean("sphere_jumps")) {
+      auto pass = context.profiler.pass("sphere_walks");
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_SPHERES, spheres_);
+      glUseProgram(sphere_program_.id());
+      glDispatchCompute(static_cast<GLuint>((records_per_level_ + 63) / 64), shader::kSphereJumpLevelCount,
+                        static_cast<GLuint>(jump_banks_.size()));
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
     auto pass = context.profiler.pass("trace");
     const std::size_t pixels = static_cast<std::size_t>(accumulated_.width()) * static_cast<std::size_t>(accumulated_.height());
     if (pixels != path_capacity_) allocate_paths(pixels);
@@ -143,6 +197,8 @@ class RandomWalk final : public Method {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_OBJECTS, objects_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_PATHS, paths_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_COUNTERS, counters_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_SPHERES, spheres_ != 0 ? spheres_ : objects_);
+    glBindTextureUnit(LUCENT_TEX_WALK_DISTANCE, distance_texture_);
     accumulated_.bind(LUCENT_IMAGE_WALK_SUM);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(program_.id());
@@ -186,7 +242,7 @@ class RandomWalk final : public Method {
     return true;
   }
   std::size_t gpu_memory_bytes() const override {
-    return accumulated_.gpu_memory_bytes() + path_capacity_ * sizeof(shader::WalkPathGPU) + bvh_.nodes.size() * sizeof(shader::BvhNodeGPU) +
+    return accumulated_.gpu_memory_bytes() + sphere_bytes_ + grid_.distances.size() * sizeof(float) + path_capacity_ * sizeof(shader::WalkPathGPU) + bvh_.nodes.size() * sizeof(shader::BvhNodeGPU) +
            bvh_.triangles.size() * sizeof(shader::TriangleGPU) + scene_.objects.size() * sizeof(shader::WalkObjectGPU);
   }
 
@@ -194,7 +250,19 @@ class RandomWalk final : public Method {
   // Deforming meshes: the triangles at the frame's instant, the hierarchy refitted (same topology) and uploaded.
   void follow_animation(const FrameContext& context) {
     auto pass = context.profiler.pass("refit");
-    bvh_.refit(random_walk::gather_scene_triangles(context.scene, context.time_seconds).triangles);
+    const std::vector<shader::TriangleGPU> moved =
+        random_walk::gather_scene_triangles(context.scene, context.time_seconds).triangles;
+    // Every surface point moved at most as far as the corners (it is their convex combination): the distance grid
+    // of the rest pose, minus that, still bounds the distance to the surfaces from below.
+    float moved_most = 0.0f;
+    for (std::size_t t = 0; t < moved.size() && t < rest_triangles_.size(); ++t) {
+      const shader::TriangleGPU &a = moved[t], &b = rest_triangles_[t];
+      moved_most = std::max({moved_most, glm::length(glm::vec3(a.p0) - glm::vec3(b.p0)),
+                             glm::length(glm::vec3(a.p0 + a.e1) - glm::vec3(b.p0 + b.e1)),
+                             glm::length(glm::vec3(a.p0 + a.e2) - glm::vec3(b.p0 + b.e2))});
+    }
+    surface_moved_ = moved_most;
+    bvh_.refit(moved);
     glNamedBufferSubData(nodes_, 0, static_cast<GLsizeiptr>(bvh_.nodes.size() * sizeof(shader::BvhNodeGPU)), bvh_.nodes.data());
     glNamedBufferSubData(triangles_, 0, static_cast<GLsizeiptr>(bvh_.triangles.size() * sizeof(shader::TriangleGPU)),
                          bvh_.triangles.data());
@@ -202,6 +270,19 @@ class RandomWalk final : public Method {
     const std::vector<shader::WalkObjectGPU> objects = walk_objects(context.scene, geometry_time_);
     glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
   }
+
+  void upload_distance_grid() {
+    if (grid_.distances.empty()) return;
+    glCreateTextures(GL_TEXTURE_3D, 1, &distance_texture_);
+    glTextureStorage3D(distance_texture_, 1, GL_R32F, grid_.cells.x, grid_.cells.y, grid_.cells.z);
+    glTextureSubImage3D(distance_texture_, 0, 0, 0, 0, grid_.cells.x, grid_.cells.y, grid_.cells.z, GL_RED, GL_FLOAT,
+                        grid_.distances.data());
+    gpu::label_object(GL_TEXTURE, distance_texture_, "random-walk distance grid");
+  }
+
+  // Records of each level, as the CPU reference's banks (transport/sphere_jump_bank.h): the largest spheres take
+  // the longest walks, so from optical radius 32 on each level has half the records of the one before.
+  static int sphere_walk_records(int level) { return std::max(64, kSphereWalkRecords >> std::max(0, level - 3)); }
 
   void allocate_paths(std::size_t pixels) {
     glDeleteBuffers(1, &paths_);
@@ -299,7 +380,16 @@ class RandomWalk final : public Method {
   unsigned loop_cap_ = 0, loop_budget_ = 0;
   shader::WalkCountersGPU last_counters_{};
   random_walk::TriangleBvh bvh_;
+  std::vector<shader::TriangleGPU> rest_triangles_;  // as gathered at time 0, in the scene's order
   double geometry_time_ = 0.0;
+  float surface_moved_ = 0.0f;  // how far the surfaces moved from the rest pose the distance grid was built for
+  std::vector<float> jump_banks_;
+  random_walk::DistanceGrid grid_;
+  GLuint distance_texture_ = 0, spheres_ = 0;
+  gpu::ShaderProgram sphere_program_;
+  int records_per_level_ = 0;
+  int jump_records_[shader::kSphereJumpLevelCount] = {};
+  std::size_t sphere_bytes_ = 0;
   unsigned samples_done_ = 0, samples_this_frame_ = 1;
 };
 

@@ -17,7 +17,7 @@
 // WalkObjectGPU.g.w: the medium's heterogeneous field (kField* of media/heterogeneous_field.h).
 // RandomWalkGPU.flags bits.
 #define LUCENT_WALK_SPHERE_JUMPS 1
-
+#define LUCENT_WALK_MAX_JUMP_BANKS 4  // distinct Henyey-Greenstein g values with sphere jumps
 LUCENT_SHADER_BEGIN
 
 // One node of the flattened BVH (methods/random_walk/triangle_bvh.h), depth-first: an interior node's left child
@@ -48,12 +48,12 @@ struct WalkObjectGPU {
   vec4 albedo;    // rgb: an opaque object's diffuse albedo
   vec4 lower;     // xyz: the field's world box [scene units]; w: the field's feature size [scene units]
   vec4 upper;     // xyz; w: the field's contrast
-  vec4 majorant;  // xyz: max m sigma_t per band; w: unused
+  vec4 majorant;  // xyz: max m sigma_t per band; w: the sphere-jump bank of its g (-1: no jumps; g differs by band)
   vec4 mesh_lower;  // xyz: the mesh's own world box (a vertex outside it has leaked out of a closed mesh)
   vec4 mesh_upper;
 };
 
-// One pixel's path in flight between dispatches (std430, 112 bytes): a frame's paths advance over several
+// One pixel's path in flight between dispatches (std430, 128 bytes): a frame's paths advance over several
 // dispatches, each invocation running events only while its loop iterations stay under the driver's cap.
 struct WalkPathGPU {
   vec4 origin;      // xyz [scene units]; w: the surface bounces so far
@@ -63,6 +63,8 @@ struct WalkPathGPU {
   vec4 radiance;    // xyz: what the path gathered so far
   ivec4 info;       // x: hero band, y: medium (object index, -1 outside), z: events, w: scattering events
   uvec4 state;      // x: random stream key, y: random numbers drawn, z: walk steps, w: paths left for this frame
+  uvec4 jumps;      // x: the path's first sphere-walk record (an offset, modulo a level's records); y: jumps made;
+                    // zw: unused
 };
 
 // What the dispatches of a frame count (std430), zeroed each frame; `active` each dispatch.
@@ -85,9 +87,13 @@ struct RandomWalkGPU {
                          // another event; z: the driver's loop cap per invocation (0: none); w: 2, the
                          // iterations of the loop that detects the cap
   vec4 distance_lower;   // xyz: the distance grid's first cell corner [scene units]; w: its cell size
-  ivec4 distance_size;   // xyz: cells per axis; w: sphere-walk records per level
-  vec4 jump_levels;      // optical radii of the first four sphere-jump levels
-  ivec4 jump_info;       // x: levels; y: the pixel stride (both axes) of the paths the statistics count; zw: unused
+  ivec4 distance_size;   // xyz: cells per axis; w: the sphere-walk records of one bank and level (the stride)
+  vec4 jump_g;           // the Henyey-Greenstein g of sphere-jump banks 0..3
+  vec4 jump_bound;       // x: how far any surface point has moved since the distance grid was built [scene units];
+                         // y: 1 when the distance grid is bound; zw: unused
+  ivec4 jump_records[2]; // records of each level (kSphereJumpLevelCount used)
+  ivec4 jump_info;       // x: sphere-jump banks; y: the pixel stride (both axes) of the paths the statistics count;
+                         // zw: unused
   ivec4 light_media[LUCENT_MAX_LIGHTS / 4];  // per FrameGPU light: the object whose medium encloses it, or -1
 };
 
@@ -101,8 +107,8 @@ static_assert(sizeof(lucent::shader::TriangleGPU) == 96);
 static_assert(offsetof(lucent::shader::TriangleGPU, n0) == 48);
 static_assert(offsetof(lucent::shader::TriangleGPU, n2) == 80);
 static_assert(sizeof(lucent::shader::WalkObjectGPU) == 144);
-static_assert(sizeof(lucent::shader::RandomWalkGPU) == 176 + 4 * LUCENT_MAX_LIGHTS);
-static_assert(sizeof(lucent::shader::WalkPathGPU) == 112);
+static_assert(sizeof(lucent::shader::RandomWalkGPU) == 224 + 4 * LUCENT_MAX_LIGHTS);
+static_assert(sizeof(lucent::shader::WalkPathGPU) == 128);
 static_assert(sizeof(lucent::shader::WalkCountersGPU) == 16);
 static_assert(LUCENT_BINDING_WALK_NODES >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_WALK_COUNTERS <= LUCENT_METHOD_STORAGE_LAST);
 static_assert(LUCENT_IMAGE_WALK_SUM >= LUCENT_METHOD_IMAGE_FIRST && LUCENT_IMAGE_WALK_SUM <= LUCENT_METHOD_IMAGE_LAST);

@@ -11,6 +11,7 @@
 #include "lights/point_light.h"
 #include "media/heterogeneous_field.h"
 #include "shared/random.h"
+#include "shared/sphere_walk.h"
 #include "shared/volume_walk.h"
 #include "methods/random_walk/random_walk_io.h"
 
@@ -20,6 +21,8 @@ layout(std140, binding = LUCENT_BINDING_METHOD) uniform MethodBlock { RandomWalk
 layout(std430, binding = LUCENT_BINDING_WALK_NODES) readonly buffer NodeBlock { BvhNodeGPU nodes[]; };
 layout(std430, binding = LUCENT_BINDING_WALK_TRIANGLES) readonly buffer TriangleBlock { TriangleGPU triangles[]; };
 layout(std430, binding = LUCENT_BINDING_WALK_OBJECTS) readonly buffer WalkObjectBlock { WalkObjectGPU walk_objects[]; };
+layout(std430, binding = LUCENT_BINDING_WALK_SPHERES) readonly buffer SphereBlock { SphereWalkGPU spheres[]; };
+layout(binding = LUCENT_TEX_WALK_DISTANCE) uniform sampler3D distance_grid;
 layout(rgba32f, binding = LUCENT_IMAGE_WALK_SUM) uniform image2D accumulated;
 layout(rgba32f, binding = LUCENT_IMAGE_HDR) uniform writeonly image2D hdr;
 layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
@@ -317,6 +320,7 @@ vec3 lambertian_next_event(Hit hit, vec3 n, vec3 albedo) {
 vec3 path_origin, path_direction, path_throughput, path_r_u, path_radiance;
 int path_hero, path_medium, path_events, path_scatterings;
 uint path_steps;
+uint path_jump_start, path_jumps;
 
 vec3 path_weight() { return path_throughput / mean3(path_r_u); }
 void path_add(vec3 incoming) { path_radiance += path_weight() * incoming; }
@@ -346,10 +350,68 @@ bool leave_or_reflect(Hit boundary) {
   return roulette();
 }
 
-// A scattering vertex at x: next-event estimation, then the hero band's phase sampling.
+// ---- sphere jumps (docs/methods/random-walk.md) -----------------------------------------------------------------
+// A lower bound of the distance from x to every surface: the distance grid's value at the nearest cell centre
+// minus the distance to it (the distance is 1-Lipschitz), minus how far the surfaces moved since the grid was built.
+float surface_distance_bound(vec3 x) {
+  vec3 cells = vec3(method.distance_size.xyz);
+  vec3 u = (x - method.distance_lower.xyz) / method.distance_lower.w;
+  ivec3 cell = ivec3(clamp(floor(u), vec3(0.0f), cells - 1.0f));
+  vec3 centre = method.distance_lower.xyz + (vec3(cell) + 0.5f) * method.distance_lower.w;
+  return texelFetch(distance_grid, cell, 0).r - length(x - centre) - method.jump_bound.x;
+}
+
+// At scattering vertex x (its next-event estimate done): jump across the largest sphere of the levels that lies
+// inside the medium, from a record of the frame's bank, turned toward a direction sampled from the phase function
+// with a uniform azimuth. The collisions inside count through the record's one vertex (n times its next-event
+// estimate); absorption and the other bands through the weights of shared/sphere_walk.h. False: no sphere fits.
+bool sphere_jump(vec3 x) {
+  WalkObjectGPU o = walk_objects[path_medium];
+  int bank = int(o.majorant.w);
+  if ((method.samples.w & uint(LUCENT_WALK_SPHERE_JUMPS)) == 0u || bank < 0 || method.jump_bound.y < 0.5f ||
+      method.limits.z > 0 || int(o.g.w) != kFieldNone)
+    return false;
+  vec3 sigma_s = o.sigma_s.xyz, sigma_t = o.sigma_a.xyz + sigma_s;
+  float sigma_hero = sigma_t[path_hero];
+  // 1% inside the bound: the exit point stays inside the medium after float rounding.
+  float optical_room = 0.99f * surface_distance_bound(x) * sigma_hero;
+  int level = -1;
+  for (int l = 0; l < kSphereJumpLevelCount; ++l) {
+    ++loop_count;
+    if (sphere_jump_level_radius(l) <= optical_room && path_jumps < uint(method.jump_records[l / 4][l % 4])) level = l;
+  }
+  if (level < 0) return false;
+  uint count = uint(method.jump_records[level / 4][level % 4]);
+  SphereWalkGPU record = spheres[(bank * kSphereJumpLevelCount + level) * method.distance_size.w +
+                                 int((path_jump_start + path_jumps) % count)];
+  ++path_jumps;
+  ++path_steps;
+  // The canonical frame: +z toward a direction from the phase function, a uniform azimuth about it.
+  vec3 w = sample_hg(path_direction, o.g.x, rnd(), rnd());
+  mat3 basis = walk_frame(w);
+  float phi = 2.0f * kWalkPi * rnd(), c = cos(phi), s = sin(phi);
+  mat3 turn = mat3(c * basis[0] + s * basis[1], -s * basis[0] + c * basis[1], w);
+  float radius = sphere_jump_level_radius(level) / sigma_hero;  // [scene units]
+  float n = record.exit_dir.w;
+  if (n >= 1.0f) {
+    float j = record.vertex_dir.w;
+    vec3 throughput_v = path_throughput * sphere_jump_throughput(j, record.vertex.w / sigma_hero, sigma_s, sigma_t, sigma_hero);
+    vec3 r_u_v = path_r_u * sphere_jump_ratio(j, record.vertex.w / sigma_hero, sigma_t, sigma_hero);
+    vec3 v = x + radius * (turn * record.vertex.xyz);
+    path_radiance += n * throughput_v / mean3(r_u_v) * medium_next_event(path_medium, v, normalize(turn * record.vertex_dir.xyz));
+  }
+  path_throughput *= sphere_jump_throughput(n, record.exit.w / sigma_hero, sigma_s, sigma_t, sigma_hero);
+  path_r_u *= sphere_jump_ratio(n, record.exit.w / sigma_hero, sigma_t, sigma_hero);
+  path_origin = x + radius * (turn * record.exit.xyz);
+  path_direction = normalize(turn * record.exit_dir.xyz);
+  return true;
+}
+
+// A scattering vertex at x: next-event estimation, then a sphere jump or the hero band's phase sampling.
 bool scatter(vec3 x) {
   path_add(medium_next_event(path_medium, x, path_direction));
   if (method.limits.z > 0 && ++path_scatterings >= method.limits.z) return false;
+  if (sphere_jump(x)) return roulette();
   vec3 g = walk_objects[path_medium].g.xyz;
   vec3 next = sample_hg(path_direction, g[path_hero], rnd(), rnd());
   vec3 phase = hg_phase_bands(dot(next, path_direction), g);
@@ -480,6 +542,7 @@ void start_path(uint pixel_index, uint sample_index) {
   path_hero = min(2, int(rnd() * 3.0f));
   path_medium = -1, path_events = 0, path_scatterings = 0, path_bounce = 0;
   path_steps = 0u;
+  path_jump_start = pcg_hash(rng_key ^ 0x6a09e667u), path_jumps = 0u;
 }
 
 void load_path(uint index) {
@@ -489,6 +552,7 @@ void load_path(uint index) {
   path_radiance = p.radiance.xyz;
   path_hero = p.info.x, path_medium = p.info.y, path_events = p.info.z, path_scatterings = p.info.w;
   rng_key = p.state.x, rng_count = p.state.y, path_steps = p.state.z, path_samples_left = p.state.w;
+  path_jump_start = p.jumps.x, path_jumps = p.jumps.y;
 }
 
 void store_path(uint index) {
@@ -500,6 +564,7 @@ void store_path(uint index) {
   p.radiance = vec4(path_radiance, 0.0f);
   p.info = ivec4(path_hero, path_medium, path_events, path_scatterings);
   p.state = uvec4(rng_key, rng_count, path_steps, path_samples_left);
+  p.jumps = uvec4(path_jump_start, path_jumps, 0u, 0u);
   paths[index] = p;
 }
 
