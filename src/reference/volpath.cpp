@@ -289,7 +289,6 @@ bool sphere_jump(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) 
   if (!s.sphere_jumps || !s.jump_bank || s.max_scatter > 0) return false;
   const ObjectData& o = s.rt.object(p.medium);
   if (o.heterogeneous() || o.g.x != o.g.y || o.g.x != o.g.z) return false;
-  if (p.jumps_used >= s.jump_bank->records_per_level()) return false;  // every record of the bank used once
   const glm::dvec3 sigma_t = p.medium_k.sigma_t();
   const double sigma_t_hero = sigma_t[p.hero];
   if (!(sigma_t_hero > 0.0)) return false;
@@ -298,9 +297,13 @@ bool sphere_jump(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) 
   const double smallest = shader::sphere_jump_level_radius(0) / sigma_t_hero;
   const double bound = surface_distance_bound(s, p, x, largest, smallest);
   int level = -1;
-  // (A margin of 1e-5 for the float rounding of the records' points.)
+  // (A margin of 1e-5 for the float rounding of the records' points.) A level is skipped once the path has made
+  // as many jumps as it has records: the records jump_start + k (mod its size) of the jumps k made there stay
+  // distinct.
   for (int l = 0; l < kSphereJumpLevelCount; ++l)
-    if (shader::sphere_jump_level_radius(l) <= (1.0 - 1e-5) * bound * sigma_t_hero) level = l;
+    if (shader::sphere_jump_level_radius(l) <= (1.0 - 1e-5) * bound * sigma_t_hero &&
+        p.jumps_used < s.jump_bank->records(l))
+      level = l;
   if (level < 0) return false;
 
   // The first direction, as a scattering event would sample it, and the record's frame: +z to it, a uniform
@@ -484,7 +487,7 @@ glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dve
   p.hero = std::min(2, static_cast<int>(rng.uniform() * 3.0));
   if (record) p.sample = record->sample;
   if (s.sphere_jumps && s.jump_bank) {
-    const int records = s.jump_bank->records_per_level();
+    const int records = s.jump_bank->records(0);
     p.jump_start = std::min(records - 1, static_cast<int>(rng.uniform() * records));
   }
   int bounce = 0;

@@ -1,6 +1,7 @@
 // sphere_jump_bank.cpp: see sphere_jump_bank.h.
 #include "transport/sphere_jump_bank.h"
 
+#include <algorithm>
 #include <bit>
 #include <stdexcept>
 
@@ -9,6 +10,11 @@ namespace lucent::reference {
 SphereJumpBank::SphereJumpBank(std::uint64_t seed, int records_per_level)
     : seed_(seed), records_per_level_(records_per_level) {
   if (records_per_level < 1) throw std::invalid_argument("SphereJumpBank: at least one record per level");
+}
+
+int SphereJumpBank::records(int level) const {
+  const int halvings = std::max(0, level - 3);
+  return std::max(std::min(64, records_per_level_), records_per_level_ >> std::min(halvings, 30));
 }
 
 std::vector<shader::SphereWalkGPU> SphereJumpBank::generate(std::uint64_t seed, int sample, float g, int level,
@@ -33,7 +39,7 @@ std::span<const shader::SphereWalkGPU> SphereJumpBank::records(int sample, float
     if (!slot) slot = std::make_unique<Level>();
     entry = slot.get();
   }
-  std::call_once(entry->once, [&] { entry->records = generate(seed_, sample, g, level, records_per_level_); });
+  std::call_once(entry->once, [&] { entry->records = generate(seed_, sample, g, level, records(level)); });
   return entry->records;
 }
 

@@ -1,0 +1,275 @@
+// test_sphere_jumps.cpp: volpath's sphere jumps (shared/sphere_walk.h, docs/references.md "Sphere jumps").
+//  - EmbreeScene::closest_surface_distance against a brute-force loop over every triangle of a sphere mesh and a
+//    cube, and closest_point_on_triangle against a fine search over the triangle.
+//  - The canonical walk against independent values: exits on the sphere, the mean number of collisions and the
+//    mean of n L_v (the stored vertex's estimate of the sum of the collisions' path lengths) against a
+//    brute-force walk in double written here, and P(n = 0) = e^{-tau}.
+//  - Images with and without jumps agree within their noise (isotropic and forward scattering, grey and coloured),
+//    while the steps per path fall at least tenfold in a dense medium.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "lucent/scene.h"
+#include "reference/embree_scene.h"
+#include "reference/reference_renderer.h"
+#include "shared/sphere_walk.h"
+#include "transport/estimate.h"
+#include "transport/sphere_jump_bank.h"
+
+namespace {
+
+using namespace lucent;
+using namespace lucent::reference;
+
+// The point of triangle (a, b, c) nearest to p by a search over a barycentric grid of `steps` cells per edge: an
+// upper bound on the distance within the grid's spacing of the exact one.
+double sj_grid_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                        int steps) {
+  double best = 1e300;
+  for (int i = 0; i <= steps; ++i)
+    for (int j = 0; i + j <= steps; ++j) {
+      const double u = double(i) / steps, v = double(j) / steps;
+      best = std::min(best, glm::length(a + u * (b - a) + v * (c - a) - p));
+    }
+  return best;
+}
+
+TEST(SphereJumps, ClosestPointOnTriangleMatchesAFineSearch) {
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  auto point = [&] { return glm::dvec3(coordinate(gen), coordinate(gen), coordinate(gen)); };
+  for (int trial = 0; trial < 300; ++trial) {
+    const glm::dvec3 a = point(), b = point(), c = trial % 10 == 0 ? a + 0.5 * (b - a) : point();  // some degenerate
+    const glm::dvec3 p = 2.0 * point();
+    const double exact = glm::length(closest_point_on_triangle(p, a, b, c) - p);
+    const double searched = sj_grid_distance(p, a, b, c, 200);
+    const double spacing = std::max({glm::length(b - a), glm::length(c - a), glm::length(c - b)}) / 200.0;
+    EXPECT_LE(exact, searched + 1e-12) << "trial " << trial;
+    EXPECT_GE(exact, searched - spacing) << "trial " << trial;
+  }
+}
+
+TEST(SphereJumps, ClosestSurfaceDistanceMatchesBruteForce) {
+  const Scene scene = parse_scene(R"({
+    "objects": [{ "shape": "sphere", "radius": 1, "segments": 24 },
+                { "shape": "box", "size": [1, 1.5, 2], "translate": [3, 0.5, 0] }] })",
+                                  "distance", ".");
+  EmbreeScene rt(scene);
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> x(-2.0, 5.0), yz(-2.0, 2.0);
+  for (int trial = 0; trial < 400; ++trial) {
+    const glm::dvec3 p(x(gen), yz(gen), yz(gen));
+    double brute = 1e300;
+    for (int o = 0; o < rt.object_count(); ++o)
+      for (const ObjectData::Corners& c : rt.object(o).corners)
+        brute = std::min(brute, glm::length(closest_point_on_triangle(p, c.position[0], c.position[1], c.position[2]) - p));
+    const double found = rt.closest_surface_distance(p, 10.0);
+    EXPECT_LE(found, brute) << "trial " << trial;  // a lower bound
+    EXPECT_NEAR(found, brute, 1e-4) << "trial " << trial;
+    // Clamped to the query's radius.
+    EXPECT_NEAR(rt.closest_surface_distance(p, 0.25), std::min(brute, 0.25), 1e-4) << "trial " << trial;
+  }
+}
+
+// A canonical walk in double: the statistics sphere_walk() must reproduce.
+struct SjWalk {
+  int n = 0;
+  double sum_length_at_collisions = 0.0;  // the sum over collisions of the optical length from the centre
+  double exit_radius = 0.0;
+};
+
+glm::dvec3 sj_sample_hg(std::mt19937_64& gen, const glm::dvec3& w, double g) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double cos_theta;
+  if (g == 0.0) {
+    cos_theta = 1.0 - 2.0 * u(gen);
+  } else {  // inverting the HG distribution of cos theta
+    const double s = (1.0 - g * g) / (1.0 + g - 2.0 * g * u(gen));
+    cos_theta = (1.0 + g * g - s * s) / (2.0 * g);
+  }
+  const double phi = 2.0 * M_PI * u(gen), sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  const glm::dvec3 t = std::abs(w.z) < 0.9 ? glm::normalize(glm::cross(w, glm::dvec3(0, 0, 1)))
+                                            : glm::normalize(glm::cross(w, glm::dvec3(1, 0, 0)));
+  const glm::dvec3 s = glm::cross(w, t);
+  return glm::normalize(sin_theta * std::cos(phi) * t + sin_theta * std::sin(phi) * s + cos_theta * w);
+}
+
+SjWalk sj_brute_walk(std::mt19937_64& gen, double tau, double g) {
+  std::exponential_distribution<double> flight(1.0);
+  SjWalk w;
+  glm::dvec3 p(0.0), d(0.0, 0.0, 1.0);
+  double length = 0.0;
+  for (;;) {
+    const double t = flight(gen);
+    // A segment from inside the (convex) ball leaves it exactly when its end is outside.
+    const glm::dvec3 q = p + t * d;
+    if (glm::length(q) >= tau) {
+      const double b = glm::dot(p, d), c = glm::dot(p, p) - tau * tau;
+      const double s = -b + std::sqrt(b * b - c);
+      w.exit_radius = glm::length(p + s * d) / tau;
+      return w;
+    }
+    p = q;
+    length += t;
+    ++w.n;
+    w.sum_length_at_collisions += length;
+    d = sj_sample_hg(gen, d, g);
+  }
+}
+
+void sj_check_walk_statistics(float tau, float g) {
+  constexpr int kWalks = 20000;
+  Accumulator n_fast, n_brute, sum_fast, sum_brute;
+  for (int i = 0; i < kWalks; ++i) {
+    const shader::SphereWalkGPU r = shader::sphere_walk(tau, g, shader::seed_from(3u, 5u, static_cast<std::uint32_t>(i), 0u));
+    const double n = r.exit_dir.w;
+    n_fast.add(n);
+    sum_fast.add(n * r.vertex.w);
+    ASSERT_LT(n, shader::kSphereWalkMaxSteps);
+    EXPECT_NEAR(glm::length(glm::vec3(r.exit)), 1.0f, 1e-4f);
+    EXPECT_NEAR(glm::length(glm::vec3(r.exit_dir)), 1.0f, 1e-4f);
+    EXPECT_GE(r.exit.w, tau * (1.0f - 1e-4f));  // at least the straight line out
+    if (n >= 1.0) {
+      EXPECT_GE(r.vertex_dir.w, 1.0f);
+      EXPECT_LE(r.vertex_dir.w, r.exit_dir.w);
+      EXPECT_LE(glm::length(glm::vec3(r.vertex)), 1.0f);
+      EXPECT_LE(r.vertex.w, r.exit.w);
+    }
+  }
+  std::mt19937_64 gen(99);
+  for (int i = 0; i < kWalks; ++i) {
+    const SjWalk w = sj_brute_walk(gen, tau, g);
+    n_brute.add(w.n);
+    sum_brute.add(w.sum_length_at_collisions);
+  }
+  const Estimate a = n_fast.estimate(), b = n_brute.estimate(), c = sum_fast.estimate(), d = sum_brute.estimate();
+  std::printf("tau %.1f g %.1f: mean n %.3f +- %.3f (brute force %.3f +- %.3f); mean n L_v %.2f +- %.2f (sum of L %.2f "
+              "+- %.2f)\n", tau, g, a.mean, a.standard_error, b.mean, b.standard_error, c.mean, c.standard_error,
+              d.mean, d.standard_error);
+  EXPECT_NEAR(a.mean, b.mean, 4.0 * std::hypot(a.standard_error, b.standard_error));
+  EXPECT_NEAR(c.mean, d.mean, 4.0 * std::hypot(c.standard_error, d.standard_error));
+}
+
+TEST(SphereJumps, CanonicalWalkMatchesABruteForceWalk) {
+  sj_check_walk_statistics(4.0f, 0.0f);
+  sj_check_walk_statistics(8.0f, 0.8f);
+}
+
+TEST(SphereJumps, CanonicalWalkLeavesWithoutCollisionWithProbabilityExpMinusTau) {
+  constexpr int kWalks = 200000;
+  const double tau = 0.5;
+  int none = 0;
+  for (int i = 0; i < kWalks; ++i) {
+    const shader::SphereWalkGPU r = shader::sphere_walk(static_cast<float>(tau), 0.0f, shader::seed_from(8u, static_cast<std::uint32_t>(i), 1u, 2u));
+    if (r.exit_dir.w == 0.0f) {
+      ++none;
+      EXPECT_EQ(r.vertex, glm::vec4(0.0f));
+      EXPECT_NEAR(r.exit.z, 1.0f, 1e-5f);  // straight along +z
+    }
+  }
+  const double p = std::exp(-tau), se = std::sqrt(p * (1.0 - p) / kWalks);
+  EXPECT_NEAR(static_cast<double>(none) / kWalks, p, 4.0 * se);
+}
+
+TEST(SphereJumps, BankRecordsAreReproducibleAndDifferPerSample) {
+  const SphereJumpBank bank(5, 64);
+  const auto a = bank.records(3, 0.5f, 2), again = bank.records(3, 0.5f, 2), other = bank.records(4, 0.5f, 2);
+  ASSERT_EQ(a.size(), 64u);
+  EXPECT_EQ(a.data(), again.data());  // generated once, then shared
+  const auto fresh = SphereJumpBank::generate(5, 3, 0.5f, 2, 64);
+  int equal_to_other = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].exit, fresh[i].exit);
+    equal_to_other += a[i].exit == other[i].exit;
+  }
+  EXPECT_EQ(equal_to_other, 0);
+}
+
+// A sphere of radius 1 scene unit (scale_mm 10: 10 mm) of a dense, high-albedo medium, lit from the side.
+Scene sj_marble_scene(double sigma_s_mm, glm::dvec3 albedo, double g, int size) {
+  const glm::dvec3 sigma_a = sigma_s_mm * (1.0 - albedo) / albedo;
+  return parse_scene(fmt::format(R"({{
+    "scale_mm": 10, "camera": {{ "eye": [0, 0, 4], "target": [0, 0, 0], "fov_y_deg": 32 }},
+    "lights": [{{ "direction": [0.6, -0.5, -0.62], "radiance": [3, 3, 3] }}],
+    "objects": [{{ "shape": "sphere", "radius": 1, "segments": 48,
+                  "material": {{ "sigma_a": [{}, {}, {}], "sigma_s": [{}, {}, {}], "g": {}, "eta": 1.4 }} }}],
+    "render": {{ "width": {}, "height": {}, "background": [0, 0, 0] }} }})",
+                                 sigma_a.x, sigma_a.y, sigma_a.z, sigma_s_mm, sigma_s_mm, sigma_s_mm, g, size, size),
+                     "marble", ".");
+}
+
+struct SjComparison {
+  double mean_difference, mean_error, rms_z;
+  double steps_on, steps_off, seconds_on, seconds_off;
+};
+
+SjComparison sj_compare(const Scene& scene, int spp) {
+  ReferenceSettings settings;
+  settings.samples_per_pixel = spp;
+  settings.seed = 21;
+  const ReferenceImage on = render_reference(scene, settings);
+  settings.sphere_jumps = false;
+  settings.seed = 22;
+  const ReferenceImage off = render_reference(scene, settings);
+  double sum_on = 0.0, sum_off = 0.0, var_on = 0.0, var_off = 0.0, z2 = 0.0;
+  int counted = 0;
+  const std::size_t pixels = on.mean.pixels.size() / 4;
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double a = on.mean.pixels[4 * i + c], b = off.mean.pixels[4 * i + c];
+      const double sa = on.standard_error.pixels[4 * i + c], sb = off.standard_error.pixels[4 * i + c];
+      sum_on += a, sum_off += b, var_on += sa * sa, var_off += sb * sb;
+      if (sa + sb > 0.0) {
+        z2 += (a - b) * (a - b) / (sa * sa + sb * sb);
+        ++counted;
+      }
+    }
+  const double values = 3.0 * static_cast<double>(pixels);
+  return {(sum_on - sum_off) / values,      std::sqrt(var_on + var_off) / values,
+          std::sqrt(z2 / std::max(1, counted)), on.steps_per_path,
+          off.steps_per_path,               on.seconds,
+          off.seconds};
+}
+
+void sj_expect_agreement(double g, glm::dvec3 albedo, const char* what) {
+  const SjComparison r = sj_compare(sj_marble_scene(5.0, albedo, g, 16), 64);
+  std::printf("%s, g %.1f: mean difference %.3g (%.2f standard errors), per-pixel RMS z %.3f; steps per path %.1f "
+              "with jumps, %.1f without; %.2f s and %.2f s\n", what, g, r.mean_difference,
+              r.mean_difference / r.mean_error, r.rms_z, r.steps_on, r.steps_off, r.seconds_on, r.seconds_off);
+  EXPECT_LE(std::abs(r.mean_difference), 3.0 * r.mean_error) << what << " g " << g;
+  EXPECT_LE(r.rms_z, 1.25) << what << " g " << g;
+  EXPECT_GT(r.rms_z, 0.6) << what << " g " << g;  // the standard errors are not overestimated either
+  EXPECT_LT(r.steps_on, r.steps_off) << what << " g " << g;  // the jumps do happen
+}
+
+TEST(SphereJumps, ImagesWithAndWithoutJumpsAgreeGrey) {
+  sj_expect_agreement(0.0, glm::dvec3(0.999), "grey");
+  sj_expect_agreement(0.8, glm::dvec3(0.999), "grey");
+}
+
+TEST(SphereJumps, ImagesWithAndWithoutJumpsAgreeColoured) {
+  sj_expect_agreement(0.0, glm::dvec3(0.9995, 0.995, 0.98), "coloured");
+  sj_expect_agreement(0.8, glm::dvec3(0.9995, 0.995, 0.98), "coloured");
+}
+
+TEST(SphereJumps, StepsPerPathFallTenfoldInADenseMedium) {
+  constexpr double kAlbedo = 0.99995;
+  const Scene scene = sj_marble_scene(20.0, glm::dvec3(kAlbedo), 0.0, 8);
+  ReferenceSettings settings;
+  settings.samples_per_pixel = 16;
+  const ReferenceImage on = render_reference(scene, settings);
+  settings.sphere_jumps = false;
+  const ReferenceImage off = render_reference(scene, settings);
+  std::printf("dense sphere (200 mean free paths in radius, albedo %g): %.1f steps per path with jumps, %.1f "
+              "without: %.1fx fewer; %.2f s and %.2f s\n", kAlbedo, on.steps_per_path, off.steps_per_path,
+              off.steps_per_path / on.steps_per_path, on.seconds, off.seconds);
+  EXPECT_GE(off.steps_per_path, 10.0 * on.steps_per_path);
+}
+
+}  // namespace
