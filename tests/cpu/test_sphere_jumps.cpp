@@ -5,12 +5,13 @@
 //    mean of n L_v (the stored vertex's estimate of the sum of the collisions' path lengths) against a
 //    brute-force walk in double written here, and P(n = 0) = e^{-tau}.
 //  - Images with and without jumps agree within their noise (isotropic and forward scattering, grey and coloured),
-//    while the steps per path fall at least tenfold in a dense medium.
+//    while the steps per path fall at least tenfold in a dense medium. Measured (16x16, 8 batches of 8 spp each
+//    way): the image means within 2 standard errors per band; without the n-fold next-event estimate at the stored
+//    vertex the means fall by 4 to 7.6 standard errors, and without the coloured bands' e^{-(sigma_t - sigma_t,hero)
+//    l} in the throughput red and blue move by 5 to 8 in opposite directions: both fail.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <random>
 #include <vector>
 
@@ -198,7 +199,7 @@ Scene sj_marble_scene(double sigma_s_mm, glm::dvec3 albedo, double g, int size) 
   const glm::dvec3 sigma_a = sigma_s_mm * (1.0 - albedo) / albedo;
   return parse_scene(fmt::format(R"({{
     "scale_mm": 10, "camera": {{ "eye": [0, 0, 4], "target": [0, 0, 0], "fov_y_deg": 32 }},
-    "lights": [{{ "direction": [0.9, -0.2, 0.39], "radiance": [3, 3, 3] }}],
+    "lights": [{{ "direction": [0.6, -0.5, -0.62], "radiance": [3, 3, 3] }}],
     "objects": [{{ "shape": "sphere", "radius": 1, "segments": 48,
                   "material": {{ "sigma_a": [{}, {}, {}], "sigma_s": [{}, {}, {}], "g": {}, "eta": 1.4 }} }}],
     "render": {{ "width": {}, "height": {}, "background": [0, 0, 0] }} }})",
@@ -219,8 +220,7 @@ struct SjComparison {
 // each sample index, so their errors are correlated and the sum of per-pixel variances understates the error of
 // an image mean. Each pixel is compared through its own standard error (the pixel's samples are independent).
 SjComparison sj_compare(const Scene& scene, int spp, int batches) {
-  const char* seed_env = std::getenv("SJ_SEED");
-  const std::uint64_t first_seed = 21 + (seed_env ? std::strtoull(seed_env, nullptr, 10) : 0);
+  const std::uint64_t first_seed = 21;
   SjComparison r{};
   std::vector<glm::dvec3> means[2];
   std::vector<double> grey[2];
@@ -283,8 +283,7 @@ SjComparison sj_compare(const Scene& scene, int spp, int batches) {
 }
 
 void sj_expect_agreement(double g, glm::dvec3 albedo, const char* what) {
-  const char* spp_env = std::getenv("SJ_SPP");
-  const int spp = spp_env ? std::atoi(spp_env) : 8, batches = 8;
+  const int spp = 8, batches = 8;
   const SjComparison r = sj_compare(sj_marble_scene(5.0, albedo, g, 16), spp, batches);
   const glm::dvec3 z = r.mean_difference / r.mean_error;
   const double total_z = r.grey_difference / r.grey_error;
