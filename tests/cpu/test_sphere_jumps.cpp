@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -195,6 +196,21 @@ TEST(SphereJumps, BankRecordsAreReproducibleAndDifferPerSample) {
     equal_to_other += a[i].exit == other[i].exit;
   }
   EXPECT_EQ(equal_to_other, 0);
+}
+
+// Threads asking for the same bank at once get the one generated copy; released banks are generated again alike.
+TEST(SphereJumps, BankIsGeneratedOnceForConcurrentThreads) {
+  SphereJumpBank bank(9, 128);
+  std::vector<const shader::SphereWalkGPU*> seen(8, nullptr);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < seen.size(); ++t)
+    threads.emplace_back([&bank, &seen, t] { seen[t] = bank.records(t % 2 == 0 ? 0 : 1, 0.0f, 3).data(); });
+  for (std::thread& thread : threads) thread.join();
+  for (std::size_t t = 2; t < seen.size(); ++t) EXPECT_EQ(seen[t], seen[t % 2]) << "thread " << t;
+  EXPECT_NE(seen[0], seen[1]);
+  const shader::SphereWalkGPU first = bank.records(1, 0.0f, 3)[5];
+  bank.release_samples_before(2);
+  EXPECT_EQ(bank.records(1, 0.0f, 3)[5].exit, first.exit);
 }
 
 // A sphere of radius 1 scene unit (scale_mm 10: 10 mm) of a dense, high-albedo medium, lit from the side.
