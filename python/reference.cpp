@@ -18,7 +18,7 @@ namespace {
 // The keyword arguments in the ranges of `lucent reference`'s options (argument_ranges.h).
 reference::ReferenceSettings settings_of(const std::string& integrator, const py::handle& spp, const py::handle& seed,
                                          const py::handle& threads, bool jitter, const py::handle& max_scatter,
-                                         const py::handle& time) {
+                                         const py::handle& time, bool sphere_jumps) {
   using namespace argument_ranges;
   if (integrator != "volpath" && integrator != "bssrdf")
     throw Error(fmt::format("integrator: '{}' is not one of volpath, bssrdf", integrator));
@@ -32,6 +32,7 @@ reference::ReferenceSettings settings_of(const std::string& integrator, const py
   if (s.max_scatter > 0 && s.integrator != reference::Integrator::Volpath)
     throw Error("max_scatter: only the volpath integrator counts scattering events");
   s.time_seconds = number_argument(time, kTimeSeconds, "time");
+  s.sphere_jumps = sphere_jumps;
   return s;
 }
 
@@ -53,18 +54,19 @@ void bind_reference(py::module_& m) {
       "reference",
       [](const SceneHandle& scene, const std::string& integrator, const py::object& spp, const py::object& seed,
          const py::object& threads, bool jitter, const py::object& max_scatter, const py::object& time,
-         py::object width, py::object height) {
+         py::object width, py::object height, bool sphere_jumps) {
         return render_reference_arrays(scene,
                                        {std::move(width), std::move(height), py::none(), py::none(), {}, py::none()},
-                                       settings_of(integrator, spp, seed, threads, jitter, max_scatter, time));
+                                       settings_of(integrator, spp, seed, threads, jitter, max_scatter, time, sphere_jumps));
       },
       py::arg("scene"), py::kw_only(), py::arg("integrator") = "volpath", py::arg("spp") = 16, py::arg("seed") = 1,
       py::arg("threads") = 0, py::arg("jitter") = false, py::arg("max_scatter") = 0, py::arg("time") = 0.0,
-      py::arg("width") = py::none(), py::arg("height") = py::none(),
+      py::arg("width") = py::none(), py::arg("height") = py::none(), py::arg("sphere_jumps") = true,
       "Renders the CPU reference as `lucent reference` does: integrator \"volpath\" (the physics) or \"bssrdf\" "
       "(the model), spp samples per pixel, threads (0: all cores), jitter (rays jittered inside pixels; default "
       "pixel centres), max_scatter (volpath: end paths after this many scattering events; 0: no limit), time "
-      "[s] for animated scenes, in [0, 1e9]. The numbers have the ranges of `lucent reference`'s options. "
+      "[s] for animated scenes, in [0, 1e9], sphere_jumps (volpath: jump across spheres deep inside homogeneous "
+      "media; the same image). The numbers have the ranges of `lucent reference`'s options. "
       "Returns (mean, standard_error), each float32 (height, width, 3).");
 }
 

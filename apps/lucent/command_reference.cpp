@@ -29,6 +29,7 @@ struct ReferenceOptions {
   std::string integrator = "volpath";
   reference::ReferenceSettings settings;
   std::vector<std::string> sets;
+  std::string sphere_jumps = "on";
   bool resume = false;
   bool quiet = false;
 };
@@ -67,6 +68,9 @@ void run(ReferenceOptions o) {
   o.settings.integrator = o.integrator == "volpath" ? reference::Integrator::Volpath : reference::Integrator::Bssrdf;
   if (o.settings.max_scatter > 0 && o.settings.integrator != reference::Integrator::Volpath)
     throw Error("--max-scatter: only the volpath integrator counts scattering events");
+  if (o.sphere_jumps != "on" && o.sphere_jumps != "off")
+    throw Error(fmt::format("--sphere-jumps: '{}' is not one of on, off", o.sphere_jumps));
+  o.settings.sphere_jumps = o.sphere_jumps == "on";
   if (o.output.empty()) throw Error("--output: empty path; give the reference's EXR, e.g. out/ref.exr");
   Scene scene = load_scene(o.scene_path, o.sets);
   // The three files are checked before the first sample: a reference can take hours.
@@ -110,10 +114,12 @@ void run(ReferenceOptions o) {
                              {"seed", o.settings.seed},
                              {"jitter", o.settings.jitter},
                              {"max_scatter", o.settings.max_scatter},
+                             {"sphere_jumps", o.settings.sphere_jumps},
                              {"time_seconds", o.settings.time_seconds},
                              {"width", scene.render.width},
                              {"height", scene.render.height},
                              {"camera_paths_per_second", paths / image.seconds},
+                             {"steps_per_path", image.steps_per_path},
                              {"overrides", o.sets}};
   // A merged reference resumed: its samples are those of its seeds and now this one's too (what a later merge
   // checks), and it keeps the list of its inputs.
@@ -197,6 +203,10 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--max-scatter", o->settings.max_scatter,
                   "volpath: end paths after this many scattering events (1: single scattering; 0: no limit)")
       ->check(number_in(argument_ranges::kMaxScatter))
+      ->capture_default_str();
+  cmd->add_option("--sphere-jumps", o->sphere_jumps,
+                  "volpath: jump across spheres inside homogeneous media instead of stepping through every collision "
+                  "(on | off; the same image either way)")
       ->capture_default_str();
   cmd->add_flag("--resume", o->resume, "add samples to the existing output (same scene and seed)");
   cmd->add_option("--set", o->sets, "override a scene value, e.g. --set render.width=160");

@@ -187,7 +187,7 @@ glm::dvec3 emergent_irradiance(const ReferenceScene& s, const SurfaceHit& hit, g
 }  // namespace
 
 glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
-                           const SurfaceHit* first_hit) {
+                           const SurfaceHit* first_hit, PathRecord* /*record: nothing to report*/) {
   const SurfaceHit hit = first_hit ? *first_hit : s.rt.intersect(origin, direction);
   if (!hit.hit()) return glm::dvec3(s.scene.render.background);
   const ObjectData& o = s.rt.object(hit.object);

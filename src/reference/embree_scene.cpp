@@ -199,6 +199,83 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
   return ray.tfar < 0.0f;
 }
 
+namespace {
+
+// The point of segment [a, b] nearest to p.
+glm::dvec3 closest_point_on_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 ab = b - a;
+  const double length2 = glm::dot(ab, ab);
+  if (!(length2 > 0.0)) return a;
+  return a + std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) * ab;
+}
+
+}  // namespace
+
+// The foot of the perpendicular from p to the triangle's plane is the nearest point when it lies inside the
+// triangle (all three barycentric coordinates >= 0); otherwise the nearest point is on the boundary, the nearest of
+// the three edges' nearest points (the distance to the plane's points grows away from the foot, so its minimum over
+// the triangle, a convex set, lies on the boundary when the foot is outside).
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) {
+  const glm::dvec3 ab = b - a, ac = c - a, normal = glm::cross(ab, ac);
+  const double area2 = glm::dot(normal, normal);
+  if (area2 > 0.0) {
+    const glm::dvec3 foot = p - glm::dot(p - a, normal) / area2 * normal;
+    // Barycentric coordinates of the foot from the signed areas of the sub-triangles opposite each corner.
+    const double wb = glm::dot(glm::cross(foot - a, ac), normal) / area2;
+    const double wc = glm::dot(glm::cross(ab, foot - a), normal) / area2;
+    if (wb >= 0.0 && wc >= 0.0 && wb + wc <= 1.0) return foot;
+  }
+  const glm::dvec3 candidates[3] = {closest_point_on_segment(p, a, b), closest_point_on_segment(p, b, c),
+                                    closest_point_on_segment(p, c, a)};
+  glm::dvec3 best = candidates[0];
+  for (const glm::dvec3& q : candidates)
+    if (glm::dot(q - p, q - p) < glm::dot(best - p, best - p)) best = q;
+  return best;
+}
+
+namespace {
+
+struct ClosestQuery {
+  const EmbreeScene* scene;
+  const std::vector<int>* object_of_geometry;
+  glm::dvec3 point;
+  double distance;
+  double slack;  // how far p's float copy, the point Embree culls around, may be from p
+};
+
+// Embree calls this for every triangle whose bounds reach the query's sphere: the sphere shrinks to the nearest
+// distance found plus the slack (rounded up to a float, so that no nearer triangle is skipped).
+bool closest_triangle_callback(RTCPointQueryFunctionArguments* args) {
+  auto* q = static_cast<ClosestQuery*>(args->userPtr);
+  const int object = (*q->object_of_geometry)[args->geomID];
+  const ObjectData::Corners& c = q->scene->object(object).corners[args->primID];
+  const glm::dvec3 nearest = closest_point_on_triangle(q->point, glm::dvec3(c.position[0]), glm::dvec3(c.position[1]),
+                                                       glm::dvec3(c.position[2]));
+  const double d = glm::length(nearest - q->point);
+  if (!(d < q->distance)) return false;
+  q->distance = d;
+  args->query->radius = std::nextafter(static_cast<float>(d + q->slack), std::numeric_limits<float>::max());
+  return true;
+}
+
+}  // namespace
+
+double EmbreeScene::closest_surface_distance(const glm::dvec3& p, double max_radius) const {
+  // Embree culls around p in float: a triangle nearer to p than some distance is nearer to that point than the
+  // distance plus theirs, which the slack covers (and subtracted from the result, keeps it a lower bound).
+  const double slack = 4.0 * offset_at(p);
+  RTCPointQuery query{};
+  query.x = static_cast<float>(p.x), query.y = static_cast<float>(p.y), query.z = static_cast<float>(p.z);
+  query.time = 0.0f;
+  query.radius = std::nextafter(static_cast<float>(max_radius + slack), std::numeric_limits<float>::max());
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  ClosestQuery q{this, &object_of_geometry_, p, max_radius + slack, slack};
+  rtcPointQuery(scene_, &query, &context, closest_triangle_callback, &q);
+  return std::clamp(q.distance - slack, 0.0, max_radius);
+}
+
 SurfaceSample EmbreeScene::sample_surface(int object, double u0, double u1, double u2, double u3) const {
   const ObjectData& d = objects_[static_cast<std::size_t>(object)];
   const std::size_t triangle = d.triangle_by_area.sample(u0, u1);

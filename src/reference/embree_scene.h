@@ -79,6 +79,10 @@ struct SurfaceSample {
   double offset = 0.0;  // as SurfaceHit::offset
 };
 
+// The point of triangle (a, b, c) nearest to p (a degenerate triangle: the nearest point of its edges).
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c);
+
 class EmbreeScene {
  public:
   explicit EmbreeScene(const Scene& scene);
@@ -100,6 +104,11 @@ class EmbreeScene {
   SurfaceHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30,
                        double t_min = -1.0) const;
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max = 1e30) const;
+
+  // The distance from `p` to the nearest triangle of any object, or `max_radius` when none is nearer (a smaller
+  // radius visits fewer BVH nodes). The triangles are Embree's own (float corners); the result is lowered by a few
+  // float rounding steps of p's coordinates, so that a ball of that radius about p touches no surface.
+  double closest_surface_distance(const glm::dvec3& p, double max_radius) const;
 
   // The translucent object whose closed surface encloses point light `light` (an index into Scene::point_lights),
   // or -1 when it is in air.

@@ -29,11 +29,14 @@
 // Both: camera rays that miss show the background radiance; rays that escape later carry nothing (the
 // background does not light the scene, as in the real-time methods).
 #pragma once
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 #include "lucent/scene.h"
 #include "reference/embree_scene.h"
 #include "transport/rng.h"
+#include "transport/sphere_jump_bank.h"
 
 namespace lucent::reference {
 
@@ -41,14 +44,26 @@ struct ReferenceScene {
   const Scene& scene;
   const EmbreeScene& rt;
   int max_scatter = 0;  // volpath: scattering events per path at most (0: unlimited; ReferenceSettings)
+  // volpath: sphere jumps (shared/sphere_walk.h; docs/references.md, "Sphere jumps") where a path scatters deep
+  // inside a homogeneous medium whose bands share one g, and max_scatter is 0. They draw from `jump_bank`: without
+  // one, paths step through every collision.
+  bool sphere_jumps = true;
+  const SphereJumpBank* jump_bank = nullptr;
+};
+
+// What a path tells besides its radiance, and the sample index it belongs to.
+struct PathRecord {
+  int sample = 0;           // the sample index (selects the sphere-jump bank)
+  std::int64_t steps = 0;   // out: volpath's free flights in media plus sphere jumps
 };
 
 // `first_hit`, when given, is the hit of the ray (origin, direction) already traced: a pixel's camera rays through
-// its centre all share it, so the renderer traces it once per pixel instead of once per sample.
+// its centre all share it, so the renderer traces it once per pixel instead of once per sample. `record`, when
+// given, passes the sample index in and the path's statistics out.
 glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
-                            const SurfaceHit* first_hit = nullptr);
+                            const SurfaceHit* first_hit = nullptr, PathRecord* record = nullptr);
 glm::dvec3 bssrdf_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
-                           const SurfaceHit* first_hit = nullptr);
+                           const SurfaceHit* first_hit = nullptr, PathRecord* record = nullptr);
 
 // A point or spot light's intensity toward `direction` (unit, from the light), in scene units (E = I / d^2).
 glm::dvec3 point_light_intensity(const ReferenceScene& s, const PointLight& light, glm::dvec3 direction);

@@ -179,6 +179,10 @@ StoredReference merge_references(const std::vector<std::string>& inputs) {
   json meta = m0;
   meta.erase("seed");
   meta.erase("camera_paths_per_second");
+  // Per-run statistics and the sphere-jump setting (batches with and without jumps estimate the same image and
+  // merge; each input records its own) are not the merged set's.
+  meta.erase("steps_per_path");
+  meta.erase("sphere_jumps");
   json seeds = json::array(), sources = json::array();
   for (const Batch& b : batches) {
     for (std::uint64_t seed : b.seeds) seeds.push_back(seed);
@@ -187,6 +191,7 @@ StoredReference merge_references(const std::vector<std::string>& inputs) {
                        {"seeds", b.seeds},
                        {"samples_per_pixel", b.stored.image.samples_per_pixel},
                        {"seconds", b.stored.image.seconds}});
+    if (b.stored.metadata.contains("sphere_jumps")) sources.back()["sphere_jumps"] = b.stored.metadata["sphere_jumps"];
   }
   meta["seeds"] = seeds;
   meta["inputs"] = sources;

@@ -1,6 +1,7 @@
 // reference_renderer.cpp: see reference_renderer.h.
 #include "reference/reference_renderer.h"
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <cmath>
@@ -72,6 +73,11 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
   EmbreeScene rt(scene);
   if (settings.max_scatter < 0) throw Error("--max-scatter must be 0 (no limit) or more");
   ReferenceScene rs{scene, rt, settings.max_scatter};
+  // One bank of canonical walks per sample index, generated on first use and dropped after its pass.
+  SphereJumpBank jump_bank(settings.seed);
+  rs.sphere_jumps = settings.sphere_jumps;
+  if (settings.sphere_jumps) rs.jump_bank = &jump_bank;
+  std::atomic<std::int64_t> total_steps{0}, total_paths{0};
   std::size_t pixels = static_cast<std::size_t>(width) * height;
   PixelSums sums = previous ? sums_from(*previous) : PixelSums{std::vector<glm::dvec3>(pixels), std::vector<glm::dvec3>(pixels)};
   const int first_sample = previous ? previous->samples_per_pixel : 0;
@@ -116,21 +122,27 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
             return;
           }
         }
+        std::int64_t steps = 0;
         for (int sample = pass_first; sample < pass_end; ++sample) {
           Rng rng = Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
           glm::dvec3 L;
+          PathRecord record;
+          record.sample = sample;
           if (settings.jitter) {
             glm::dvec3 origin, direction;
             double jx = rng.uniform(), jy = rng.uniform();
             camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
-            L = radiance(rs, origin, direction, rng, nullptr);
+            L = radiance(rs, origin, direction, rng, nullptr, &record);
           } else {
-            L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit);
+            L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit, &record);
           }
+          steps += record.steps;
           if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
           sums.sum[pixel] += L;
           sums.sum2[pixel] += L * L;
         }
+        total_steps += steps;
+        total_paths += pass;
       });
       if (settings.progress)
         settings.progress((done + pass * (static_cast<double>(row1) / height)) / static_cast<double>(wanted));
@@ -140,6 +152,7 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
       break;
     }
     done += pass;
+    jump_bank.release_samples_before(pass_end);
   }
   const int total_samples = first_sample + done;
 
@@ -157,6 +170,7 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
     }
     out.mean.pixels[4 * i + 3] = 1.0f;
   }
+  out.steps_per_path = total_paths > 0 ? static_cast<double>(total_steps) / static_cast<double>(total_paths) : 0.0;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

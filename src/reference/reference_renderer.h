@@ -36,6 +36,9 @@ struct ReferenceSettings {
   // 0 = no limit. 1 restricts the image to single scattering (through refractive boundaries, internal Fresnel
   // reflections included), the physics of single-scattering methods.
   int max_scatter = 0;
+  // Volpath: sphere jumps deep inside homogeneous media (docs/references.md, "Sphere jumps"): the same image, in
+  // far fewer steps per path in dense, high-albedo media.
+  bool sphere_jumps = true;
   std::function<void(double done_fraction)> progress;
   // Polled between chunks of rows: true stops the render, which returns the samples of the passes it completed
   // (ReferenceImage::samples_per_pixel tells how many; a pass is a few samples over every pixel, so the image stays
@@ -48,6 +51,7 @@ struct ReferenceImage {
   ImageRGBA32F standard_error;  // per channel standard error of the mean; alpha = 0
   int samples_per_pixel = 0;
   double seconds = 0.0;
+  double steps_per_path = 0.0;  // volpath: mean free flights in media plus sphere jumps per path of this run
 };
 
 // Renders `settings.samples_per_pixel` samples; with `previous`, adds them to its samples (sample indices

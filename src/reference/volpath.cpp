@@ -1,8 +1,11 @@
 // volpath.cpp: the physics reference (see integrators.h).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <span>
 
 #include "reference/integrators.h"
+#include "shared/sphere_walk.h"
 #include "transport/random_walk.h"
 
 namespace lucent::reference {
@@ -220,6 +223,15 @@ struct PathState {
   MediumCoefficients medium_k;
   int events = 0;
   int scatterings = 0;  // medium scattering events so far
+  std::int64_t steps = 0;  // free flights in media plus sphere jumps
+  // Sphere jumps: the bank's sample index, the first record this path uses and how many it used (records
+  // jump_start, jump_start + 1, ... of a bank, never one twice), and the last distance query: the distance from
+  // `distance_origin` to the nearest surface (`distance_exact`: below the query's radius, not clamped to it).
+  int sample = 0;
+  int jump_start = 0, jumps_used = 0;
+  bool distance_known = false, distance_exact = false;
+  glm::dvec3 distance_origin{0.0};
+  double distance = 0.0;
   glm::dvec3 weight() const { return throughput / mean(r_u); }
   void add(const glm::dvec3& incoming) { radiance += weight() * incoming; }
 };
@@ -254,12 +266,91 @@ bool leave_or_reflect(const ReferenceScene& s, PathState& p, Rng& rng, const Sur
   return roulette(p, rng);
 }
 
+// A conservative lower bound on the distance from x to every surface, exact up to `radius` when the query runs.
+// Distances are 1-Lipschitz: from the last query at x0, d(x) >= d(x0) - |x - x0| and d(x) <= d(x0) + |x - x0|; the
+// query is skipped when these bounds already decide (a bound above `radius`, or one below `too_small`).
+double surface_distance_bound(const ReferenceScene& s, PathState& p, glm::dvec3 x, double radius, double too_small) {
+  if (p.distance_known) {
+    const double moved = glm::length(x - p.distance_origin);
+    if (p.distance - moved >= radius) return p.distance - moved;
+    if (p.distance_exact && p.distance + moved < too_small) return 0.0;
+  }
+  p.distance = s.rt.closest_surface_distance(x, radius);
+  p.distance_exact = p.distance < radius;
+  p.distance_origin = x;
+  p.distance_known = true;
+  return p.distance;
+}
+
+// A sphere jump at scattering vertex x (its next-event estimate done): the walk from x to the boundary of the
+// largest sphere about x inside the medium, from a bank record (shared/sphere_walk.h; docs/references.md, "Sphere
+// jumps"). False, and nothing changed, where no jump applies: the caller steps as usual.
+bool sphere_jump(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) {
+  if (!s.sphere_jumps || !s.jump_bank || s.max_scatter > 0) return false;
+  const ObjectData& o = s.rt.object(p.medium);
+  if (o.heterogeneous() || o.g.x != o.g.y || o.g.x != o.g.z) return false;
+  const glm::dvec3 sigma_t = p.medium_k.sigma_t();
+  const double sigma_t_hero = sigma_t[p.hero];
+  if (!(sigma_t_hero > 0.0)) return false;
+  using shader::kSphereJumpLevelCount;
+  const double largest = shader::sphere_jump_level_radius(kSphereJumpLevelCount - 1) / sigma_t_hero;
+  const double smallest = shader::sphere_jump_level_radius(0) / sigma_t_hero;
+  const double bound = surface_distance_bound(s, p, x, largest, smallest);
+  int level = -1;
+  // (A margin of 1e-5 for the float rounding of the records' points.) A level is skipped once the path has made
+  // as many jumps as it has records: the records jump_start + k (mod its size) of the jumps k made there stay
+  // distinct.
+  for (int l = 0; l < kSphereJumpLevelCount; ++l)
+    if (shader::sphere_jump_level_radius(l) <= (1.0 - 1e-5) * bound * sigma_t_hero &&
+        p.jumps_used < s.jump_bank->records(l))
+      level = l;
+  if (level < 0) return false;
+
+  // The first direction, as a scattering event would sample it, and the record's frame: +z to it, a uniform
+  // azimuth about it.
+  const double g = o.g[p.hero];
+  const glm::dvec3 w = sample_henyey_greenstein(rng, p.direction, g);
+  glm::dvec3 u, v;
+  orthonormal_basis(w, u, v);
+  const double phi = 2.0 * M_PI * rng.uniform();
+  const glm::dvec3 a = std::cos(phi) * u + std::sin(phi) * v, b = -std::sin(phi) * u + std::cos(phi) * v;
+  auto rotate = [&](const glm::vec4& c) { return double(c.x) * a + double(c.y) * b + double(c.z) * w; };
+  const std::span<const shader::SphereWalkGPU> bank = s.jump_bank->records(p.sample, static_cast<float>(g), level);
+  const shader::SphereWalkGPU& r =
+      bank[static_cast<std::size_t>((p.jump_start + p.jumps_used) % static_cast<int>(bank.size()))];
+  ++p.jumps_used;
+  ++p.steps;
+  const double radius = shader::sphere_jump_level_radius(level) / sigma_t_hero;  // [scene units]
+  const glm::vec3 sigma_s_f(p.medium_k.sigma_s), sigma_t_f(sigma_t);
+  const float st_h = static_cast<float>(sigma_t_hero);
+  // The collisions inside: each would have added its next-event estimate; n times the one at a uniformly picked
+  // collision estimates their sum.
+  const float n = r.exit_dir.w;
+  if (n >= 1.0f) {
+    const float j = r.vertex_dir.w, length_v = r.vertex.w / st_h;
+    const glm::dvec3 throughput_v =
+        p.throughput * glm::dvec3(shader::sphere_jump_throughput(j, length_v, sigma_s_f, sigma_t_f, st_h));
+    const glm::dvec3 r_u_v = p.r_u * glm::dvec3(shader::sphere_jump_ratio(j, length_v, sigma_t_f, st_h));
+    const glm::dvec3 vertex = x + radius * rotate(r.vertex), incoming = glm::normalize(rotate(r.vertex_dir));
+    p.radiance += static_cast<double>(n) * (throughput_v / mean(r_u_v)) *
+                  medium_next_event(s, p.medium, p.medium_k, vertex, incoming, rng);
+  }
+  const float length = r.exit.w / st_h;
+  p.throughput *= glm::dvec3(shader::sphere_jump_throughput(n, length, sigma_s_f, sigma_t_f, st_h));
+  p.r_u *= glm::dvec3(shader::sphere_jump_ratio(n, length, sigma_t_f, st_h));
+  // From the sphere's boundary (or the walk's last collision) the path goes on with a fresh free flight.
+  p.origin = x + radius * rotate(r.exit);
+  p.direction = glm::normalize(rotate(r.exit_dir));
+  return true;
+}
+
 // A scattering vertex at x, reached with the throughput update already applied: next-event estimation, then a
-// new direction from the hero band's phase function.
+// new direction from the hero band's phase function (or a sphere jump).
 bool scatter(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) {
   const ObjectData& o = s.rt.object(p.medium);
   p.add(medium_next_event(s, p.medium, p.medium_k, x, p.direction, rng));
   if (s.max_scatter > 0 && ++p.scatterings >= s.max_scatter) return false;
+  if (sphere_jump(s, p, rng, x)) return roulette(p, rng);
   glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[p.hero]);
   glm::dvec3 phase = hg_pdf_bands(glm::dot(next, p.direction), o.g);
   p.throughput *= phase / phase[p.hero];
@@ -314,6 +405,7 @@ Flight delta_track(const ReferenceScene& s, PathState& p, Rng& rng, double bound
 bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
   const ObjectData& o = s.rt.object(p.medium);
   const glm::dvec3 sigma_t = p.medium_k.sigma_t();
+  ++p.steps;
   // Medium rays start inside (scattering vertices, or boundary points offset inward): no epsilon skip, so a vertex
   // within epsilon of the boundary still finds it.
   if (o.heterogeneous()) {
@@ -389,16 +481,22 @@ bool surface_step(const ReferenceScene& s, PathState& p, Rng& rng, int bounce, c
 }  // namespace
 
 glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, Rng& rng,
-                            const SurfaceHit* first_hit) {
+                            const SurfaceHit* first_hit, PathRecord* record) {
   PathState p;
   p.origin = origin, p.direction = direction;
   p.hero = std::min(2, static_cast<int>(rng.uniform() * 3.0));
+  if (record) p.sample = record->sample;
+  if (s.sphere_jumps && s.jump_bank) {
+    const int records = s.jump_bank->records(0);
+    p.jump_start = std::min(records - 1, static_cast<int>(rng.uniform() * records));
+  }
   int bounce = 0;
   while (bounce < kMaxSurfaceBounces) {
     const SurfaceHit* known = bounce == 0 ? first_hit : nullptr;
     bool alive = p.medium >= 0 ? medium_step(s, p, rng) : surface_step(s, p, rng, bounce++, known);
     if (!alive) break;
   }
+  if (record) record->steps = p.steps;
   return p.radiance;
 }
 

@@ -70,7 +70,7 @@ LUCENT_INLINE SphereWalkGPU sphere_walk(float optical_radius, float g, uint seed
   int n = 0;
   uint counter = 0u;
   float r2 = optical_radius * optical_radius;
-  for (int step = 0; step < kSphereWalkMaxSteps; ++step) {
+  for (int collision = 0; collision < kSphereWalkMaxSteps; ++collision) {
     float t = -log(sphere_walk_uniform(seed, counter));
     // The distance s to the sphere along d: |p + s d| = radius, s >= 0 (c <= 0 inside; the root without
     // cancellation on each side of b = 0).

@@ -121,6 +121,8 @@ TEST(ReferenceRenderer, SharedCentreHitAndBackgroundPixelsEqualPerSampleTracing)
     "render": { "width": 8, "height": 6, "background": [0.2, 0.3, 0.4] } })", "centre", ".");
   lucent::reference::EmbreeScene rt(scene);
   lucent::reference::ReferenceScene rs{scene, rt};
+  const lucent::reference::SphereJumpBank jump_bank(lucent::reference::ReferenceSettings{}.seed);
+  rs.jump_bank = &jump_bank;  // the renderer's sphere jumps draw from the same banks
   for (auto integrator : {lucent::reference::Integrator::Bssrdf, lucent::reference::Integrator::Volpath}) {
     lucent::reference::ReferenceSettings settings;
     settings.integrator = integrator;
@@ -136,7 +138,9 @@ TEST(ReferenceRenderer, SharedCentreHitAndBackgroundPixelsEqualPerSampleTracing)
         lucent::reference::camera_ray(scene.camera, 8, 6, x + 0.5, y + 0.5, origin, direction);
         for (int sample = 0; sample < 3; ++sample) {
           lucent::reference::Rng rng = lucent::reference::Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
-          sum += radiance(rs, origin, direction, rng, nullptr);
+          lucent::reference::PathRecord record;
+          record.sample = sample;
+          sum += radiance(rs, origin, direction, rng, nullptr, &record);
         }
         if (!rt.intersect(origin, direction).hit()) ++background_pixels;
         for (int c = 0; c < 3; ++c)

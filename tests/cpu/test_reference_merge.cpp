@@ -317,4 +317,26 @@ TEST(ReferenceMerge, OlderMetadataComparesTheScenePath) {
                               scene + "\" in " + a + ")\n");
 }
 
+// Sphere jumps change how volpath samples, not what it estimates: batches with and without them merge, each input
+// keeps its setting, and the merged metadata claims neither (nor a steps-per-path statistic of one batch).
+TEST(ReferenceMerge, BatchesWithAndWithoutSphereJumpsMerge) {
+  const std::string scene = write_scene("jumps.json", "Marble");
+  const std::string on = path("jumps_on.exr"), off = path("jumps_off.exr"), out = path("jumps_merged.exr");
+  render(scene, on, "--spp 2 --seed 1");
+  render(scene, off, "--spp 2 --seed 2 --sphere-jumps off");
+  EXPECT_EQ(metadata(on)["sphere_jumps"], true);
+  EXPECT_EQ(metadata(off)["sphere_jumps"], false);
+  EXPECT_GT(metadata(on)["steps_per_path"].get<double>(), 0.0);
+  const CliResult r = run_cli("reference merge -q " + on + " " + off + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json merged = metadata(out);
+  EXPECT_FALSE(merged.contains("sphere_jumps"));
+  EXPECT_FALSE(merged.contains("steps_per_path"));
+  EXPECT_EQ(merged["inputs"][0]["sphere_jumps"], true);
+  EXPECT_EQ(merged["inputs"][1]["sphere_jumps"], false);
+  const CliResult wrong = run_cli("reference " + scene + " -q --spp 1 --sphere-jumps maybe -o " + path("jumps_x.exr"));
+  EXPECT_EQ(wrong.exit_code, 1);
+  EXPECT_EQ(wrong.output, "lucent: --sphere-jumps: 'maybe' is not one of on, off\n");
+}
+
 }  // namespace

@@ -1,0 +1,106 @@
+// test_sphere_walk_glsl.cpp: the canonical walk of the sphere jumps (shared/sphere_walk.h) is embedded for the
+// shaders, compiles as GLSL 4.50 and gives the same records in a compute shader as in C++. Its random numbers come
+// from a counter, not from the positions, so the two walks take the same turns and differ only by the rounding of
+// the transcendental functions, unless a flight ends within that rounding of the sphere (rare).
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+
+#include "gpu/shader_sources.h"
+#include "image_compare.h"
+#include "shared/sphere_walk.h"
+
+namespace {
+
+// An embedded header without its #include lines (the test pastes the includes in order itself).
+std::string sw_embedded_without_includes(const std::string& path) {
+  for (std::size_t i = 0; i < lucent::gpu::kEmbeddedFileCount; ++i) {
+    if (path != lucent::gpu::kEmbeddedFiles[i].path) continue;
+    std::string text(lucent::gpu::kEmbeddedFiles[i].text, lucent::gpu::kEmbeddedFiles[i].size), out;
+    std::size_t begin = 0;
+    while (begin < text.size()) {
+      std::size_t end = text.find('\n', begin);
+      if (end == std::string::npos) end = text.size();
+      const std::string line = text.substr(begin, end - begin);
+      if (line.rfind("#include", 0) != 0) out += line + "\n";
+      begin = end + 1;
+    }
+    return out;
+  }
+  ADD_FAILURE() << path << " is not embedded";
+  return "";
+}
+
+const char* kSwMain = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) writeonly buffer Records { SphereWalkGPU records[]; };
+uniform float u_radius;
+uniform float u_g;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uint(records.length())) return;
+  records[i] = sphere_walk(u_radius, u_g, seed_from(7u, i, 0u, 0u));
+}
+)";
+
+TEST(SphereWalkGlsl, ComputeShaderMatchesCpp) {
+  lucent::test::ensure_gl_context();
+  const std::string source = "#version 450 core\n" + sw_embedded_without_includes("shared/bridge.h") +
+                             sw_embedded_without_includes("shared/random.h") +
+                             sw_embedded_without_includes("shared/sphere_walk.h") + kSwMain;
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  std::string log(4096, '\0');
+  glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+  ASSERT_EQ(ok, GL_TRUE) << log;
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glLinkProgram(program);
+  glDeleteShader(shader);
+
+  constexpr int kRecords = 1024;
+  using lucent::shader::SphereWalkGPU;
+  for (const float radius : {2.0f, 8.0f})
+    for (const float g : {0.0f, 0.8f}) {
+      GLuint buffer = 0;
+      glCreateBuffers(1, &buffer);
+      glNamedBufferStorage(buffer, kRecords * static_cast<GLsizeiptr>(sizeof(SphereWalkGPU)), nullptr, 0);
+      glUseProgram(program);
+      glProgramUniform1f(program, glGetUniformLocation(program, "u_radius"), radius);
+      glProgramUniform1f(program, glGetUniformLocation(program, "u_g"), g);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
+      glDispatchCompute(kRecords / 64, 1, 1);
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      std::vector<SphereWalkGPU> gpu(kRecords);
+      glGetNamedBufferSubData(buffer, 0, kRecords * static_cast<GLsizeiptr>(sizeof(SphereWalkGPU)), gpu.data());
+      glDeleteBuffers(1, &buffer);
+      int other_turns = 0;
+      for (int i = 0; i < kRecords; ++i) {
+        const SphereWalkGPU cpu =
+            lucent::shader::sphere_walk(radius, g, lucent::shader::seed_from(7u, static_cast<std::uint32_t>(i), 0u, 0u));
+        const SphereWalkGPU& gl = gpu[static_cast<std::size_t>(i)];
+        ASSERT_TRUE(std::isfinite(gl.exit.w)) << "record " << i;
+        if (gl.exit_dir.w != cpu.exit_dir.w || gl.vertex_dir.w != cpu.vertex_dir.w) {
+          ++other_turns;
+          continue;
+        }
+        const float tolerance = 1e-3f * (1.0f + cpu.exit.w);
+        EXPECT_LT(glm::distance(gl.exit, cpu.exit), tolerance) << "record " << i << " radius " << radius << " g " << g;
+        EXPECT_LT(glm::distance(glm::vec3(gl.exit_dir), glm::vec3(cpu.exit_dir)), tolerance) << "record " << i;
+        EXPECT_LT(glm::distance(gl.vertex, cpu.vertex), tolerance) << "record " << i;
+        EXPECT_LT(glm::distance(glm::vec3(gl.vertex_dir), glm::vec3(cpu.vertex_dir)), tolerance) << "record " << i;
+      }
+      std::printf("radius %.0f g %.1f: %d of %d records took another turn\n", radius, g, other_turns, kRecords);
+      EXPECT_LE(other_turns, kRecords / 100) << "radius " << radius << " g " << g;
+    }
+  glDeleteProgram(program);
+}
+
+}  // namespace
