@@ -19,6 +19,8 @@
 #include "progress_bar.h"
 #include "reference/reference_files.h"
 #include "reference/reference_merge.h"
+#include "render/gpu_reference.h"
+#include "lucent/context.h"
 
 namespace lucent::cli {
 namespace {
@@ -30,6 +32,7 @@ struct ReferenceOptions {
   reference::ReferenceSettings settings;
   std::vector<std::string> sets;
   std::string sphere_jumps = "on";
+  std::string device = "cpu";
   bool resume = false;
   bool quiet = false;
 };
@@ -71,6 +74,14 @@ void run(ReferenceOptions o) {
   if (o.sphere_jumps != "on" && o.sphere_jumps != "off")
     throw Error(fmt::format("--sphere-jumps: '{}' is not one of on, off", o.sphere_jumps));
   o.settings.sphere_jumps = o.sphere_jumps == "on";
+  if (o.device != "cpu" && o.device != "gpu")
+    throw Error(fmt::format("--device: '{}' is not one of cpu, gpu", o.device));
+  if (o.device == "gpu" && o.settings.integrator != reference::Integrator::Volpath)
+    throw Error("--device gpu: only the volpath integrator runs on the GPU; render bssrdf references on the cpu");
+  if (o.device == "gpu" && o.resume)
+    throw Error("--resume: --device gpu renders a new batch; render batches with distinct --seed and combine them "
+                "with lucent reference merge");
+  if (o.device == "gpu" && o.settings.jitter) throw Error("--jitter: --device gpu renders through pixel centres only");
   if (o.output.empty()) throw Error("--output: empty path; give the reference's EXR, e.g. out/ref.exr");
   Scene scene = load_scene(o.scene_path, o.sets);
   // The three files are checked before the first sample: a reference can take hours.
@@ -94,8 +105,12 @@ void run(ReferenceOptions o) {
   // ends with a line saying how many samples it saved.
   DeferredInterruption interruption;
   o.settings.stop_requested = [&] { return interruption.received() != 0; };
-  reference::ReferenceImage image =
-      reference::render_reference(scene, o.settings, previous ? &previous->image : nullptr);
+  std::string gpu;
+  std::unique_ptr<GLContext> context;
+  if (o.device == "gpu") context = create_headless_context();
+  reference::ReferenceImage image = o.device == "gpu"
+                                        ? render::render_reference_on_gpu(scene, o.settings, &gpu)
+                                        : reference::render_reference(scene, o.settings, previous ? &previous->image : nullptr);
   progress.finish();
   const int asked = o.settings.samples_per_pixel;
   const int added = image.samples_per_pixel - (previous ? previous->image.samples_per_pixel : 0);
@@ -115,6 +130,7 @@ void run(ReferenceOptions o) {
                              {"jitter", o.settings.jitter},
                              {"max_scatter", o.settings.max_scatter},
                              {"sphere_jumps", o.settings.sphere_jumps},
+                             {"device", o.device},
                              {"time_seconds", o.settings.time_seconds},
                              {"width", scene.render.width},
                              {"height", scene.render.height},
@@ -129,6 +145,7 @@ void run(ReferenceOptions o) {
     metadata["seeds"] = seeds;
     if (previous->metadata.contains("inputs")) metadata["inputs"] = previous->metadata["inputs"];
   }
+  if (!gpu.empty()) metadata["gpu"] = gpu;
   reference::save_reference(files, image, std::move(metadata));
   if (signal)
     throw Interrupted(signal, fmt::format("{}: saved {} of the {} samples per pixel asked ({} in all) in {}; to add "
@@ -207,6 +224,10 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--sphere-jumps", o->sphere_jumps,
                   "volpath: jump across spheres inside homogeneous media instead of stepping through every collision "
                   "(on | off; the same image either way)")
+      ->capture_default_str();
+  cmd->add_option("--device", o->device,
+                  "volpath: cpu (Embree) or gpu (the random-walk method on the GPU: the same image, its standard "
+                  "error from 16 batches; merges with CPU batches)")
       ->capture_default_str();
   cmd->add_flag("--resume", o->resume, "add samples to the existing output (same scene and seed)");
   cmd->add_option("--set", o->sets, "override a scene value, e.g. --set render.width=160");

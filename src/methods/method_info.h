@@ -71,7 +71,13 @@ struct MethodInfo {
   // Textured materials (MaterialMaps): a method that does not read them is refused such a scene with one line,
   // rather than rendering the maps' mean.
   bool reads_material_maps = false;
+  // The method estimates the image of the volpath reference itself (the physics, not a model of it): `lucent
+  // reference --device gpu` renders references with it (render/gpu_reference.h).
+  bool estimates_volpath = false;
 };
+
+// The registered method that estimates volpath's image (estimates_volpath), or null.
+const MethodInfo* volpath_method();
 
 // Every registered method (src/methods/method_list.h), the default first.
 std::span<const MethodInfo* const> method_registry();

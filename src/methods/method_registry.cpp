@@ -31,6 +31,12 @@ const MethodInfo* find_method(std::string_view name) {
 
 const MethodInfo& default_method() { return *method_registry().front(); }
 
+const MethodInfo* volpath_method() {
+  for (const MethodInfo* info : method_registry())
+    if (info->estimates_volpath) return info;
+  return nullptr;
+}
+
 void refuse_material_maps(const Scene& scene, const MethodInfo& method) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const std::optional<Material>& material = scene.objects[i].material;

@@ -44,7 +44,11 @@ const MethodInfo random_walk_info{
     // Compared with the bssrdf reference (the conformance test's reference): the physics differs from the
     // diffusion model on the conformance sphere.
     0.25,
-    false,
+    false,    // needs_texture_atlas
+    nullptr,  // atlas_options
+    nullptr,  // precompute
+    false,    // reads_material_maps
+    true,     // estimates_volpath
 };
 
 }  // namespace lucent::methods
