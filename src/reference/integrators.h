@@ -12,6 +12,9 @@
 // Heterogeneous media (a material's "field", media/heterogeneous_field.h): free flights by delta tracking against
 // the majorant max m sigma_t with null collisions, and the next-event segments' transmittance by ratio tracking;
 // both unbiased (volpath.cpp).
+// Sphere jumps (ReferenceScene::sphere_jumps): deep inside a homogeneous medium a path crosses the largest sphere
+// that fits there in one step, a pre-computed walk (shared/sphere_walk.h) weighted for absorption and the other
+// bands, with the collisions' next-event estimates represented by one of them; unbiased (docs/references.md).
 // Known limits: one entry point per medium vertex (the nearest along the refracted direction; thin parts with
 // several entry points miss the others); focusing by the boundary's curvature is neglected (exact on flat
 // boundaries, a bias of the order of depth / focal length on curved ones); nested or touching translucent objects

@@ -302,7 +302,7 @@ bool sphere_jump(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) 
   // distinct.
   for (int l = 0; l < kSphereJumpLevelCount; ++l)
     if (shader::sphere_jump_level_radius(l) <= (1.0 - 1e-5) * bound * sigma_t_hero &&
-        p.jumps_used < s.jump_bank->records(l))
+        p.jumps_used < s.jump_bank->record_count(l))
       level = l;
   if (level < 0) return false;
 
@@ -487,7 +487,7 @@ glm::dvec3 volpath_radiance(const ReferenceScene& s, glm::dvec3 origin, glm::dve
   p.hero = std::min(2, static_cast<int>(rng.uniform() * 3.0));
   if (record) p.sample = record->sample;
   if (s.sphere_jumps && s.jump_bank) {
-    const int records = s.jump_bank->records(0);
+    const int records = s.jump_bank->record_count(0);
     p.jump_start = std::min(records - 1, static_cast<int>(rng.uniform() * records));
   }
   int bounce = 0;

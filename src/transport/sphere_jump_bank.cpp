@@ -12,7 +12,7 @@ SphereJumpBank::SphereJumpBank(std::uint64_t seed, int records_per_level)
   if (records_per_level < 1) throw std::invalid_argument("SphereJumpBank: at least one record per level");
 }
 
-int SphereJumpBank::records(int level) const {
+int SphereJumpBank::record_count(int level) const {
   const int halvings = std::max(0, level - 3);
   return std::max(std::min(64, records_per_level_), records_per_level_ >> std::min(halvings, 30));
 }
@@ -39,7 +39,7 @@ std::span<const shader::SphereWalkGPU> SphereJumpBank::records(int sample, float
     if (!slot) slot = std::make_unique<Level>();
     entry = slot.get();
   }
-  std::call_once(entry->once, [&] { entry->records = generate(seed_, sample, g, level, records(level)); });
+  std::call_once(entry->once, [&] { entry->records = generate(seed_, sample, g, level, record_count(level)); });
   return entry->records;
 }
 
