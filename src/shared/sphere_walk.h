@@ -11,6 +11,7 @@
 #define LUCENT_SHARED_SPHERE_WALK_H
 #include "shared/bridge.h"
 #include "shared/random.h"
+#include "shared/volume_walk.h"
 
 LUCENT_SHADER_BEGIN
 
@@ -23,6 +24,14 @@ LUCENT_CONST int kSphereWalkMaxSteps = 60000;
 
 LUCENT_INLINE float sphere_jump_level_radius(int level) { return kSphereJumpSmallestLevel * exp2(float(level)); }
 
+// Records of `level` in a bank of `records_per_level` for the smaller spheres: from optical radius 32 on, each
+// level has half the records of the one before (a walk across a sphere of radius tau takes about tau^2 / 2
+// collisions at g = 0), at least 64.
+LUCENT_INLINE int sphere_walk_record_count(int level, int records_per_level) {
+  int halvings = min(max(0, level - 3), 30);
+  return max(min(64, records_per_level), records_per_level >> halvings);
+}
+
 // One canonical walk (64 bytes; a std430 array element on the GPU). Positions are in units of the sphere's optical
 // radius, lengths are optical (extinction 1).
 struct SphereWalkGPU {
@@ -33,26 +42,6 @@ struct SphereWalkGPU {
   vec4 vertex_dir;  // xyz: the direction of the flight that ended at that collision; w: its index j in 1..n
                     // (all four zero when n = 0)
 };
-
-// A direction from the Henyey-Greenstein phase function with asymmetry g about the unit direction w, from two
-// uniforms in (0, 1).
-LUCENT_INLINE vec3 sphere_walk_sample_hg(vec3 w, float g, float u1, float u2) {
-  float cos_theta;
-  if (abs(g) < 1e-3f) {
-    cos_theta = 1.0f - 2.0f * u1;
-  } else {
-    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u1);
-    cos_theta = (1.0f + g * g - s * s) / (2.0f * g);
-  }
-  cos_theta = clamp(cos_theta, -1.0f, 1.0f);
-  float sin_theta = sqrt(max(0.0f, 1.0f - cos_theta * cos_theta));
-  float phi = 6.28318530717958648f * u2;
-  // An orthonormal frame (a, b, w): a is w crossed with the coordinate axis least aligned with it.
-  vec3 axis = abs(w.x) < 0.57f ? vec3(1.0f, 0.0f, 0.0f) : (abs(w.y) < 0.57f ? vec3(0.0f, 1.0f, 0.0f) : vec3(0.0f, 0.0f, 1.0f));
-  vec3 a = normalize(cross(w, axis));
-  vec3 b = cross(w, a);
-  return normalize(sin_theta * cos(phi) * a + sin_theta * sin(phi) * b + cos_theta * w);
-}
 
 // The walk's uniform number `counter` in (0, 1): a counter-based stream per record seed.
 LUCENT_INLINE float sphere_walk_uniform(uint seed, uint counter) { return next_float(seed ^ pcg_hash(counter)); }
@@ -91,7 +80,7 @@ LUCENT_INLINE SphereWalkGPU sphere_walk(float optical_radius, float g, uint seed
       record.vertex = vec4(p / optical_radius, length_so_far);
       record.vertex_dir = vec4(d, float(n));
     }
-    d = sphere_walk_sample_hg(d, g, sphere_walk_uniform(seed, counter + 2u), sphere_walk_uniform(seed, counter + 3u));
+    d = sample_hg(d, g, sphere_walk_uniform(seed, counter + 2u), sphere_walk_uniform(seed, counter + 3u));
     counter = counter + 4u;
   }
   // Without a crossing: stopped at its last collision with the direction sampled there (the walk is Markov: going on from

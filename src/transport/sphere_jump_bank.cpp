@@ -13,8 +13,7 @@ SphereJumpBank::SphereJumpBank(std::uint64_t seed, int records_per_level)
 }
 
 int SphereJumpBank::record_count(int level) const {
-  const int halvings = std::max(0, level - 3);
-  return std::max(std::min(64, records_per_level_), records_per_level_ >> std::min(halvings, 30));
+  return shader::sphere_walk_record_count(level, records_per_level_);
 }
 
 std::vector<shader::SphereWalkGPU> SphereJumpBank::generate(std::uint64_t seed, int sample, float g, int level,

@@ -28,28 +28,32 @@ struct WalkEstimate {
   double steps_per_path = 0.0;
 };
 
-// `batches` renders of `samples` paths per pixel with different seeds: the per-pixel mean and its standard error.
-WalkEstimate render_walk(lucent::Scene scene, int batches, int samples, std::uint32_t first_seed = 1000) {
+// `batches` frames of `samples` paths per pixel (each frame draws fresh random numbers and sphere-walk records; the
+// frame means come from the running means before and after it): per-pixel means and standard errors.
+WalkEstimate render_walk(lucent::Scene scene, int batches, int samples, std::uint32_t seed = 1000) {
   const int width = scene.render.width, height = scene.render.height;
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
-  std::vector<double> sum(n, 0.0), sum2(n, 0.0), batch_means;
+  std::vector<double> sum(n, 0.0), sum2(n, 0.0), previous(n, 0.0), batch_means;
   WalkEstimate out;
+  scene.render.seed = seed;
+  scene.method_params.set("samples_per_frame", static_cast<double>(samples));
+  lucent::OffscreenFramebuffer framebuffer(width, height);
+  lucent::Renderer renderer(scene);
   for (int b = 0; b < batches; ++b) {
-    scene.render.seed = first_seed + static_cast<std::uint32_t>(b);
-    scene.method_params.set("samples_per_frame", static_cast<double>(samples));
-    lucent::OffscreenFramebuffer framebuffer(width, height);
-    lucent::Renderer renderer(scene);
     renderer.render(scene.camera, {framebuffer.id(), width, height});
     const lucent::ImageRGBA32F image = renderer.read_radiance();
     double image_sum = 0.0;
     for (std::size_t p = 0; p < n / 3; ++p)
       for (std::size_t c = 0; c < 3; ++c) {
-        const double v = image.pixels[4 * p + c];
+        const double running = image.pixels[4 * p + c];
+        const double v = running * (b + 1) - previous[3 * p + c] * b;
+        previous[3 * p + c] = running;
         sum[3 * p + c] += v, sum2[3 * p + c] += v * v, image_sum += v;
       }
     batch_means.push_back(image_sum / static_cast<double>(n));
     out.steps_per_path += renderer.last_frame_timings().stat("steps_per_path", 0.0) / batches;
   }
+  EXPECT_EQ(renderer.accumulated_frames(), batches);
   out.mean.resize(n), out.standard_error.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     out.mean[i] = sum[i] / batches;

@@ -50,6 +50,7 @@ TEST(SphereWalkGlsl, ComputeShaderMatchesCpp) {
   lucent::test::ensure_gl_context();
   const std::string source = "#version 450 core\n" + sw_embedded_without_includes("shared/bridge.h") +
                              sw_embedded_without_includes("shared/random.h") +
+                             sw_embedded_without_includes("shared/volume_walk.h") +
                              sw_embedded_without_includes("shared/sphere_walk.h") + kSwMain;
   const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
   const char* text = source.c_str();

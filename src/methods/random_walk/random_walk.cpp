@@ -118,7 +118,8 @@ class RandomWalk final : public Method {
       grid_ = random_walk::build_distance_grid(bvh_, gathered.translucent_lower, gathered.translucent_upper, options);
       upload_distance_grid();
       records_per_level_ = kSphereWalkRecords;
-      for (int l = 0; l < shader::kSphereJumpLevelCount; ++l) jump_records_[l] = sphere_walk_records(l);
+      for (int l = 0; l < shader::kSphereJumpLevelCount; ++l)
+        jump_records_[l] = shader::sphere_walk_record_count(l, records_per_level_);
       const std::size_t bytes = jump_banks_.size() * shader::kSphereJumpLevelCount *
                                 static_cast<std::size_t>(records_per_level_) * sizeof(shader::SphereWalkGPU);
       glCreateBuffers(1, &spheres_);
@@ -279,10 +280,6 @@ class RandomWalk final : public Method {
                         grid_.distances.data());
     gpu::label_object(GL_TEXTURE, distance_texture_, "random-walk distance grid");
   }
-
-  // Records of each level, as the CPU reference's banks (transport/sphere_jump_bank.h): the largest spheres take
-  // the longest walks, so from optical radius 32 on each level has half the records of the one before.
-  static int sphere_walk_records(int level) { return std::max(64, kSphereWalkRecords >> std::max(0, level - 3)); }
 
   void allocate_paths(std::size_t pixels) {
     glDeleteBuffers(1, &paths_);
