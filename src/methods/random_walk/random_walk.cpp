@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -38,8 +39,20 @@ constexpr int kRouletteAfter = 8;       // as volpath
 // physical path's (roulette ends them), a guard against a path that never ends.
 constexpr int kMaxPathEvents = 10000000;
 
+// Throws lucent::Error naming the buffer, its size, the driver's limit and what to change when `bytes` exceed the
+// largest storage block the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE; llvmpipe: 128 MiB).
+void check_storage_block(std::size_t bytes, const std::string& what, const std::string& remedy) {
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (max_block > 0 && bytes > static_cast<std::size_t>(max_block))
+    throw Error(fmt::format("method 'random-walk': {} take {} bytes, over the device's largest storage buffer "
+                            "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE {} bytes); {}",
+                            what, bytes, max_block, remedy));
+}
+
 template <typename T>
 GLuint storage_buffer(const std::vector<T>& data, const char* label) {
+  check_storage_block(data.size() * sizeof(T), label, "use a mesh with fewer triangles");
   GLuint buffer = 0;
   glCreateBuffers(1, &buffer);
   glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T)),
@@ -190,7 +203,16 @@ class RandomWalk final : public Method {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     auto pass = context.profiler.pass("trace");
-    const std::size_t pixels = static_cast<std::size_t>(accumulated_.width()) * static_cast<std::size_t>(accumulated_.height());
+    // The image in tiles of rows whose paths in flight fit the driver's largest storage buffer (llvmpipe: 128 MiB,
+    // 1,048,576 paths; one tile up to 1920 x 546).
+    const int width = accumulated_.width(), height = accumulated_.height();
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    const std::size_t row_bytes = static_cast<std::size_t>(width) * sizeof(shader::WalkPathGPU);
+    const int tile_rows = static_cast<int>(std::clamp<std::size_t>(
+        max_block > 0 ? static_cast<std::size_t>(max_block) / row_bytes : static_cast<std::size_t>(height), 1,
+        static_cast<std::size_t>(height)));
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(tile_rows);
     if (pixels != path_capacity_) allocate_paths(pixels);
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_NODES, nodes_);
@@ -204,19 +226,26 @@ class RandomWalk final : public Method {
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUseProgram(program_.id());
     glClearNamedBufferData(counters_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    // The frame's paths advance over dispatches until every pixel has finished its paths: each invocation runs
-    // events only while its loop iterations stay under the budget (llvmpipe's cap, gpu/platform capabilities).
-    for (unsigned dispatch = 0;; ++dispatch) {
-      const glm::uvec4 control(dispatch == 0 ? 1u : 0u, loop_budget_, loop_cap_, 2u);
-      glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, dispatch), sizeof(control), &control);
-      glClearNamedBufferSubData(counters_, GL_R32UI, 0, sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-      glDispatchCompute(static_cast<GLuint>((accumulated_.width() + 7) / 8),
-                        static_cast<GLuint>((accumulated_.height() + 7) / 8), 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
-                      GL_TEXTURE_FETCH_BARRIER_BIT);
-      glGetNamedBufferSubData(counters_, 0, sizeof(last_counters_), &last_counters_);
-      if (last_counters_.active_pixels == 0) break;
+    shader::WalkCountersGPU totals{};
+    // A tile's paths advance over dispatches until every pixel of it has finished its paths: each invocation runs
+    // events only while its loop iterations stay under the budget (llvmpipe's cap, platform/gl_capabilities.h).
+    for (int first_row = 0; first_row < height; first_row += tile_rows) {
+      const int rows = std::min(tile_rows, height - first_row);
+      const glm::uvec4 tile(static_cast<unsigned>(first_row), static_cast<unsigned>(rows), 0u, 0u);
+      glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, tile), sizeof(tile), &tile);
+      for (unsigned dispatch = 0;; ++dispatch) {
+        const glm::uvec4 control(dispatch == 0 ? 1u : 0u, loop_budget_, loop_cap_, 2u);
+        glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, dispatch), sizeof(control), &control);
+        glClearNamedBufferSubData(counters_, GL_R32UI, 0, sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                  nullptr);
+        glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((rows + 7) / 8), 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                        GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        glGetNamedBufferSubData(counters_, 0, sizeof(totals), &totals);
+        if (totals.active_pixels == 0) break;
+      }
     }
+    last_counters_ = totals;
   }
 
   int accumulated_frames() const override { return accumulated_.frames(); }
@@ -283,6 +312,8 @@ class RandomWalk final : public Method {
 
   void allocate_paths(std::size_t pixels) {
     glDeleteBuffers(1, &paths_);
+    check_storage_block(pixels * sizeof(shader::WalkPathGPU), fmt::format("the paths in flight of {} pixels", pixels),
+                        "render fewer pixels (render.width x render.height)");
     platform::require_device_memory(pixels * sizeof(shader::WalkPathGPU),
                                     fmt::format("random-walk: the paths in flight of {} pixels", pixels));
     glCreateBuffers(1, &paths_);

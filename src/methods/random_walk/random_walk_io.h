@@ -83,7 +83,9 @@ struct RandomWalkGPU {
   uvec4 samples;         // x: samples per pixel this frame, y: index of the first, z: user seed, w: flags (LUCENT_WALK_*)
   ivec4 limits;          // x: surface bounces, y: events before Russian roulette, z: scattering events (0: no limit),
                          // w: events per path
-  uvec4 dispatch;        // x: 1 in the frame's first dispatch; y: loop iterations under which an invocation starts
+  uvec4 tile;            // x: the first image row of the rows being traced, y: their count (the paths in flight of
+                         // one tile fit the driver's largest storage buffer); zw: unused
+  uvec4 dispatch;        // x: 1 in the tile's first dispatch of the frame; y: loop iterations under which an invocation starts
                          // another event; z: the driver's loop cap per invocation (0: none); w: 2, the
                          // iterations of the loop that detects the cap
   vec4 distance_lower;   // xyz: the distance grid's first cell corner [scene units]; w: its cell size
@@ -107,7 +109,7 @@ static_assert(sizeof(lucent::shader::TriangleGPU) == 96);
 static_assert(offsetof(lucent::shader::TriangleGPU, n0) == 48);
 static_assert(offsetof(lucent::shader::TriangleGPU, n2) == 80);
 static_assert(sizeof(lucent::shader::WalkObjectGPU) == 144);
-static_assert(sizeof(lucent::shader::RandomWalkGPU) == 224 + 4 * LUCENT_MAX_LIGHTS);
+static_assert(sizeof(lucent::shader::RandomWalkGPU) == 240 + 4 * LUCENT_MAX_LIGHTS);
 static_assert(sizeof(lucent::shader::WalkPathGPU) == 128);
 static_assert(sizeof(lucent::shader::WalkCountersGPU) == 16);
 static_assert(LUCENT_BINDING_WALK_NODES >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_WALK_COUNTERS <= LUCENT_METHOD_STORAGE_LAST);

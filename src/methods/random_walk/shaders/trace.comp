@@ -578,10 +578,10 @@ bool path_event() {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, int(method.tile.x));
   ivec2 size = frame.output_size.xy;
-  if (pixel.x >= size.x || pixel.y >= size.y) return;
-  uint index = uint(pixel.y * size.x + pixel.x);
+  if (pixel.x >= size.x || pixel.y >= size.y || gl_GlobalInvocationID.y >= method.tile.y) return;
+  uint index = uint(int(gl_GlobalInvocationID.y) * size.x + pixel.x);
   // The ray through the pixel's centre (row 0 of the image is the bottom one, of the references the top one).
   float sx = (2.0f * (float(pixel.x) + 0.5f) / float(size.x) - 1.0f) * method.forward.w * method.right.w;
   float sy = (2.0f * (float(pixel.y) + 0.5f) / float(size.y) - 1.0f) * method.forward.w;
