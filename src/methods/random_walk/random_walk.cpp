@@ -39,6 +39,8 @@ constexpr int kRouletteAfter = 8;       // as volpath
 // physical path's (roulette ends them), a guard against a path that never ends.
 constexpr int kMaxPathEvents = 10000000;
 
+float max_component(glm::vec3 v) { return std::max({v.x, v.y, v.z}); }
+
 // Throws lucent::Error naming the buffer, its size, the driver's limit and what to change when `bytes` exceed the
 // largest storage block the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE; llvmpipe: 128 MiB).
 void check_storage_block(std::size_t bytes, const std::string& what, const std::string& remedy) {
@@ -133,6 +135,16 @@ class RandomWalk final : public Method {
       records_per_level_ = kSphereWalkRecords;
       for (int l = 0; l < shader::kSphereJumpLevelCount; ++l)
         jump_records_[l] = shader::sphere_walk_record_count(l, records_per_level_);
+      // The levels a jump can use: no distance bound exceeds the grid's largest distance, so no sphere is larger
+      // than it times the densest band of a medium with jumps; the frame's records are generated for those only.
+      float largest_distance = 0.0f, densest = 0.0f;
+      for (float d : grid_.distances) largest_distance = std::max(largest_distance, d);
+      for (const SceneObject& object : scene.objects)
+        if (object.material && !object.material->field.heterogeneous())
+          densest = std::max(densest, scene.scale_mm * max_component(object.material->sigma_a + object.material->sigma_s));
+      while (levels_used_ < shader::kSphereJumpLevelCount &&
+             shader::sphere_jump_level_radius(levels_used_) <= largest_distance * densest)
+        ++levels_used_;
       const std::size_t bytes = jump_banks_.size() * shader::kSphereJumpLevelCount *
                                 static_cast<std::size_t>(records_per_level_) * sizeof(shader::SphereWalkGPU);
       glCreateBuffers(1, &spheres_);
@@ -194,11 +206,11 @@ class RandomWalk final : public Method {
   void render(const FrameContext& context) override {
     if (context.scene_gpu.animated() && context.time_seconds != geometry_time_) follow_animation(context);
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
-    if (spheres_ != 0 && params_.boolean("sphere_jumps")) {
+    if (spheres_ != 0 && levels_used_ > 0 && params_.boolean("sphere_jumps")) {
       auto pass = context.profiler.pass("sphere_walks");
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_SPHERES, spheres_);
       glUseProgram(sphere_program_.id());
-      glDispatchCompute(static_cast<GLuint>((records_per_level_ + 63) / 64), shader::kSphereJumpLevelCount,
+      glDispatchCompute(static_cast<GLuint>((records_per_level_ + 63) / 64), static_cast<GLuint>(levels_used_),
                         static_cast<GLuint>(jump_banks_.size()));
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
@@ -416,6 +428,7 @@ class RandomWalk final : public Method {
   GLuint distance_texture_ = 0, spheres_ = 0;
   gpu::ShaderProgram sphere_program_;
   int records_per_level_ = 0;
+  int levels_used_ = 0;  // sphere-jump levels small enough to fit somewhere in a medium with jumps
   int jump_records_[shader::kSphereJumpLevelCount] = {};
   std::size_t sphere_bytes_ = 0;
   unsigned samples_done_ = 0, samples_this_frame_ = 1;
