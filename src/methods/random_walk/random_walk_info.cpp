@@ -41,9 +41,11 @@ const MethodInfo random_walk_info{
     kPasses,
     kStats,
     R"({"samples_per_frame": 4})",
-    // Compared with the bssrdf reference (the conformance test's reference): the physics differs from the
-    // diffusion model on the conformance sphere.
-    0.25,
+    // Against the bssrdf reference (the diffusion model), not the physics it estimates: the conformance sphere is
+    // two transport mean free paths in radius, where the half-space model misses the light leaving through the
+    // back; measured 38.4% darker than the model on llvmpipe (and equal to volpath within noise,
+    // tests/gl/test_random_walk.cpp).
+    0.45,
     false,    // needs_texture_atlas
     nullptr,  // atlas_options
     nullptr,  // precompute
