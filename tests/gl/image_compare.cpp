@@ -1,6 +1,10 @@
 // image_compare.cpp: see image_compare.h.
 #include "image_compare.h"
 
+#include <gtest/gtest.h>
+
+#include "gpu/shader_sources.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -60,6 +64,25 @@ std::string output_path(const std::string& name) {
 void ensure_gl_context() {
   static std::unique_ptr<GLContext> context = create_headless_context();
   context->make_current();
+}
+
+
+std::string embedded_without_includes(const std::string& path) {
+  for (std::size_t i = 0; i < gpu::kEmbeddedFileCount; ++i) {
+    if (path != gpu::kEmbeddedFiles[i].path) continue;
+    std::string text(gpu::kEmbeddedFiles[i].text, gpu::kEmbeddedFiles[i].size), out;
+    std::size_t begin = 0;
+    while (begin < text.size()) {
+      std::size_t end = text.find('\n', begin);
+      if (end == std::string::npos) end = text.size();
+      const std::string line = text.substr(begin, end - begin);
+      if (line.rfind("#include", 0) != 0) out += line + "\n";
+      begin = end + 1;
+    }
+    return out;
+  }
+  ADD_FAILURE() << path << " is not embedded";
+  return "";
 }
 
 }  // namespace lucent::test

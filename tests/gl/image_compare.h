@@ -24,4 +24,8 @@ std::string output_path(const std::string& name);
 // A shared headless context for the GL tests of one process.
 void ensure_gl_context();
 
+// An embedded shader file's text without its #include lines, for tests that assemble a shader from shared headers
+// in an order of their own (a failure when the file is not embedded).
+std::string embedded_without_includes(const std::string& path);
+
 }  // namespace lucent::test

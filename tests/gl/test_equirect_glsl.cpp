@@ -15,25 +15,6 @@
 
 namespace {
 
-// An embedded header without its #include lines (the test pastes the includes in order itself).
-std::string embedded_without_includes(const std::string& path) {
-  for (std::size_t i = 0; i < lucent::gpu::kEmbeddedFileCount; ++i) {
-    if (path != lucent::gpu::kEmbeddedFiles[i].path) continue;
-    std::string text(lucent::gpu::kEmbeddedFiles[i].text, lucent::gpu::kEmbeddedFiles[i].size), out;
-    std::size_t begin = 0;
-    while (begin < text.size()) {
-      std::size_t end = text.find('\n', begin);
-      if (end == std::string::npos) end = text.size();
-      const std::string line = text.substr(begin, end - begin);
-      if (line.rfind("#include", 0) != 0) out += line + "\n";
-      begin = end + 1;
-    }
-    return out;
-  }
-  ADD_FAILURE() << path << " is not embedded";
-  return "";
-}
-
 const char* kMain = R"(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Directions { vec4 directions[]; };
@@ -66,9 +47,9 @@ GLuint compile_compute(const std::string& source) {
 
 TEST(EquirectGlsl, ComputeShaderMatchesCpp) {
   lucent::test::ensure_gl_context();
-  const std::string source = "#version 450 core\n" + embedded_without_includes("shared/bridge.h") +
-                             embedded_without_includes("bssrdf/constants.h") +
-                             embedded_without_includes("lights/equirect.h") + kMain;
+  const std::string source = "#version 450 core\n" + lucent::test::embedded_without_includes("shared/bridge.h") +
+                             lucent::test::embedded_without_includes("bssrdf/constants.h") +
+                             lucent::test::embedded_without_includes("lights/equirect.h") + kMain;
   const GLuint program = compile_compute(source);
 
   std::vector<glm::vec3> directions = lucent::sphere_directions(1000);

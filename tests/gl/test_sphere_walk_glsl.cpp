@@ -15,25 +15,6 @@
 
 namespace {
 
-// An embedded header without its #include lines (the test pastes the includes in order itself).
-std::string sw_embedded_without_includes(const std::string& path) {
-  for (std::size_t i = 0; i < lucent::gpu::kEmbeddedFileCount; ++i) {
-    if (path != lucent::gpu::kEmbeddedFiles[i].path) continue;
-    std::string text(lucent::gpu::kEmbeddedFiles[i].text, lucent::gpu::kEmbeddedFiles[i].size), out;
-    std::size_t begin = 0;
-    while (begin < text.size()) {
-      std::size_t end = text.find('\n', begin);
-      if (end == std::string::npos) end = text.size();
-      const std::string line = text.substr(begin, end - begin);
-      if (line.rfind("#include", 0) != 0) out += line + "\n";
-      begin = end + 1;
-    }
-    return out;
-  }
-  ADD_FAILURE() << path << " is not embedded";
-  return "";
-}
-
 const char* kSwMain = R"(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) writeonly buffer Records { SphereWalkGPU records[]; };
@@ -48,10 +29,10 @@ void main() {
 
 TEST(SphereWalkGlsl, ComputeShaderMatchesCpp) {
   lucent::test::ensure_gl_context();
-  const std::string source = "#version 450 core\n" + sw_embedded_without_includes("shared/bridge.h") +
-                             sw_embedded_without_includes("shared/random.h") +
-                             sw_embedded_without_includes("shared/volume_walk.h") +
-                             sw_embedded_without_includes("shared/sphere_walk.h") + kSwMain;
+  const std::string source = "#version 450 core\n" + lucent::test::embedded_without_includes("shared/bridge.h") +
+                             lucent::test::embedded_without_includes("shared/random.h") +
+                             lucent::test::embedded_without_includes("shared/volume_walk.h") +
+                             lucent::test::embedded_without_includes("shared/sphere_walk.h") + kSwMain;
   const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
