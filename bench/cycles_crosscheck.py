@@ -389,7 +389,8 @@ def compare_one(lucent_path, c, vc, sum_c, grey):
     rmse = math.sqrt(((l - c) ** 2).mean())
     noise = math.sqrt(vl.mean() + vc.mean())
     r = {"lucent": lucent_path, "mean_lucent": float(sum_l / n), "ratio": float(ratio), "ratio_se": se_ratio,
-         "mean_difference": float(diff), "mean_difference_se": diff_se, "mean_difference_over_se": float(diff / diff_se),
+         "mean_difference": float(diff), "mean_difference_se": diff_se,
+         "mean_difference_over_se": float(diff / diff_se),
          "same_mean_within_3se": bool(abs(diff) <= 3.0 * diff_se),
          "rmse": rmse, "noise_lucent": math.sqrt(vl.mean()), "noise_combined": noise, "rmse_over_noise": rmse / noise,
          "variance_of_mean_lucent": float(vl.mean())}

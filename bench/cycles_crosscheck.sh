@@ -44,11 +44,11 @@ for case in ${CASES:-medium diffuse}; do
     lucent_images+=("$image")
   done
   for seed in 1 2; do
-    nice "$blender" -b --python-exit-code 1 --python bench/cycles_crosscheck.py -- render "$scene" "$out/${case}_cycles$seed.exr" \
-      --spp "$cycles_spp" --seed "$seed" --threads "$threads" "${size_cycles[@]}" ${BOUNCES:+--bounces $BOUNCES} \
-      ${CYCLES_PATTERN:+--sampling-pattern $CYCLES_PATTERN} |
-      grep '^cycles_crosscheck'
+    nice "$blender" -b --python-exit-code 1 --python bench/cycles_crosscheck.py -- render "$scene" \
+      "$out/${case}_cycles$seed.exr" --spp "$cycles_spp" --seed "$seed" --threads "$threads" "${size_cycles[@]}" \
+      ${BOUNCES:+--bounces $BOUNCES} ${CYCLES_PATTERN:+--sampling-pattern $CYCLES_PATTERN} | grep '^cycles_crosscheck'
   done
-  "$blender" -b --python-exit-code 1 --python bench/cycles_crosscheck.py -- compare "${lucent_images[@]}" "$out/${case}_cycles1.exr" \
-    "$out/${case}_cycles2.exr" --json "$out/$case.json" --png "$out/$case.png" | sed -n '/^{/,/^}/p;/^cycles_crosscheck/p'
+  "$blender" -b --python-exit-code 1 --python bench/cycles_crosscheck.py -- compare "${lucent_images[@]}" \
+    "$out/${case}_cycles1.exr" "$out/${case}_cycles2.exr" --json "$out/$case.json" --png "$out/$case.png" |
+    sed -n '/^{/,/^}/p;/^cycles_crosscheck/p'
 done
