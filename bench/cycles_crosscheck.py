@@ -3,9 +3,9 @@
 # cross-check tool, not a lucent dependency (Debian: apt-get install blender python3-numpy).
 #
 #   blender -b --python bench/cycles_crosscheck.py -- render SCENE.json OUT.exr [--spp N] [--seed S] [--threads T]
-#           [--bounces B] [--terminator-offset F] [--width W --height H]
-#   blender -b --python bench/cycles_crosscheck.py -- compare LUCENT.exr CYCLES_SEED1.exr CYCLES_SEED2.exr
-#           [--png SIDE_BY_SIDE.png [--zoom Z]] [--json OUT.json]
+#           [--bounces B] [--terminator-offset F] [--width W --height H] [--sampling-pattern P]
+#   blender -b --python bench/cycles_crosscheck.py -- compare LUCENT.exr [LUCENT2.exr ...] CYCLES_SEED1.exr
+#           CYCLES_SEED2.exr [--png SIDE_BY_SIDE.png [--zoom Z]] [--json OUT.json]
 #
 # render: the same scene as `lucent reference`: the scene file's mesh (OBJ read here, no axis conversion: lucent's
 # +y up stays +y, the camera is placed by its matrix) or box under the object's translate / rotate_deg / scale, with
@@ -21,12 +21,17 @@
 # of strength 0 behind the scene (lucent: camera rays that miss see the background, which lights nothing; the
 # scenes used here have a black background), linear 32-bit EXR.
 #
-# compare: lucent's mean image and its standard-error image (<stem>.stderr.exr) against the mean of two Cycles
-# renders with different seeds; the Cycles noise of that mean is estimated from their difference
-# (var(mean of 2) = (C1 - C2)^2 / 4 per pixel, averaged over pixels). On the mean of the RGB channels, prints the
-# mean ratio lucent / Cycles with its standard error, the RMSE, the combined noise sqrt(<SE_l^2> +
-# <(C1 - C2)^2 / 4>) and RMSE / noise (1 when the two agree within their noise), and each renderer's efficiency
-# 1 / (variance x seconds) from the renders' metadata (<stem>.meta.json).
+# compare: each lucent render (its mean image and its standard-error image <stem>.stderr.exr; several, e.g. with
+# sphere jumps on and off, against the same Cycles pair) against the mean of two Cycles renders with different
+# seeds; the Cycles noise of that mean is estimated from their difference (var(mean of 2) = (C1 - C2)^2 / 4 per
+# pixel, averaged over pixels). On the mean of the RGB channels, prints per lucent render the mean ratio lucent /
+# Cycles with its standard error, the image-mean difference with its combined standard error (the "same mean
+# within noise" check: |difference| <= 3 standard errors), the RMSE, the combined noise sqrt(<SE_l^2> +
+# <(C1 - C2)^2 / 4>) and RMSE / noise (1 when the two agree within their noise); and each renderer's efficiency
+# 1 / (image-mean per-pixel variance of the mean x seconds) from the renders' metadata (<stem>.meta.json: lucent's
+# seconds, samples, sphere_jumps and steps_per_path; Cycles' wall time of the render call, scene setup and BVH
+# build included, Blender's start-up and the OBJ reading not), with the ratios lucent / Cycles and between the
+# lucent renders.
 import json
 import math
 import os
@@ -265,9 +270,11 @@ def build_scene(scene_path, width, height, terminator_offset):
     return scene
 
 
-def configure_cycles(scene, spp, seed, threads, bounces):
+def configure_cycles(scene, spp, seed, threads, bounces, pattern):
     scene.render.engine = "CYCLES"
     c = scene.cycles
+    if pattern:
+        c.sampling_pattern = pattern
     c.device = "CPU"
     c.feature_set = "SUPPORTED"
     c.progressive = "PATH"
@@ -312,18 +319,20 @@ def command_render(args):
     width = option(args, "--width", 0, int)
     height = option(args, "--height", 0, int)
     terminator_offset = option(args, "--terminator-offset", 0.0, float)
+    pattern = option(args, "--sampling-pattern", None)
     if len(args) != 2:
         die("render SCENE.json OUT.exr [--spp N] [--seed S] [--threads T] [--bounces B] [--terminator-offset F] "
-            "[--width W --height H]")
+            "[--width W --height H] [--sampling-pattern SOBOL|PROGRESSIVE_MULTI_JITTER]")
     scene_path, out = args
     scene = build_scene(scene_path, width, height, terminator_offset)
-    configure_cycles(scene, spp, seed, threads, bounces)
+    configure_cycles(scene, spp, seed, threads, bounces, pattern)
     scene.render.filepath = os.path.abspath(out)
     start = time.time()
     bpy.ops.render.render(write_still=True)
     seconds = time.time() - start
     meta = {"renderer": "cycles", "blender": bpy.app.version_string, "samples": spp, "seed": seed,
             "threads": threads, "bounces": bounces, "terminator_offset": terminator_offset, "seconds": seconds,
+            "sampling_pattern": scene.cycles.sampling_pattern,
             "width": scene.render.resolution_x, "height": scene.render.resolution_y}
     with open(os.path.splitext(out)[0] + ".meta.json", "w") as f:
         json.dump(meta, f, indent=1)
@@ -356,70 +365,116 @@ def write_png(path, rgb):
     bpy.data.images.remove(img)
 
 
+def read_meta(exr_path):
+    with open(os.path.splitext(exr_path)[0] + ".meta.json") as f:
+        return json.load(f)
+
+
+def compare_one(lucent_path, c, vc, sum_c, grey):
+    """One lucent render against the mean of the Cycles renders: the statistics of the docstring above."""
+    L = read_exr(lucent_path)
+    SE = read_exr(os.path.splitext(lucent_path)[0] + ".stderr.exr")
+    if not (L.shape == SE.shape and L.shape[:2] == c.shape):
+        die(f"{lucent_path}: image size {L.shape} (standard error {SE.shape}) differs from Cycles' {c.shape}")
+    l, se = grey(L), grey(SE)
+    vl = se ** 2
+    n = l.size
+    sum_l = l.sum()
+    ratio = sum_l / sum_c
+    se_ratio = ratio * math.sqrt(vl.sum() / sum_l ** 2 + vc.sum() / sum_c ** 2)
+    # Same mean within noise: the image means' difference against its standard error, both images' pixel
+    # variances of the mean added (pixels taken as independent).
+    diff = (sum_l - sum_c) / n
+    diff_se = math.sqrt(vl.sum() + vc.sum()) / n
+    rmse = math.sqrt(((l - c) ** 2).mean())
+    noise = math.sqrt(vl.mean() + vc.mean())
+    r = {"lucent": lucent_path, "mean_lucent": float(sum_l / n), "ratio": float(ratio), "ratio_se": se_ratio,
+         "mean_difference": float(diff), "mean_difference_se": diff_se,
+         "mean_difference_over_se": float(diff / diff_se),
+         "same_mean_within_3se": bool(abs(diff) <= 3.0 * diff_se),
+         "rmse": rmse, "noise_lucent": math.sqrt(vl.mean()), "noise_combined": noise, "rmse_over_noise": rmse / noise,
+         "variance_of_mean_lucent": float(vl.mean())}
+    try:
+        meta = read_meta(lucent_path)
+        r.update({"lucent_seconds": meta["seconds"], "lucent_spp": meta["samples_per_pixel"],
+                  "sphere_jumps": meta.get("sphere_jumps"), "steps_per_path": meta.get("steps_per_path"),
+                  "camera_paths_per_second": meta.get("camera_paths_per_second"),
+                  "efficiency_lucent": float(1.0 / (vl.mean() * meta["seconds"]))})
+    except (OSError, KeyError) as e:
+        print(f"cycles_crosscheck: {lucent_path}: no efficiency ({e})")
+    return r, L, vl
+
+
 def command_compare(args):
     png = option(args, "--png", None)
     zoom = option(args, "--zoom", 1, int)
     json_out = option(args, "--json", None)
-    if len(args) != 3:
-        die("compare LUCENT.exr CYCLES1.exr CYCLES2.exr [--png OUT.png] [--json OUT.json]")
-    lucent_path, c1_path, c2_path = args
-    L = read_exr(lucent_path)
-    SE = read_exr(os.path.splitext(lucent_path)[0] + ".stderr.exr")
+    if len(args) < 3:
+        die("compare LUCENT.exr [LUCENT2.exr ...] CYCLES1.exr CYCLES2.exr [--png OUT.png] [--json OUT.json]")
+    lucent_paths, (c1_path, c2_path) = args[:-2], args[-2:]
     C1, C2 = read_exr(c1_path), read_exr(c2_path)
-    if not (L.shape == SE.shape == C1.shape == C2.shape):
-        die(f"image sizes differ: {L.shape} {SE.shape} {C1.shape} {C2.shape}")
+    if C1.shape != C2.shape:
+        die(f"Cycles image sizes differ: {C1.shape} {C2.shape}")
     C = 0.5 * (C1 + C2)
     # The statistics on the mean of the three channels: lucent's bands share their paths (hero band), so in a
     # grey scene the channels are one number three times, not three independent estimates.
     grey = lambda x: x.mean(axis=2)
-    l, c, c1, c2, se = grey(L), grey(C), grey(C1), grey(C2), grey(SE)
-    vl, vc = se ** 2, 0.25 * (c1 - c2) ** 2
-    sum_l, sum_c = l.sum(), c.sum()
-    ratio = sum_l / sum_c
-    se_ratio = ratio * math.sqrt(vl.sum() / sum_l ** 2 + vc.sum() / sum_c ** 2)
-    rmse = math.sqrt(((l - c) ** 2).mean())
-    noise = math.sqrt(vl.mean() + vc.mean())
-    result = {"lucent": lucent_path, "cycles": [c1_path, c2_path], "pixels": l.size,
-              "mean_lucent": sum_l / l.size, "mean_cycles": sum_c / l.size, "ratio": ratio, "ratio_se": se_ratio,
-              "rmse": rmse, "noise_lucent": math.sqrt(vl.mean()), "noise_cycles": math.sqrt(vc.mean()),
-              "noise_combined": noise, "rmse_over_noise": rmse / noise,
-              "cycles_seed_ratio": c1.sum() / c2.sum()}
-    # Efficiency 1 / (variance x time): the pixel-mean variance of one render and its seconds (lucent's from its
-    # metadata; Cycles' from the two renders' metadata, the variance of one render = <(C1 - C2)^2> / 2).
+    c, c1, c2 = grey(C), grey(C1), grey(C2)
+    vc = 0.25 * (c1 - c2) ** 2
+    sum_c = c.sum()
+    result = {"cycles": [c1_path, c2_path], "pixels": c.size, "mean_cycles": float(sum_c / c.size),
+              "noise_cycles": math.sqrt(vc.mean()), "variance_of_mean_cycles": float(vc.mean()),
+              "cycles_seed_ratio": float(c1.sum() / c2.sum())}
+    # Efficiency 1 / (variance x time): the image-mean per-pixel variance of the mean of a render and its seconds.
+    # lucent: its standard-error image squared and its metadata's seconds. Cycles: the mean of the two seeds, of
+    # variance <(C1 - C2)^2> / 4, over the two renders' seconds added (the same as one render's variance
+    # <(C1 - C2)^2> / 2 times its mean seconds).
     try:
-        with open(os.path.splitext(lucent_path)[0] + ".meta.json") as f:
-            meta_l = json.load(f)
-        metas_c = []
-        for path in (c1_path, c2_path):
-            with open(os.path.splitext(path)[0] + ".meta.json") as f:
-                metas_c.append(json.load(f))
-        t_l, t_c = meta_l["seconds"], 0.5 * (metas_c[0]["seconds"] + metas_c[1]["seconds"])
-        eff_l, eff_c = 1.0 / (vl.mean() * t_l), 1.0 / (0.5 * ((c1 - c2) ** 2).mean() * t_c)
-        result.update({"lucent_seconds": t_l, "lucent_spp": meta_l["samples_per_pixel"],
-                       "cycles_seconds": t_c, "cycles_spp": metas_c[0]["samples"],
+        metas_c = [read_meta(p) for p in (c1_path, c2_path)]
+        t_c = metas_c[0]["seconds"] + metas_c[1]["seconds"]
+        result.update({"cycles_seconds": t_c, "cycles_spp": metas_c[0]["samples"] + metas_c[1]["samples"],
                        "cycles_threads": metas_c[0]["threads"], "cycles_bounces": metas_c[0]["bounces"],
-                       "efficiency_lucent": eff_l, "efficiency_cycles": eff_c,
-                       "efficiency_ratio_lucent_over_cycles": eff_l / eff_c})
+                       "efficiency_cycles": float(1.0 / (vc.mean() * t_c))})
     except (OSError, KeyError) as e:
-        print(f"cycles_crosscheck: no efficiency ({e})")
+        print(f"cycles_crosscheck: no Cycles efficiency ({e})")
+    rows = []
+    result["lucent"] = []
+    for path in lucent_paths:
+        r, L, vl = compare_one(path, c, vc, sum_c, grey)
+        if "efficiency_lucent" in r and "efficiency_cycles" in result:
+            r["efficiency_ratio_lucent_over_cycles"] = r["efficiency_lucent"] / result["efficiency_cycles"]
+        result["lucent"].append(r)
+        rows.append((L, vl))
+    for a in range(len(result["lucent"])):
+        for b in range(a + 1, len(result["lucent"])):
+            ra, rb = result["lucent"][a], result["lucent"][b]
+            if "efficiency_lucent" in ra and "efficiency_lucent" in rb:
+                result.setdefault("efficiency_ratios_between_lucent_renders", []).append(
+                    {"numerator": ra["lucent"], "denominator": rb["lucent"],
+                     "ratio": ra["efficiency_lucent"] / rb["efficiency_lucent"]})
     print(json.dumps(result, indent=1))
     if json_out:
         with open(json_out, "w") as f:
             json.dump(result, f, indent=1)
     if png:
-        # lucent | Cycles | (lucent - Cycles) / combined noise per pixel, smoothed over 3x3 pixels (red: lucent
-        # brighter, blue: darker; full scale +-3 sigma)
-        scale = np.percentile(np.concatenate([L, C]), 99.5) or 1.0
+        # Per lucent render, one row: lucent | Cycles | (lucent - Cycles) / combined noise per pixel, smoothed over
+        # 3x3 pixels (red: lucent brighter, blue: darker; full scale +-3 sigma)
+        scale = np.percentile(np.concatenate([C] + [L for L, _ in rows]), 99.5) or 1.0
         tone = lambda x: (np.clip(x / scale, 0, 1)) ** (1 / 2.2)
         def blur(x):
             p = np.pad(x, 1, mode="edge")
             return sum(p[dy:dy + x.shape[0], dx:dx + x.shape[1]] for dy in range(3) for dx in range(3)) / 9.0
-        d = blur(l - c)
-        s = np.sqrt(blur(vl + vc) / 9.0)
-        z = np.where(s > 0, d / np.maximum(s, 1e-30), 0.0) / 3.0
-        diff = np.stack([np.clip(z, 0, 1), np.zeros_like(z), np.clip(-z, 0, 1)], axis=2)
-        gap = np.ones((L.shape[0], 2, 3))
-        side = np.concatenate([tone(L), gap, tone(C), gap, diff], axis=1)
+        lines = []
+        for L, vl in rows:
+            d = blur(grey(L) - c)
+            s = np.sqrt(blur(vl + vc) / 9.0)
+            z = np.where(s > 0, d / np.maximum(s, 1e-30), 0.0) / 3.0
+            diff = np.stack([np.clip(z, 0, 1), np.zeros_like(z), np.clip(-z, 0, 1)], axis=2)
+            gap = np.ones((L.shape[0], 2, 3))
+            if lines:
+                lines.append(np.ones((2, 3 * L.shape[1] + 4, 3)))
+            lines.append(np.concatenate([tone(L), gap, tone(C), gap, diff], axis=1))
+        side = np.concatenate(lines, axis=0)
         write_png(png, np.repeat(np.repeat(side, zoom, axis=0), zoom, axis=1))
         print(f"cycles_crosscheck: wrote {png}")
 
