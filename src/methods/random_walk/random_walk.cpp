@@ -33,7 +33,6 @@ namespace {
 // counters from overflowing at 1080p with thousands of steps per path.
 constexpr int kStatisticsStride = 4;
 constexpr int kMaxSurfaceBounces = 64;  // as volpath
-constexpr int kSphereWalkRecords = 1024;  // sphere-walk records of the smaller levels per bank and frame
 constexpr int kRouletteAfter = 8;       // as volpath
 // Events of one path at most (a path spans dispatches, so llvmpipe's loop cap does not bound it): far beyond any
 // physical path's (roulette ends them), a guard against a path that never ends.
@@ -132,7 +131,9 @@ class RandomWalk final : public Method {
       options.max_cells_per_axis = params_.integer("distance_grid");
       grid_ = random_walk::build_distance_grid(bvh_, gathered.translucent_lower, gathered.translucent_upper, options);
       upload_distance_grid();
-      records_per_level_ = kSphereWalkRecords;
+      // A power of two (a path's records offset + k, modulo a level's count, stay distinct through the 32-bit wrap).
+      records_per_level_ = 64;
+      while (records_per_level_ * 2 <= params_.integer("sphere_walk_records")) records_per_level_ *= 2;
       for (int l = 0; l < shader::kSphereJumpLevelCount; ++l)
         jump_records_[l] = shader::sphere_walk_record_count(l, records_per_level_);
       // The levels a jump can use: no distance bound exceeds the grid's largest distance, so no sphere is larger

@@ -10,6 +10,9 @@ constexpr ParamDecl kParams[] = {
      "deep inside homogeneous media, jump across spheres that lie wholly inside the medium (exact: sampled sphere "
      "exits) instead of stepping through every scattering event",
      kLive},
+    {"sphere_walk_records", ParamType::Int, "256", "records", 64, 4096, "",
+     "sphere-walk records generated per level each frame (rounded down to a power of two; from optical radius 32 on "
+     "each level has half as many): more cost more per frame and correlate the pixels of a frame less"},
     {"max_scatter", ParamType::Int, "0", "events", 0, 1000000, "",
      "paths end after this many scattering events in media (0: no limit; 1: single scattering), as volpath's "
      "--max-scatter",
