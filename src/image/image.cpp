@@ -276,7 +276,11 @@ ImageRGBA8 read_png(const std::string& path) {
   int width = 0, height = 0, channels_in_file = 0;
   const std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
       stbi_load(path.c_str(), &width, &height, &channels_in_file, kChannels), &stbi_image_free);
-  if (!data) throw Error(fmt::format("{}: cannot read PNG: {}", path, stbi_failure_reason()));
+  if (!data) {
+    // stb_image leaves the reason unset on some failures (a truncated or corrupt compressed stream).
+    const char* reason = stbi_failure_reason();
+    throw Error(fmt::format("{}: cannot read PNG: {}", path, reason ? reason : "corrupt or unsupported image data"));
+  }
   ImageRGBA8 image;
   image.width = width;
   image.height = height;

@@ -210,6 +210,18 @@ TEST(HostilePng, OtherFormatsAreNotDecoded) {
   EXPECT_EQ(error_message([&] { read_png(png.path()); }), png.path() + ": cannot read PNG: not a PNG file");
 }
 
+// A corrupt compressed stream for which stb_image sets no failure reason (found by fuzz_image): one line, where
+// formatting the missing reason threw fmt::format_error.
+TEST(HostilePng, ACorruptStreamWithoutAReasonIsOneLine) {
+  const TempFile file(".png");
+  // The corpus file's first byte selects fuzz_image's reader (1: PNG); the PNG follows.
+  write_bytes(file.path(), test::read_text(std::filesystem::path(LUCENT_SOURCE_DIR) / "tests/fuzz/corpus/image" /
+                                                "png_corrupt_stream_no_reason")
+                               .substr(1));
+  EXPECT_EQ(error_message([&] { read_png(file.path()); }),
+            file.path() + ": cannot read PNG: corrupt or unsupported image data");
+}
+
 TEST(HostilePng, TruncatedFileIsAnError) {
   const TempFile file(".png");
   ImageRGBA8 image{64, 64, std::vector<std::uint8_t>(64 * 64 * 4)};
