@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <epoxy/gl.h>
+
 #include "gpu/shader_sources.h"
 
 #include <algorithm>
@@ -83,6 +85,28 @@ std::string embedded_without_includes(const std::string& path) {
   }
   ADD_FAILURE() << path << " is not embedded";
   return "";
+}
+
+
+unsigned compile_compute_source(const std::string& source) {
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  std::string log(4096, '\0');
+  glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+  if (ok != GL_TRUE) {
+    ADD_FAILURE() << log;
+    glDeleteShader(shader);
+    return 0;
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glLinkProgram(program);
+  glDeleteShader(shader);
+  return program;
 }
 
 }  // namespace lucent::test

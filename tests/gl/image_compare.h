@@ -28,4 +28,8 @@ void ensure_gl_context();
 // in an order of their own (a failure when the file is not embedded).
 std::string embedded_without_includes(const std::string& path);
 
+// A linked compute program from GLSL source (the GL context current); a failure with the driver's log when it does
+// not compile, and then 0.
+unsigned compile_compute_source(const std::string& source);
+
 }  // namespace lucent::test

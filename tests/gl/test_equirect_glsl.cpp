@@ -28,29 +28,12 @@ void main() {
 }
 )";
 
-GLuint compile_compute(const std::string& source) {
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  std::string log(4096, '\0');
-  glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-  EXPECT_EQ(ok, GL_TRUE) << log;
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
-  return program;
-}
-
 TEST(EquirectGlsl, ComputeShaderMatchesCpp) {
   lucent::test::ensure_gl_context();
   const std::string source = "#version 450 core\n" + lucent::test::embedded_without_includes("shared/bridge.h") +
                              lucent::test::embedded_without_includes("bssrdf/constants.h") +
                              lucent::test::embedded_without_includes("lights/equirect.h") + kMain;
-  const GLuint program = compile_compute(source);
+  const GLuint program = lucent::test::compile_compute_source(source);
 
   std::vector<glm::vec3> directions = lucent::sphere_directions(1000);
   directions.insert(directions.end(), {glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 1)});

@@ -33,19 +33,8 @@ TEST(SphereWalkGlsl, ComputeShaderMatchesCpp) {
                              lucent::test::embedded_without_includes("shared/random.h") +
                              lucent::test::embedded_without_includes("shared/volume_walk.h") +
                              lucent::test::embedded_without_includes("shared/sphere_walk.h") + kSwMain;
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  std::string log(4096, '\0');
-  glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-  ASSERT_EQ(ok, GL_TRUE) << log;
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
+  const GLuint program = lucent::test::compile_compute_source(source);
+  ASSERT_NE(program, 0u);
 
   constexpr int kRecords = 1024;
   using lucent::shader::SphereWalkGPU;
