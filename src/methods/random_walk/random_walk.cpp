@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <string>
 
 #include <fmt/format.h>
@@ -62,8 +63,8 @@ GLuint storage_buffer(const std::vector<T>& data, const char* label) {
   return buffer;
 }
 
-// Each object's medium or surface as the walk reads it at time `seconds` (volpath's ObjectData, in float): a
-// deforming mesh's box is the deformed one's, a field stays where the undeformed object is (scene_at_time).
+// Each object's medium or surface as the walk reads it (volpath's ObjectData, in float): a deforming mesh's box is
+// the deformed one's, a field stays where the undeformed object is.
 // The distinct Henyey-Greenstein g of the homogeneous media whose bands share one g: the sphere-jump banks (at most
 // LUCENT_WALK_MAX_JUMP_BANKS; media beyond them step through every collision).
 std::vector<float> jump_bank_g(const Scene& scene) {
@@ -77,9 +78,15 @@ std::vector<float> jump_bank_g(const Scene& scene) {
   return banks;
 }
 
-std::vector<shader::WalkObjectGPU> walk_objects(const Scene& animated_scene, double seconds) {
-  const Scene scene = scene_at_time(animated_scene, seconds);
+// `triangles`: the scene's triangles at the instant rendered (any order), whose boxes bound each object's walk.
+std::vector<shader::WalkObjectGPU> walk_objects(const Scene& scene, std::span<const shader::TriangleGPU> triangles) {
   const std::vector<float> banks = jump_bank_g(scene);
+  std::vector<glm::vec3> mesh_lower(scene.objects.size(), glm::vec3(1e30f)), mesh_upper(scene.objects.size(), glm::vec3(-1e30f));
+  for (const shader::TriangleGPU& t : triangles) {
+    const std::size_t object = random_walk::triangle_object(t);
+    for (const glm::vec3 p : {glm::vec3(t.p0), glm::vec3(t.p0 + t.e1), glm::vec3(t.p0 + t.e2)})
+      mesh_lower[object] = glm::min(mesh_lower[object], p), mesh_upper[object] = glm::max(mesh_upper[object], p);
+  }
   std::vector<shader::WalkObjectGPU> out(scene.objects.size(), shader::WalkObjectGPU{});
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
@@ -95,11 +102,16 @@ std::vector<shader::WalkObjectGPU> walk_objects(const Scene& animated_scene, dou
     o.sigma_a = glm::vec4(m.sigma_a * scale, m.eta);
     o.sigma_s = glm::vec4(m.sigma_s * scale, 1.0f);
     o.g = glm::vec4(m.g, static_cast<float>(static_cast<int>(m.field.type)));
-    const TriangleMesh world = transformed(object.mesh, object.world_from_object);
-    glm::vec3 lower(1e30f), upper(-1e30f);
-    for (const glm::vec3& p : world.positions) lower = glm::min(lower, p), upper = glm::max(upper, p);
+    glm::vec3 lower = mesh_lower[i], upper = mesh_upper[i];
     o.mesh_lower = glm::vec4(lower, 0.0f), o.mesh_upper = glm::vec4(upper, 0.0f);
-    if (m.field.has_bounds) lower = m.field.bounds_lower, upper = m.field.bounds_upper;
+    // A field stays where the undeformed object is (scene_at_time's rule, as volpath places it).
+    if (m.field.has_bounds) {
+      lower = m.field.bounds_lower, upper = m.field.bounds_upper;
+    } else if (m.field.heterogeneous()) {
+      lower = glm::vec3(1e30f), upper = glm::vec3(-1e30f);
+      for (const glm::vec3& p : transformed(object.mesh, object.world_from_object).positions)
+        lower = glm::min(lower, p), upper = glm::max(upper, p);
+    }
     o.lower = glm::vec4(lower, m.field.scale_mm / scale);
     o.upper = glm::vec4(upper, m.field.contrast);
     const auto bank = std::find(banks.begin(), banks.end(), m.g.x);
@@ -156,7 +168,7 @@ class RandomWalk final : public Method {
     }
     nodes_ = storage_buffer(bvh_.nodes, "random-walk BVH nodes");
     triangles_ = storage_buffer(bvh_.triangles, "random-walk triangles");
-    objects_ = storage_buffer(walk_objects(scene, 0.0), "random-walk objects");
+    objects_ = storage_buffer(walk_objects(scene, rest_triangles_), "random-walk objects");
     glCreateBuffers(1, &block_buffer_);
     glNamedBufferStorage(block_buffer_, sizeof(shader::RandomWalkGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, block_buffer_, "random-walk block");
@@ -280,7 +292,7 @@ class RandomWalk final : public Method {
     return true;
   }
   bool update_materials(const Scene& scene) override {
-    const std::vector<shader::WalkObjectGPU> objects = walk_objects(scene, geometry_time_);
+    const std::vector<shader::WalkObjectGPU> objects = walk_objects(scene, bvh_.triangles);
     glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
     return true;
   }
@@ -310,7 +322,7 @@ class RandomWalk final : public Method {
     glNamedBufferSubData(triangles_, 0, static_cast<GLsizeiptr>(bvh_.triangles.size() * sizeof(shader::TriangleGPU)),
                          bvh_.triangles.data());
     geometry_time_ = context.time_seconds;
-    const std::vector<shader::WalkObjectGPU> objects = walk_objects(context.scene, geometry_time_);
+    const std::vector<shader::WalkObjectGPU> objects = walk_objects(context.scene, moved);
     glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
   }
 
