@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -240,6 +242,31 @@ TEST(SceneLoader, ShippedScenesLoad) {
     } catch (const Error& error) {
       ADD_FAILURE() << error.what();
     }
+  }
+}
+
+// Every registered method can be tried from a shipped scene (`lucent render scenes/<file>.json`), and the README's
+// table of scenes names that file, so a user never has to compose `--set method=...` to see a method.
+TEST(SceneLoader, EveryMethodHasAShippedSceneInTheReadme) {
+  std::ifstream readme_file(std::filesystem::path(LUCENT_SOURCE_DIR) / "README.md");
+  ASSERT_TRUE(readme_file) << "README.md";
+  const std::string readme((std::istreambuf_iterator<char>(readme_file)), std::istreambuf_iterator<char>());
+  std::map<std::string, std::vector<std::string>> scenes_of;  // method name -> scene files using it
+  for (const auto& entry : std::filesystem::directory_iterator(LUCENT_SCENES_DIR)) {
+    if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
+    std::ifstream in(entry.path());
+    const nlohmann::json scene = nlohmann::json::parse(in, nullptr, false, true);
+    ASSERT_FALSE(scene.is_discarded()) << entry.path();
+    const std::string fallback(lucent::methods::default_method().name);
+    const std::string method = scene.contains("method") ? scene["method"].value("name", fallback) : fallback;
+    scenes_of[method].push_back(entry.path().filename().string());
+  }
+  for (const lucent::methods::MethodInfo* method : lucent::methods::method_registry()) {
+    const auto found = scenes_of.find(std::string(method->name));
+    ASSERT_NE(found, scenes_of.end()) << method->name << " has no scene in scenes/ that uses it";
+    bool listed = false;
+    for (const std::string& file : found->second) listed = listed || readme.find(file) != std::string::npos;
+    EXPECT_TRUE(listed) << method->name << ": the README's scene table names none of " << found->second.front();
   }
 }
 
