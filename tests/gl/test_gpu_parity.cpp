@@ -24,6 +24,8 @@ glm::vec3 random_unit(std::mt19937& rng) {
   return glm::normalize(v);
 }
 
+constexpr int kCasesPerModel = 40;  // the first 4 of each model put x_o within 0.35 mm of x_i
+
 std::vector<ParityCaseGPU> make_cases() {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> offset(-4.0f, 4.0f);
@@ -35,7 +37,7 @@ std::vector<ParityCaseGPU> make_cases() {
     lucent::set_bssrdf_table_photons(4000);  // the values are compared, not their accuracy
     lucent::prepare_bssrdf_tables(tabulated);
     for (int model = LUCENT_MODEL_STANDARD_DIPOLE; model <= LUCENT_MODEL_TABULATED; ++model)
-      for (int k = 0; k < 40; ++k) {
+      for (int k = 0; k < kCasesPerModel; ++k) {
         ParityCaseGPU c{};
         glm::vec3 n_i = k == 0 ? glm::vec3(0, 0, 1) : random_unit(rng);
         glm::vec3 w_i = random_unit(rng);
@@ -100,7 +102,12 @@ TEST(GpuParity, BssrdfComputeShaderMatchesCpp) {
       // GPU's approximations move the interpolation weights slightly, and the test's 4000-photon tables jump by
       // tens of percent between neighbouring bins: 1e-2 relative (measured up to 7e-3). A wrong layout, binding
       // or directory entry gives errors of order 1.
-      const float relative = static_cast<int>(cases[i].sigma_s.w) == LUCENT_MODEL_TABULATED ? 1e-2f : 1e-3f;
+      // Within 0.35 mm of x_i (the first four cases of each model) the directional dipole's real and virtual
+      // sources cancel further: NVIDIA's driver (580, fused multiply-adds and its own exp) lands 1.4e-3 from the C++
+      // there (marble, green band), so 3e-3 relative.
+      const bool tabulated = static_cast<int>(cases[i].sigma_s.w) == LUCENT_MODEL_TABULATED;
+      const bool near_field = i % kCasesPerModel < 4;
+      const float relative = tabulated ? 1e-2f : near_field ? 3e-3f : 1e-3f;
       EXPECT_NEAR(gpu[i].S_d[c], cpu.S_d[c], relative * std::abs(cpu.S_d[c]) + 1e-7f) << "case " << i << " channel " << c;
       compared += cpu.S_d[c] > 1e-6f;
     }
