@@ -100,16 +100,16 @@ py::dict bssrdf_total(const py::handle& material, const std::string& model, cons
 }  // namespace
 
 void bind_bssrdf(py::module_& m) {
-  m.def("bssrdf", &bssrdf, py::arg("material"), py::kw_only(), py::arg("model") = "directional",
+  m.def("bssrdf", &bssrdf, py::arg("material"), py::kw_only(), py::arg("model") = std::string(lucent::to_string(lucent::kDefaultBssrdfModel)),
         py::arg("eta") = py::none(), py::arg("xi") = py::make_tuple(0, 0, 0), py::arg("ni") = py::make_tuple(0, 0, 1),
         py::arg("wi") = py::make_tuple(0, 0, 1), py::arg("xo") = py::make_tuple(1, 0, 0),
         py::arg("no") = py::make_tuple(0, 0, 1),
         "S_d [mm^-2] per band of a diffusion model as `lucent bssrdf --json` prints it. material: a preset name "
         "(lucent.materials()) or a dict with sigma_a and sigma_s (and g) or sigma_s_prime, each a number or 3 "
-        "[mm^-1], and optionally eta; model: directional | standard | photon-beam | better-dipole | tabulated; "
+        "[mm^-1], and optionally eta; model: standard (the default) | directional | photon-beam | better-dipole | tabulated; "
         "xi, xo: entry and exit points [mm]; ni, no: their normals; wi: toward the light. Returns {\"model\", "
         "\"material\", \"eta\", \"S_d\", \"T12\", \"units\"}.");
-  m.def("bssrdf_total", &bssrdf_total, py::arg("material"), py::kw_only(), py::arg("model") = "directional",
+  m.def("bssrdf_total", &bssrdf_total, py::arg("material"), py::kw_only(), py::arg("model") = std::string(lucent::to_string(lucent::kDefaultBssrdfModel)),
         py::arg("eta") = py::none(), py::arg("incidence_deg") = 0.0,
         "The model's flat half-space total diffuse reflectance per refracted power, as `lucent bssrdf --total "
         "--json` prints it: {\"total\", \"radiosity\", \"exit_transmittance\", ...}.");

@@ -265,7 +265,7 @@ struct Bench {
     const std::string model =
         integrator == "bssrdf"
             ? "_" + std::string(to_string(scene.objects[0].material ? scene.objects[0].material->model
-                                                                    : BssrdfModel::DirectionalDipole))
+                                                                    : kDefaultBssrdfModel))
             : "";
     std::string ref_png = "images/" + image_name(run_name, "", "reference_" + integrator + model, ".png");
     write_png((out / ref_png).string(), to_display(ref.mean, scene.render.exposure));

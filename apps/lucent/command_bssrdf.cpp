@@ -21,7 +21,7 @@ namespace lucent::cli {
 namespace {
 
 struct BssrdfOptions {
-  std::string model = "directional";
+  std::string model{to_string(kDefaultBssrdfModel)};
   std::string material;
   std::vector<float> sigma_a, sigma_s, sigma_s_prime, g;
   std::optional<float> eta;

@@ -21,7 +21,7 @@ namespace {
 struct InvertOptions {
   std::vector<float> albedo, mfp, g{0.0f};
   float eta = 1.3f;
-  std::string model = "directional";
+  std::string model{to_string(kDefaultBssrdfModel)};
   bool json = false;
 };
 

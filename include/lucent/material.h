@@ -20,6 +20,9 @@ enum class BssrdfModel {
   Tabulated = 4,  // the medium's own half-space profile by photon transport (src/bssrdf/tabulated.h)
 };
 std::string_view to_string(BssrdfModel model);
+// The model a material gets when it names none: the one measured closest to volumetric path tracing on the
+// leaderboard's scene suite and the bunny (docs/accuracy.md, "Which model by default").
+inline constexpr BssrdfModel kDefaultBssrdfModel = BssrdfModel::StandardDipole;
 std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam", "better-dipole", "tabulated"
 
 // Where a heterogeneous medium came from when it was read from an OpenVDB file (lucent/medium_vdb.h reads it).
@@ -93,7 +96,7 @@ struct MaterialMaps {
   // A material whose fields differ from these no longer matches its texels (check_material_maps in scene.h).
   glm::vec3 made_with_g{0.0f};
   float made_with_eta = 1.3f;
-  BssrdfModel made_with_model = BssrdfModel::DirectionalDipole;
+  BssrdfModel made_with_model = kDefaultBssrdfModel;
   glm::vec3 made_with_sigma_a{0.0f}, made_with_sigma_s{0.0f};  // [mm^-1]
   glm::vec3 alpha_at(glm::vec2 uv) const;
   glm::vec3 mfp_mm_at(glm::vec2 uv) const;
@@ -108,7 +111,7 @@ struct Material {
   glm::vec3 sigma_s{0.0f};  // scattering coefficient, unreduced [mm^-1]
   glm::vec3 g{0.0f};        // Henyey-Greenstein mean cosine per band [-1, 1]
   float eta = 1.3f;         // relative refractive index n_material / n_outside
-  BssrdfModel model = BssrdfModel::DirectionalDipole;
+  BssrdfModel model = kDefaultBssrdfModel;
   MediumField field;        // homogeneous unless set (used by voxel-paths and volpath; the diffusion models ignore it)
   // Textured: coefficients per surface point (the ones above are those of the maps' mean albedo and mean free
   // path, for messages and for what needs one value, such as the references' sampling bounds).

@@ -32,7 +32,7 @@ struct ArtistParameters {
   glm::vec3 mfp_mm{1.0f};   // mean free path 1 / sigma_t per band (unreduced) [mm], > 0
   glm::vec3 g{0.0f};        // Henyey-Greenstein mean cosine per band (-1, 1)
   float eta = 1.3f;         // relative refractive index n_material / n_outside [1, 3]
-  BssrdfModel model = BssrdfModel::DirectionalDipole;
+  BssrdfModel model = kDefaultBssrdfModel;
 };
 
 // The alpha interval searched: alpha_max keeps sigma_a > 0, which every diffusion model needs.
@@ -51,7 +51,7 @@ struct ArtistInversion {
   Material material;             // coefficients in mm^-1, g, eta and the model asked for
   glm::dvec3 alpha{0.0};         // single-scattering albedo sigma_s / sigma_t per band
   glm::dvec3 total{0.0};         // the curve model's flat total with `material`'s float coefficients
-  BssrdfModel curve_model = BssrdfModel::DirectionalDipole;
+  BssrdfModel curve_model = kDefaultBssrdfModel;
 };
 
 // Finds sigma_a, sigma_s per band. Throws lucent::Error("<where>: <field>[<band>] = <value> <problem>; <range>")

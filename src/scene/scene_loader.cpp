@@ -97,7 +97,7 @@ constexpr ParamDecl kMaterialParams[] = {
     {"sigma_s_prime", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "reduced scattering (instead of sigma_s, g)"},
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
-    {"model", ParamType::Enum, "\"directional\"", "", 0, 0, "directional|standard|photon-beam|better-dipole|tabulated", "diffusion model S_d"},
+    {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated", "diffusion model S_d (default: kDefaultBssrdfModel, the closest to volpath measured)"},
     {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the model's flat total diffuse reflectance (with mfp_mm, instead of coefficients)"},
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
     {"albedo_map", ParamType::String, "\"\"", "", 0, 0, "",

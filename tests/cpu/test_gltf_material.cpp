@@ -149,7 +149,7 @@ TEST(GltfMaterial, ExportImportRoundTrip) {
     gltf["materials"][0].erase("extras");
     write_text(mesh, gltf.dump());
     const Material standard = *parse_scene(scene_doc.dump(), "s.json", ".").objects[0].material;
-    EXPECT_EQ(standard.model, BssrdfModel::DirectionalDipole);  // the scene default: glTF does not name a model
+    EXPECT_EQ(standard.model, kDefaultBssrdfModel);  // the scene default: glTF does not name a model
     EXPECT_EQ(standard.eta, original.eta);
     const double albedo[3] = {0.7, 0.4, 0.2};
     for (int b = 0; b < 3; ++b) {

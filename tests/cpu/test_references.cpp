@@ -225,10 +225,11 @@ TEST(Volpath, HeterogeneousDenserHalfSpaceMatchesItsAlbedo) {
 TEST(BssrdfIntegrator, FlatSlabReproducesModelTotalReflectance) {
   // Camera straight down at the centre of a marble slab, light at normal incidence:
   // L = T(1) * T(1) * pi * integral(S_d dA) / pi.
-  Scene scene = slab_scene("\"Marble\"", {0, -1, 0}, 200, 60);
+  Scene scene = slab_scene(R"({"preset": "Marble", "model": "directional"})", {0, -1, 0}, 200, 60);
   EmbreeScene rt(scene);
   ReferenceScene rs{scene, rt};
   const Material& m = *scene.objects[0].material;
+  ASSERT_EQ(m.model, BssrdfModel::DirectionalDipole);
   float T = shader::fresnel_transmittance(m.eta, 1.0f);
   for (int band : {0, 2}) {
     shader::BandMedium medium = shader::make_band_medium(m.sigma_a[band], m.sigma_s[band], m.g[band]);

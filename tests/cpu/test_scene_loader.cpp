@@ -190,7 +190,7 @@ TEST(SceneLoader, ExplicitCoefficientsWithScalarG) {
   expect_vec3_eq(m.sigma_s, glm::vec3(1.0f, 2.0f, 3.0f));
   expect_vec3_eq(m.g, glm::vec3(0.5f));
   EXPECT_FLOAT_EQ(m.eta, 1.4f);
-  EXPECT_EQ(m.model, BssrdfModel::DirectionalDipole);
+  EXPECT_EQ(m.model, kDefaultBssrdfModel);
 }
 
 TEST(SceneLoader, ExplicitReducedCoefficientsHaveGZero) {
@@ -268,6 +268,22 @@ TEST(SceneLoader, EveryMethodHasAShippedSceneInTheReadme) {
     for (const std::string& file : found->second) listed = listed || readme.find(file) != std::string::npos;
     EXPECT_TRUE(listed) << method->name << ": the README's scene table names none of " << found->second.front();
   }
+}
+
+// A material that names no model gets kDefaultBssrdfModel, and `lucent` help states that default.
+TEST(SceneLoader, AMaterialWithoutAModelGetsTheDefaultModel) {
+  const Scene scene = parse_scene(R"({"objects": [{"shape": "sphere", "material": {"sigma_a": [0.01, 0.02, 0.03],
+      "sigma_s": [1, 1, 1]}}, {"shape": "sphere", "material": "Marble"}]})", "model.json", ".");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  EXPECT_EQ(scene.objects[0].material->model, kDefaultBssrdfModel);
+  EXPECT_EQ(scene.objects[1].material->model, kDefaultBssrdfModel);
+  EXPECT_EQ(kDefaultBssrdfModel, BssrdfModel::StandardDipole);  // docs/accuracy.md, "Which model by default"
+  bool stated = false;
+  for (const ParamSection& section : scene_param_sections())
+    for (const ParamDecl& p : section.params)
+      if (p.name == "model" && section.name.find("material") != std::string_view::npos)
+        stated = p.default_json == "\"" + std::string(to_string(kDefaultBssrdfModel)) + "\"";
+  EXPECT_TRUE(stated) << "the material's model parameter does not declare the default model";
 }
 
 TEST(SceneLoader, ParamSectionsForHelp) {
