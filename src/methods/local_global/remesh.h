@@ -9,7 +9,8 @@ namespace lucent::methods::local_global {
 struct RemeshOptions {
   double target_edge = 0.0;   // edge length of the result [units of the mesh's positions]
   double feature_deg = 60.0;  // edges whose faces' normals differ by more are sharp: kept (split, never moved off)
-  int iterations = 3;         // split / collapse / flip / smooth / project rounds
+  int iterations = 5;         // split / collapse / flip / smooth / project rounds (3 left 10% of a box's edges
+                              // outside [0.6, 1.4] x the target, 5 7%)
 };
 
 // Vertices with equal positions are merged, the triangles stitched into one surface; sharp edges (feature_deg)
