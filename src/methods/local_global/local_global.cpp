@@ -18,6 +18,7 @@
 #include "lucent/error.h"
 #include "methods/local_global/local_global_io.h"
 #include "methods/local_global/local_global_precompute.h"
+#include "platform/gl_capabilities.h"
 #include "render/light_gbuffer.h"
 #include "texture_space/texture_gbuffer.h"
 
@@ -128,6 +129,14 @@ class LocalGlobal final : public Method {
       vertex_texels.emplace_back(float_bits(v.direct.x), float_bits(v.direct.y), float_bits(v.direct.z), 0u);
     }
     vertex_texels_ = make_buffer(vertex_texels, "local-global vertex texels", memory_);
+    // global.comp runs one loop over a row: on llvmpipe a longer row would be cut short without an error.
+    std::uint32_t longest_row = 0;
+    for (std::size_t j = 0; j + 1 < data_.row_offsets.size(); ++j)
+      longest_row = std::max(longest_row, data_.row_offsets[j + 1] - data_.row_offsets[j]);
+    if (platform::current_capabilities().is_llvmpipe && longest_row >= platform::kLlvmpipeLoopIterations)
+      throw Error(fmt::format("{}: /method/cutoff: a vertex's row of the global matrix holds {} form factors, more than "
+                              "llvmpipe runs in one shader loop ({}); raise /method/cutoff or /method/vertex_spacing",
+                              scene.source, longest_row, platform::kLlvmpipeLoopIterations));
     row_offsets_ = make_buffer(data_.row_offsets, "local-global row offsets", memory_);
     form_factors_ = make_buffer(data_.form_factors, "local-global form factors", memory_);
     vertex_irradiance_ = make_empty_buffer(vertices * 32, "local-global vertex irradiance", memory_);
