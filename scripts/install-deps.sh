@@ -20,6 +20,8 @@ packages=(
   # vdb medium fields (src/media/medium_vdb.cpp; FindOpenVDB also needs Boost.Iostreams' headers) and the example
   # VDB's generator (scripts/make_plume_vdb.py, Debian's /usr/bin/python3 with pyopenvdb)
   libopenvdb-dev libboost-iostreams-dev python3-openvdb
+  # local-global's isotropic remeshing (src/methods/local_global/remesh_cgal.cpp): CGAL 5.5, header-only with GMP and MPFR
+  libcgal-dev
   # viewer
   libimgui-dev xvfb xauth
   # example assets: the Stanford bunny at /usr/share/glmark2/models/bunny.obj

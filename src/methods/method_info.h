@@ -74,6 +74,10 @@ struct MethodInfo {
   // The method estimates the image of the volpath reference itself (the physics, not a model of it): `lucent
   // reference --device gpu` renders references with it (render/gpu_reference.h).
   bool estimates_volpath = false;
+  // needs_texture_atlas methods: the scene whose translucent meshes the atlas is built on and the GPU draws, made
+  // from the scene as loaded (a method that needs other meshes, e.g. remeshed, makes and caches them itself);
+  // null: the scene's own meshes. Throws lucent::Error for meshes the method cannot use.
+  Scene (*prepare_meshes)(const Scene& scene, const std::function<void(double)>& progress) = nullptr;
 };
 
 // The registered method that estimates volpath's image (estimates_volpath), or null.

@@ -207,8 +207,11 @@ struct Renderer::Impl {
     atlas_scene.reset();
     if (info->needs_texture_atlas) {  // blob surfaces refused here, before anything reaches the GPU
       texture_space::AtlasOptions options = info->atlas_options ? info->atlas_options(scene.method_params) : texture_space::AtlasOptions{};
-      atlas = texture_space::load_or_build_scene_atlas(scene, options, step_progress("texture atlas")).atlas;
-      atlas_scene = texture_space::with_atlas_meshes(scene, *atlas);
+      std::optional<Scene> meshed;
+      if (info->prepare_meshes) meshed = info->prepare_meshes(scene, step_progress("meshes"));
+      const Scene& source = meshed ? *meshed : scene;
+      atlas = texture_space::load_or_build_scene_atlas(source, options, step_progress("texture atlas")).atlas;
+      atlas_scene = texture_space::with_atlas_meshes(source, *atlas);
     }
     scene_gpu = std::make_unique<render::SceneGpu>(method_scene());
     geometry_dirty = true;

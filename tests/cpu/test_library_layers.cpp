@@ -78,6 +78,23 @@ TEST(LibraryLayers, OpenVdbStaysInItsOwnFile) {
   expect_no_include(others, std::regex(R"(openvdb)"), "a file outside lucent_vdb");
 }
 
+// CGAL (header-only, about 22 s of compiler time a file) is included by the methods' *_cgal.cpp files alone, which
+// build into lucent_cgal; no other source or header of src/, include/ and apps/ includes it.
+TEST(LibraryLayers, CgalStaysInTheCgalFiles) {
+  std::vector<std::string> others;
+  std::size_t cgal_files = 0;
+  for (const char* folder : {"src", "include", "apps"})
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(LUCENT_SOURCE_DIR) / folder)) {
+      const std::string file = fs::relative(entry.path(), LUCENT_SOURCE_DIR).string();
+      if (!entry.is_regular_file() || !(file.ends_with(".cpp") || file.ends_with(".h"))) continue;
+      if (file.ends_with("_cgal.cpp")) ++cgal_files;
+      else others.push_back(file);
+    }
+  EXPECT_GE(cgal_files, 1u);
+  ASSERT_GE(others.size(), 100u);
+  expect_no_include(others, std::regex(R"(CGAL/)"), "a file outside the *_cgal.cpp files");
+}
+
 TEST(LibraryLayers, ReferencesIncludeNoGl) {
   const std::vector<std::string> reference = library_sources("lucent_reference");
   ASSERT_GE(reference.size(), 5u);

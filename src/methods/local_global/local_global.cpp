@@ -18,6 +18,7 @@
 #include "lucent/error.h"
 #include "methods/local_global/local_global_io.h"
 #include "methods/local_global/local_global_precompute.h"
+#include "platform/gl_capabilities.h"
 #include "render/light_gbuffer.h"
 #include "texture_space/texture_gbuffer.h"
 
@@ -83,6 +84,7 @@ class LocalGlobal final : public Method {
         texture_gbuffer_(scene_gpu, atlas),
         illumination_program_(gpu::ShaderProgram::compute("methods/local_global/shaders/illumination.comp", defines(scene))),
         vertex_program_(gpu::ShaderProgram::compute("methods/local_global/shaders/vertex_irradiance.comp")),
+        vertex_sum_program_(gpu::ShaderProgram::compute("methods/local_global/shaders/vertex_irradiance_sum.comp")),
         global_program_(gpu::ShaderProgram::compute("methods/local_global/shaders/global.comp")),
         local_program_(gpu::ShaderProgram::compute("methods/local_global/shaders/local.comp")),
         view_program_(gpu::ShaderProgram::graphics("methods/local_global/shaders/atlas_view.vert", "",
@@ -102,7 +104,24 @@ class LocalGlobal final : public Method {
     memory_ += static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * (16 + 16 + 4);
 
     kernels_ = make_buffer(data_.kernels, "local-global kernels", memory_);
-    vertex_offsets_ = make_buffer(data_.vertex_offsets, "local-global vertex offsets", memory_);
+    const std::size_t vertices = data_.vertex_count();
+    // Each vertex's texels in chunks of at most LUCENT_LG_VERTEX_CHUNK (llvmpipe's loop limit, local_global_io.h).
+    std::vector<glm::uvec2> chunks;
+    std::vector<std::uint32_t> vertex_chunks(vertices + 1, 0);
+    for (std::size_t v = 0; v < vertices; ++v) {
+      vertex_chunks[v] = static_cast<std::uint32_t>(chunks.size());
+      const std::uint32_t end = data_.vertex_offsets[v + 1];
+      for (std::uint32_t k = data_.vertex_offsets[v]; k < end; k += LUCENT_LG_VERTEX_CHUNK)
+        chunks.emplace_back(k, std::min<std::uint32_t>(end, k + LUCENT_LG_VERTEX_CHUNK));
+      if (chunks.size() - vertex_chunks[v] > LUCENT_LG_VERTEX_CHUNK)
+        throw Error(fmt::format("{}: local-global: vertex {} has {} texels, more than {} chunks of {} can sum", scene.source,
+                                v, end - data_.vertex_offsets[v], LUCENT_LG_VERTEX_CHUNK, LUCENT_LG_VERTEX_CHUNK));
+    }
+    vertex_chunks[vertices] = static_cast<std::uint32_t>(chunks.size());
+    chunk_count_ = chunks.size();
+    chunks_ = make_buffer(chunks, "local-global texel chunks", memory_);
+    vertex_chunks_ = make_buffer(vertex_chunks, "local-global vertex chunks", memory_);
+    chunk_sums_ = make_empty_buffer(chunk_count_ * 32, "local-global chunk sums", memory_);
     std::vector<glm::uvec4> vertex_texels;
     vertex_texels.reserve(data_.vertex_texels.size() * 2);
     for (const lg::VertexTexel& v : data_.vertex_texels) {
@@ -110,9 +129,16 @@ class LocalGlobal final : public Method {
       vertex_texels.emplace_back(float_bits(v.direct.x), float_bits(v.direct.y), float_bits(v.direct.z), 0u);
     }
     vertex_texels_ = make_buffer(vertex_texels, "local-global vertex texels", memory_);
+    // global.comp runs one loop over a row: on llvmpipe a longer row would be cut short without an error.
+    std::uint32_t longest_row = 0;
+    for (std::size_t j = 0; j + 1 < data_.row_offsets.size(); ++j)
+      longest_row = std::max(longest_row, data_.row_offsets[j + 1] - data_.row_offsets[j]);
+    if (platform::current_capabilities().is_llvmpipe && longest_row >= platform::kLlvmpipeLoopIterations)
+      throw Error(fmt::format("{}: /method/cutoff: a vertex's row of the global matrix holds {} form factors, more than "
+                              "llvmpipe runs in one shader loop ({}); raise /method/cutoff or /method/vertex_spacing",
+                              scene.source, longest_row, platform::kLlvmpipeLoopIterations));
     row_offsets_ = make_buffer(data_.row_offsets, "local-global row offsets", memory_);
     form_factors_ = make_buffer(data_.form_factors, "local-global form factors", memory_);
-    const std::size_t vertices = data_.vertex_count();
     vertex_irradiance_ = make_empty_buffer(vertices * 32, "local-global vertex irradiance", memory_);
     vertex_radiosity_ = make_empty_buffer(vertices * 16, "local-global vertex radiosity", memory_);
 
@@ -149,9 +175,9 @@ class LocalGlobal final : public Method {
   ~LocalGlobal() override {
     GLuint textures[] = {illumination_, local_, texel_index_};
     glDeleteTextures(3, textures);
-    GLuint buffers[] = {kernels_, vertex_offsets_, vertex_texels_, row_offsets_, form_factors_,
+    GLuint buffers[] = {kernels_, chunks_, vertex_chunks_, chunk_sums_, vertex_texels_, row_offsets_, form_factors_,
                         vertex_irradiance_, vertex_radiosity_, corners_, block_buffer_};
-    glDeleteBuffers(9, buffers);
+    glDeleteBuffers(11, buffers);
     glDeleteVertexArrays(1, &vao_);
   }
 
@@ -165,7 +191,7 @@ class LocalGlobal final : public Method {
     const int show_id = show == "local" ? LUCENT_LG_SHOW_LOCAL : show == "global" ? LUCENT_LG_SHOW_GLOBAL : LUCENT_LG_SHOW_COMBINED;
     block_ = shader::LocalGlobalGPU{glm::ivec4(texture_gbuffer_.size(), static_cast<int>(vertex_count_),
                                                static_cast<int>(texel_count_), 0),
-                                    glm::ivec4(show_id, 0, 0, 0)};
+                                    glm::ivec4(show_id, static_cast<int>(chunk_count_), 0, 0)};
     glNamedBufferSubData(block_buffer_, 0, sizeof(block_), &block_);
   }
 
@@ -205,10 +231,16 @@ class LocalGlobal final : public Method {
     glBindTextureUnit(LUCENT_TEX_LG_TEXEL_INDEX, texel_index_);
     {
       auto pass = context.profiler.pass("vertex_irradiance");
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_VERTEX_OFFSETS, vertex_offsets_);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_CHUNKS, chunks_);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_VERTEX_TEXELS, vertex_texels_);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_VERTEX_IRRADIANCE, vertex_irradiance_);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_CHUNK_SUMS, chunk_sums_);
       glUseProgram(vertex_program_.id());
+      const GLuint chunk_groups = static_cast<GLuint>((chunk_count_ + 63) / 64);
+      if (chunk_groups > 0) glDispatchCompute(chunk_groups, 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_VERTEX_CHUNKS, vertex_chunks_);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_LG_VERTEX_IRRADIANCE, vertex_irradiance_);
+      glUseProgram(vertex_sum_program_.id());
       if (vertex_groups > 0) glDispatchCompute(vertex_groups, 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
@@ -291,13 +323,13 @@ class LocalGlobal final : public Method {
   lg::LocalGlobalData data_;
   render::LightGBuffer light_gbuffer_;
   texture_space::TextureGBuffer texture_gbuffer_;
-  gpu::ShaderProgram illumination_program_, vertex_program_, global_program_, local_program_, view_program_, shade_program_;
+  gpu::ShaderProgram illumination_program_, vertex_program_, vertex_sum_program_, global_program_, local_program_, view_program_, shade_program_;
   GLuint illumination_ = 0, local_ = 0, texel_index_ = 0;
-  GLuint kernels_ = 0, vertex_offsets_ = 0, vertex_texels_ = 0, row_offsets_ = 0, form_factors_ = 0;
+  GLuint kernels_ = 0, chunks_ = 0, vertex_chunks_ = 0, chunk_sums_ = 0, vertex_texels_ = 0, row_offsets_ = 0, form_factors_ = 0;
   GLuint vertex_irradiance_ = 0, vertex_radiosity_ = 0, corners_ = 0, block_buffer_ = 0, vao_ = 0;
   gpu::ScreenTargets view_{2, "local-global atlas view"};
   std::size_t memory_ = 0;
-  std::size_t form_factor_count_ = 0, texel_count_ = 0, vertex_count_ = 0;
+  std::size_t form_factor_count_ = 0, texel_count_ = 0, vertex_count_ = 0, chunk_count_ = 0;
   double cutoff_mm_ = 0.0;
   shader::LocalGlobalGPU block_{};
   int frames_ = 0;

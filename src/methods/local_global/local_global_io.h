@@ -13,7 +13,7 @@
 #define LUCENT_TEX_LG_VIEW_ATLAS 11           // RGBA32F camera view: xy atlas coordinates, z scene object index + 1
 #define LUCENT_TEX_LG_VIEW_RADIOSITY 12       // RGBA32F camera view: rgb B^d + B^g' interpolated over the triangle
 #define LUCENT_BINDING_LG_KERNELS 20          // float[texels * 49 * 3] (std430): scatter-form kernels
-#define LUCENT_BINDING_LG_VERTEX_OFFSETS 21   // uint[vertices + 1] (std430): into the vertex texels
+#define LUCENT_BINDING_LG_CHUNKS 21           // uvec2[] (std430): (first, end) vertex texels of each chunk
 #define LUCENT_BINDING_LG_VERTEX_TEXELS 22    // uvec4 pairs (std430): (texel x | y << 16, dual weight bits), (w rgb bits)
 #define LUCENT_BINDING_LG_ROW_OFFSETS 23      // uint[vertices + 1] (std430): into the form factors
 #define LUCENT_BINDING_LG_FORM_FACTORS 24     // uvec4[] (std430): (source vertex, F' rgb bits) by receiving row
@@ -22,6 +22,15 @@
 #define LUCENT_BINDING_LG_CORNERS 27          // uvec4 per corner of the scene's index buffer (std430): atlas uv bits, vertex
 #define LUCENT_BINDING_LG_SCENE_VERTICES 28   // VertexGPU[] (std430): SceneGpu::vertex_buffer()
 #define LUCENT_BINDING_LG_SCENE_INDICES 29    // uint[] (std430): SceneGpu::index_buffer()
+// The vertex_irradiance pass reuses two slots of atlas_view's (which binds its own buffers there):
+#define LUCENT_BINDING_LG_CHUNK_SUMS 28       // vec4 pairs per chunk (std430): the chunk's part of E^g, B^d
+#define LUCENT_BINDING_LG_VERTEX_CHUNKS 29    // uint[vertices + 1] (std430): each vertex's chunks
+
+// Mesa's llvmpipe ends an invocation's loops silently after 65,535 iterations in all (kLlvmpipeLoopIterations in
+// platform/gl_capabilities.h). A vertex's texels (up to a whole atlas face on a coarse mesh) are therefore summed
+// in chunks of at most this many texels, one invocation each, and the chunks' sums per vertex by a second
+// dispatch: no invocation of the pass loops more than this many times (checked on the CPU at upload).
+#define LUCENT_LG_VERTEX_CHUNK 16384
 
 LUCENT_SHADER_BEGIN
 
@@ -31,7 +40,7 @@ LUCENT_SHADER_BEGIN
 
 struct LocalGlobalGPU {
   ivec4 counts;   // x: atlas size; y: vertices; z: texels; w: first corner of the mesh being drawn (atlas_view)
-  ivec4 options;  // x: LUCENT_LG_SHOW_* (the `show` parameter)
+  ivec4 options;  // x: LUCENT_LG_SHOW_* (the `show` parameter); y: chunks of the vertex texels
 };
 
 LUCENT_SHADER_END

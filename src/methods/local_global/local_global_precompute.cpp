@@ -8,13 +8,16 @@
 #include <cstring>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "bssrdf/model.h"
+#include "cache/precompute_cache.h"
 #include "lucent/error.h"
+#include "methods/local_global/remesh.h"
 #include "texture_space/scene_atlas.h"
 #include "texture_space/uv_raster.h"
 
@@ -175,7 +178,106 @@ Settings settings_from(const ParamValues& params) {
   s.cutoff = params.number("cutoff");
   s.blend = params.boolean("blend");
   s.max_form_factors = params.number("max_form_factors");
+  s.remesh = params.boolean("remesh");
+  s.vertex_spacing_mm = params.number("vertex_spacing");
+  s.max_vertices = params.number("max_vertices");
   return s;
+}
+
+double vertex_spacing(const Scene& scene, const SceneObject& object) {
+  const TriangleMesh world = transformed(object.mesh, object.world_from_object);
+  glm::dvec3 lower(1e300), upper(-1e300);
+  for (const glm::vec3& p : world.positions) {
+    lower = glm::min(lower, glm::dvec3(p));
+    upper = glm::max(upper, glm::dvec3(p));
+  }
+  double spacing = glm::length(upper - lower) / 50.0;
+  if (object.material) {
+    const glm::vec3 sigma_tr = object.material->sigma_tr() * scene.scale_mm;  // [1/scene unit]
+    const double largest = std::max({sigma_tr.x, sigma_tr.y, sigma_tr.z});
+    if (largest > 0.0) spacing = std::min(spacing, 1.0 / largest);
+  }
+  return spacing;
+}
+
+namespace {
+
+constexpr std::uint32_t kRemeshVersion = 1;
+
+std::vector<std::byte> encode_mesh(const TriangleMesh& mesh) {
+  Writer w;
+  w.array(mesh.positions);
+  w.array(mesh.normals);
+  w.array(mesh.indices);
+  return std::move(w.bytes);
+}
+
+TriangleMesh decode_mesh(std::span<const std::byte> bytes) {
+  Reader r{bytes};
+  TriangleMesh mesh;
+  mesh.positions = r.array<glm::vec3>();
+  mesh.normals = r.array<glm::vec3>();
+  mesh.indices = r.array<std::uint32_t>();
+  if (r.at != bytes.size() || mesh.normals.size() != mesh.positions.size())
+    throw Error("local-global: cached remeshed mesh is damaged");
+  return mesh;
+}
+
+}  // namespace
+
+Scene remeshed_scene(const Scene& scene, const Settings& settings, const std::function<void(double)>& progress) {
+  check_rigid(scene);
+  Scene out = scene;
+  if (!settings.remesh) return out;
+  std::vector<std::size_t> translucent;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].translucent()) translucent.push_back(i);
+  for (std::size_t n = 0; n < translucent.size(); ++n) {
+    SceneObject& object = out.objects[translucent[n]];
+    const double spacing = settings.vertex_spacing_mm > 0.0 ? settings.vertex_spacing_mm / scene.scale_mm
+                                                            : vertex_spacing(scene, object);
+    TriangleMesh world = transformed(object.mesh, object.world_from_object);
+    // Round triangles of edge e have area sqrt(3) e^2 / 4, and a closed surface has half as many vertices as triangles.
+    const double area = surface_area(world);
+    const double estimate = area / (std::sqrt(3.0) / 4.0 * spacing * spacing) / 2.0;
+    if (estimate > settings.max_vertices)
+      throw Error(fmt::format(
+          "{}: object '{}': /method/vertex_spacing: remeshing to {:.3g} mm edges{} would give about {:.3g} vertices, more "
+          "than /method/max_vertices = {:.4g}; set /method/vertex_spacing to at least {:.3g} mm or raise max_vertices",
+          scene.source, object.name, spacing * scene.scale_mm,
+          settings.vertex_spacing_mm > 0.0 ? "" : " (the material's shortest diffusion length)", estimate,
+          settings.max_vertices, spacing * std::sqrt(estimate / settings.max_vertices) * scene.scale_mm * 1.01));
+    RemeshOptions options;
+    options.target_edge = spacing;
+    cache::Key key("local-global-remesh", kRemeshVersion);
+    key.mesh(object.mesh).number(options.target_edge).number(options.feature_deg).integer(options.iterations);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) key.number(object.world_from_object[c][r]);
+    TriangleMesh remeshed;
+    std::optional<std::vector<std::byte>> cached = cache::load(key);
+    bool decoded = false;
+    if (cached) {
+      try {
+        remeshed = decode_mesh(*cached);
+        decoded = true;
+      } catch (const Error&) {
+        decoded = false;
+      }
+    }
+    if (!decoded) {
+      try {
+        remeshed = remesh_isotropic(world, options);
+      } catch (const Error& e) {
+        throw Error(fmt::format("{}: object '{}': {}", scene.source, object.name, e.what()));
+      }
+      cache::store(key, encode_mesh(remeshed));
+    }
+    // Back to object space: the transform stays the object's.
+    const glm::mat4 object_from_world = glm::inverse(object.world_from_object);
+    object.mesh = transformed(remeshed, object_from_world);
+    if (progress) progress(static_cast<double>(n + 1) / static_cast<double>(translucent.size()));
+  }
+  return out;
 }
 
 void check_rigid(const Scene& scene) {
@@ -393,7 +495,7 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
     if (nnz > settings.max_form_factors)
       throw Error(fmt::format("{}: /method/max_form_factors: the global matrix would hold {:.4g} form factors ({:.2f} GiB) "
                               "for {} vertices, more than max_form_factors = {:.4g}; raise it, raise /method/cutoff "
-                              "(cutoff radius {:.4g} scene units) or use a simpler mesh",
+                              "(cutoff radius {:.4g} scene units) or /method/vertex_spacing",
                               scene.source, nnz, nnz * sizeof(FormFactor) / 1073741824.0, vertex_count,
                               settings.max_form_factors, out.objects.empty() ? 0.0 : out.objects[0].cutoff_radius));
   }

@@ -81,8 +81,27 @@ struct Settings {
   double cutoff = 1e-3;        // tail fraction of the total reflectance the dropped pairs may hold
   bool blend = true;           // Section 5.4: direct weights and corrected kernels
   double max_form_factors = 5e7;  // refuse (one line) a global matrix with more nonzero entries
+  bool remesh = true;             // Section 5.1: translucent meshes remeshed to round triangles of one size
+  double vertex_spacing_mm = 0.0; // their edge length [mm]; 0: vertex_spacing() of the object
+  double max_vertices = 2e4;      // refuse (one line) a remeshed object with more vertices (estimated beforehand)
 };
 Settings settings_from(const ParamValues& params);
+
+// Section 5.1 asks for "round triangles of similar size" without a size. The edge length used when
+// vertex_spacing_mm is 0 [scene units]: the smaller of
+//   - the shortest diffusion length 1 / sigma_tr over the bands: the hats interpolate R_d, which falls by e per
+//     diffusion length, and a hat wider than that spreads the near field of F' over two edge lengths, beyond the
+//     7 x 7 kernels' reach, so blending cannot remove the double count (the slab's box of 8 vertices);
+//   - a fiftieth of the object's world bounding-box diagonal: the shape (ears, thin plates) survives when the
+//     diffusion length is long.
+double vertex_spacing(const Scene& scene, const SceneObject& object);
+
+// The scene with every translucent object's mesh remeshed (Settings::remesh; remesh.h) in world space to the
+// spacing, sharp edges kept; through the precompute cache (kind "local-global-remesh", keyed on the mesh, its
+// transform, the spacing and the remesher's options). Throws lucent::Error "<scene>: object '<name>': ..." for a
+// deforming object, and "<scene>: object '<name>': /method/vertex_spacing: ..." when the remeshed object would have
+// more than max_vertices vertices.
+Scene remeshed_scene(const Scene& scene, const Settings& settings, const std::function<void(double)>& progress);
 
 // Throws lucent::Error "<scene>: object '<name>': ..." for a deforming or blob translucent object (rigid only).
 void check_rigid(const Scene& scene);
