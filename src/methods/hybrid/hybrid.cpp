@@ -34,7 +34,8 @@ std::string irradiance_defines(const Scene& scene) {
 }
 
 std::string shade_defines(const Scene& scene) {
-  return render::light_sampling_defines(scene) + fmt::format("#define HYBRID_TEX_POSITION {}\n", texture_space::kTexturePosition);
+  return render::light_sampling_defines(scene) + fmt::format("#define HYBRID_TEX_POSITION {}\n#define HYBRID_TEX_NORMAL_RATIO {}\n", texture_space::kTexturePosition,
+                     texture_space::kTextureNormalRatio);
 }
 
 int order_of(const ParamValues& params) { return texture_space::sampling_order(params.text("order")); }
