@@ -32,7 +32,8 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   for (int band = 0; band < 3; ++band)
     m[band] = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
   vec3 B = vec3(0.0f);
-  for (int i = 0; i < method.counts.x; ++i) {
+  int N = min(method.counts.x, LUCENT_TSIS_MAX_SAMPLES);
+  for (int i = 0; i < N; ++i) {
     TsisSampleGPU s = samples[i];
     vec4 p = texelFetch(texel_position, s.texel.xy, 0);
     if (int(p.w) - 1 != object_index) continue;
