@@ -1,8 +1,9 @@
 // hybrid.cpp: the hybrid of Chang, Lin, Lee, Chen, "Real-Time Translucent Rendering Using GPU-based Texture Space
 // Importance Sampling", CGF 27(2), 2008, Section 4: R_d = R_d W_l + R_d W_g (bssrdf/hybrid_split.h). The global
 // term is texture-space importance sampling as in texture-space-is (texture_space/irradiance_sampler.h: E' into
-// the atlas, N texels by the inverse CDF) with R_d W_g in Eq. 11; the local term a circular pattern of L C + 1
-// points around each shaded point (shade.comp) whose radii and weights are tabulated per material on the CPU.
+// the atlas, N texels by the inverse CDF) with the model's full S_d times W_g in Eq. 11; the local term a circular
+// pattern of L C + 1 points around each shaded point in each light's sampling plane, looked up in the light G-buffer
+// (shade.comp), whose radii and weights are tabulated per material on the CPU.
 #include "methods/method.h"
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 // texture_space_is.cpp: texture-space importance sampling (Chang, Lin, Lee, Chen, "Real-Time Translucent
 // Rendering Using GPU-based Texture Space Importance Sampling", CGF 27(2), 2008, Section 3, without the hybrid
 // with local sampling): stage 1 renders E' = (A_S / A_T) F_t E into the atlas (irradiance.comp), stage 2 draws N
-// texels with density proportional to E' (both texture_space/irradiance_sampler.h), stage 3 sums R_d over those N samples for every
-// camera pixel (shade.comp, Eq. 11). The texture-space G-buffer is redrawn every frame (deforming meshes).
+// texels with density proportional to E' (both texture_space/irradiance_sampler.h), stage 3 sums the model's full S_d
+// over those N samples for every camera pixel (shade.comp, Eq. 11 with each sample's position, normal and light). The texture-space G-buffer is redrawn every frame (deforming meshes).
 #include "methods/method.h"
 
 #include <cstring>
