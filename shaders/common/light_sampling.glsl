@@ -13,20 +13,68 @@
 #include "media/material_map.h"
 #include "shared/random.h"
 
+// Light l's sampling plane around x_o: directional, the light's view plane (uv_o: x_o's coordinates in it);
+// point and spot, the plane through x_o perpendicular to the light (t1, t2 span it).
+struct LightPlane {
+  vec2 uv_o;
+  vec3 axis, t1, t2;
+};
+
+LightPlane light_plane(int l, vec3 x_o) {
+  LightGPU light = frame.lights[l];
+  bool directional = int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL;
+  LightPlane p;
+  p.uv_o = directional ? view_coords(frame.light_views[light.views.x], x_o).xy : vec2(0.0f);
+  p.axis = directional ? -light.position.xyz : normalize(light.position.xyz - x_o);
+  p.t1 = normalize(abs(p.axis.x) > 0.9f ? cross(p.axis, vec3(0.0f, 1.0f, 0.0f)) : cross(p.axis, vec3(1.0f, 0.0f, 0.0f)));
+  p.t2 = cross(p.axis, p.t1);
+  return p;
+}
+
+// The surface point light l's G-buffer shows at (r cos alpha, r sin alpha) from x_o in its sampling plane: false
+// unless it is directly lit surface of `object`; else x_i, n_i, w_i (toward the light), cos_i = n_i . w_i > 0, and
+// `weight` (an area in the plane) turned into the measure in which F_t S_d weight, times the light's power (per
+// unit intensity for point lights), integrates E F_t S_d over the lit surface (the top of this file).
+bool light_plane_entry(int l, LightPlane p, int object, vec3 x_o, float r, float alpha, out vec3 x_i, out vec3 n_i,
+                       out vec3 w_i, out float cos_i, inout float weight) {
+  LightGPU light = frame.lights[l];
+  bool directional = int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL;
+  int layer;
+  vec2 uv;
+  x_i = x_o, n_i = p.axis, w_i = p.axis, cos_i = 0.0f;
+  if (directional) {
+    layer = light.views.x;
+    uv = p.uv_o + r * vec2(cos(alpha), sin(alpha)) / frame.light_views[layer].direction.w;
+    if (any(lessThan(uv, vec2(0.0f))) || any(greaterThanEqual(uv, vec2(1.0f)))) return false;
+  } else {
+#if defined(LUCENT_DIRECTIONAL_LIGHTS_ONLY)
+    return false;
+#else
+    vec3 x_j = x_o + r * (cos(alpha) * p.t1 + sin(alpha) * p.t2);
+    StereographicSample s = stereographic_sample(light.position.xyz, x_o, x_j);
+    if (!point_light_lookup(light, light.views.x, light.views.y, s.direction, layer, uv)) return false;
+    weight /= s.plane_area_per_solid_angle;
+    if (int(light.position.w) == LUCENT_LIGHT_SPOT)
+      weight *= spot_falloff(dot(s.direction, light.axis.xyz), light.power.w, light.axis.w);
+#endif
+  }
+  // Look up x_i, n_i; only this object's directly lit surface contributes.
+  ivec3 texel = ivec3(ivec2(uv * float(frame.light_counts.z)), layer);
+  vec4 p_i = texelFetch(light_position, texel, 0);
+  if (int(p_i.w) - 1 != object) return false;
+  x_i = p_i.xyz;
+  if (!directional) w_i = normalize(light.position.xyz - p_i.xyz);
+  n_i = texelFetch(light_normal, texel, 0).xyz;
+  cos_i = dot(n_i, w_i);
+  return cos_i > 0.0f;
+}
+
 // B for one band from light l, without the factor pi * power[band] (and, for point lights, per unit intensity).
 float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o, vec3 n_o, uint state, int samples) {
-  LightGPU light = frame.lights[l];
   BandMedium m = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
   float eta = material.sigma_a.w;
   int model = int(material.sigma_s.w);
-  int size = frame.light_counts.z;
-  bool directional = int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL;
-  // Sampling plane: directional, the light's view plane; point, the plane through x_o perpendicular to the light.
-  ViewGPU view = frame.light_views[light.views.x];
-  vec2 uv_o = directional ? view_coords(view, x_o).xy : vec2(0.0f);
-  vec3 axis = directional ? -light.position.xyz : normalize(light.position.xyz - x_o);
-  vec3 t1 = normalize(abs(axis.x) > 0.9f ? cross(axis, vec3(0.0f, 1.0f, 0.0f)) : cross(axis, vec3(1.0f, 0.0f, 0.0f)));
-  vec3 t2 = cross(axis, t1);
+  LightPlane plane = light_plane(l, x_o);
   float sum = 0.0f;
   for (int j = 0; j < samples; ++j) {
     // Sample (r, alpha) from p_exp (eq. 12) around x_o.
@@ -36,35 +84,10 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
     float alpha = kTwoPi * xi_2;
     // 1 / p_exp(r, alpha) in area measure: p = sigma_tr e^{-sigma_tr r} / (2 pi r), with e^{-sigma_tr r} = xi_1.
     float weight = kTwoPi * r / (m.sigma_tr * xi_1);
-    int layer;
-    vec2 uv;
-    vec3 w_i;
-    if (directional) {
-      layer = light.views.x;
-      uv = uv_o + r * vec2(cos(alpha), sin(alpha)) / view.direction.w;
-      if (any(lessThan(uv, vec2(0.0f))) || any(greaterThanEqual(uv, vec2(1.0f)))) continue;
-      w_i = axis;
-    } else {
-#if defined(LUCENT_DIRECTIONAL_LIGHTS_ONLY)
-      continue;
-#else
-      vec3 x_j = x_o + r * (cos(alpha) * t1 + sin(alpha) * t2);
-      StereographicSample s = stereographic_sample(light.position.xyz, x_o, x_j);
-      if (!point_light_lookup(light, light.views.x, light.views.y, s.direction, layer, uv)) continue;
-      weight /= s.plane_area_per_solid_angle;
-      if (int(light.position.w) == LUCENT_LIGHT_SPOT)
-        weight *= spot_falloff(dot(s.direction, light.axis.xyz), light.power.w, light.axis.w);
-#endif
-    }
-    // Look up x_i, n_i; only this object's directly lit surface contributes.
-    ivec3 texel = ivec3(ivec2(uv * float(size)), layer);
-    vec4 p_i = texelFetch(light_position, texel, 0);
-    if (int(p_i.w) - 1 != object) continue;
-    if (!directional) w_i = normalize(light.position.xyz - p_i.xyz);
-    vec3 n_i = texelFetch(light_normal, texel, 0).xyz;
-    float cos_i = dot(n_i, w_i);
-    if (cos_i <= 0.0f) continue;
-    float S_d = bssrdf_Sd(model, m, eta, p_i.xyz, w_i, n_i, x_o, n_o);
+    vec3 x_i, n_i, w_i;
+    float cos_i;
+    if (!light_plane_entry(l, plane, object, x_o, r, alpha, x_i, n_i, w_i, cos_i, weight)) continue;
+    float S_d = bssrdf_Sd(model, m, eta, x_i, w_i, n_i, x_o, n_o);
     sum += S_d * fresnel_transmittance(eta, cos_i) * weight;
   }
   return sum / float(samples);

@@ -1,8 +1,9 @@
 // hybrid.cpp: the hybrid of Chang, Lin, Lee, Chen, "Real-Time Translucent Rendering Using GPU-based Texture Space
 // Importance Sampling", CGF 27(2), 2008, Section 4: R_d = R_d W_l + R_d W_g (bssrdf/hybrid_split.h). The global
 // term is texture-space importance sampling as in texture-space-is (texture_space/irradiance_sampler.h: E' into
-// the atlas, N texels by the inverse CDF) with R_d W_g in Eq. 11; the local term a circular pattern of L C + 1
-// points around each shaded point (shade.comp) whose radii and weights are tabulated per material on the CPU.
+// the atlas, N texels by the inverse CDF) with the model's full S_d times W_g in Eq. 11; the local term a circular
+// pattern of L C + 1 points around each shaded point in each light's sampling plane, looked up in the light G-buffer
+// (shade.comp), whose radii and weights are tabulated per material on the CPU.
 #include "methods/method.h"
 
 #include <algorithm>
@@ -14,7 +15,9 @@
 #include "bssrdf/hybrid_split.h"
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
+#include "lucent/error.h"
 #include "methods/hybrid/hybrid_io.h"
+#include "platform/gl_capabilities.h"
 #include "render/light_gbuffer.h"
 #include "render/view_accumulator.h"
 #include "texture_space/irradiance_sampler.h"
@@ -34,10 +37,19 @@ std::string irradiance_defines(const Scene& scene) {
 }
 
 std::string shade_defines(const Scene& scene) {
-  return render::light_sampling_defines(scene) + fmt::format("#define HYBRID_TEX_POSITION {}\n", texture_space::kTexturePosition);
+  return render::light_sampling_defines(scene) + fmt::format("#define HYBRID_TEX_POSITION {}\n#define HYBRID_TEX_NORMAL_RATIO {}\n", texture_space::kTexturePosition,
+                     texture_space::kTextureNormalRatio);
 }
 
 int order_of(const ParamValues& params) { return texture_space::sampling_order(params.text("order")); }
+
+// Loop iterations of one shade.comp invocation, all loops counted (the band loops of 3 and, with several lights,
+// each global sample's loop over the lights with its shadow lookup of taps^2 + taps): the global sum, then per
+// light the L + 1 strata (with their band loop) and the L C + 1 points (with theirs).
+long long shade_loop_iterations(long long N, long long lights, long long L, long long C, long long taps) {
+  const long long per_global = 1 + (lights > 1 ? lights * (1 + 3 + taps * taps + taps) : 1);
+  return N * per_global + lights * ((L + 1) * 4 + (L * C + 1) * 4);
+}
 
 // R_p [scene units] of a material: the largest over the bands (Section 4.1).
 float split_radius(const Material& material, float scale_mm, float c) {
@@ -74,6 +86,7 @@ class Hybrid final : public Method {
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
     restart = accumulated_.begin_frame(frame, restart);  // view dependent: a camera move restarts too
     light_gbuffer_.fill_frame(frame);
+    check_loop_budget(frame.light_counts.x);
     frame.light_counts.w = kShadowTaps;
     frame.seeds.z = restart ? 1u : 0u;
     seed_ = frame.seeds.x;
@@ -128,6 +141,17 @@ class Hybrid final : public Method {
 
  private:
   static constexpr int kShadowTaps = 3;
+
+  // Mesa llvmpipe ends a shader's loops after kLlvmpipeLoopIterations in all: a setting that would reach it is one
+  // clear error, not a silently dark image. The shader clamps N, L and C to hybrid_io.h's bounds besides.
+  void check_loop_budget(int lights) const {
+    if (!platform::current_capabilities().is_llvmpipe) return;
+    const long long n = shade_loop_iterations(params_.integer("N"), lights, rings_, ring_points_, kShadowTaps);
+    if (n > static_cast<long long>(platform::kLlvmpipeLoopIterations))
+      throw Error(fmt::format("hybrid: N = {}, rings x ring_points = {} x {} and {} light(s) need {} shader loop "
+                              "iterations per pixel, more than llvmpipe's {}; lower N, rings or ring_points",
+                              params_.integer("N"), rings_, ring_points_, lights, n, platform::kLlvmpipeLoopIterations));
+  }
 
   // Per translucent object (the order of SceneGpu's materials): R_p, then the L + 1 strata of hybrid_ring.
   void upload_pattern(const Scene& scene) {

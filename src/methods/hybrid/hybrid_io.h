@@ -14,6 +14,12 @@
 #define LUCENT_BINDING_HYBRID_ROW_CDF 21  // float[P * P + P] (std430): row-major CDF (order row-major)
 #define LUCENT_BINDING_HYBRID_PATTERN 22  // vec4[materials * (L + 2)] (std430): the local pattern per material
 
+// Bounds of the shade pass's loops (its parameters' ranges, hybrid_info.cpp): Mesa llvmpipe ends a shader's loops
+// after 65,535 iterations in all, which hybrid.cpp checks against N and the lights times the pattern.
+#define LUCENT_HYBRID_MAX_SAMPLES 4096
+#define LUCENT_HYBRID_MAX_RINGS 64
+#define LUCENT_HYBRID_MAX_RING_POINTS 64
+
 LUCENT_SHADER_BEGIN
 
 struct HybridGPU {

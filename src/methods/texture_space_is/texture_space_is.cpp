@@ -1,8 +1,8 @@
 // texture_space_is.cpp: texture-space importance sampling (Chang, Lin, Lee, Chen, "Real-Time Translucent
 // Rendering Using GPU-based Texture Space Importance Sampling", CGF 27(2), 2008, Section 3, without the hybrid
 // with local sampling): stage 1 renders E' = (A_S / A_T) F_t E into the atlas (irradiance.comp), stage 2 draws N
-// texels with density proportional to E' (both texture_space/irradiance_sampler.h), stage 3 sums R_d over those N samples for every
-// camera pixel (shade.comp, Eq. 11). The texture-space G-buffer is redrawn every frame (deforming meshes).
+// texels with density proportional to E' (both texture_space/irradiance_sampler.h), stage 3 sums the model's full S_d
+// over those N samples for every camera pixel (shade.comp, Eq. 11 with each sample's position, normal and light). The texture-space G-buffer is redrawn every frame (deforming meshes).
 #include "methods/method.h"
 
 #include <cstring>
@@ -11,7 +11,9 @@
 
 #include "gpu/gl_debug.h"
 #include "gpu/shader_program.h"
+#include "lucent/error.h"
 #include "methods/texture_space_is/texture_space_is_io.h"
+#include "platform/gl_capabilities.h"
 #include "render/light_gbuffer.h"
 #include "render/view_accumulator.h"
 #include "texture_space/irradiance_sampler.h"
@@ -50,6 +52,7 @@ class TextureSpaceIs final : public Method {
   void prepare_frame(shader::FrameGPU& frame, bool restart) override {
     restart = accumulated_.begin_frame(frame, restart);  // view dependent: a camera move restarts too
     light_gbuffer_.fill_frame(frame);
+    check_loop_budget(frame.light_counts.x);
     frame.light_counts.w = kShadowTaps;
     frame.seeds.z = restart ? 1u : 0u;
     seed_ = frame.seeds.x;
@@ -101,6 +104,19 @@ class TextureSpaceIs final : public Method {
 
  private:
   static constexpr int kShadowTaps = 3;
+
+  // Mesa llvmpipe ends a shader's loops after kLlvmpipeLoopIterations in all. shade.comp loops over the N samples
+  // and, with several lights, over the lights per sample (transmitted_sd.glsl: bands and a shadow lookup of
+  // taps^2 + taps each): a setting that would reach the limit is one clear error, not a silently dark image.
+  void check_loop_budget(int lights) const {
+    if (!platform::current_capabilities().is_llvmpipe) return;
+    const long long N = params_.integer("N");
+    const long long n = N * (1 + (lights > 1 ? lights * (1 + 3 + kShadowTaps * kShadowTaps + kShadowTaps) : 1));
+    if (n > static_cast<long long>(platform::kLlvmpipeLoopIterations))
+      throw Error(fmt::format("texture-space-is: N = {} and {} lights need {} shader loop iterations per pixel, more "
+                              "than llvmpipe's {}; lower N",
+                              N, lights, n, platform::kLlvmpipeLoopIterations));
+  }
 
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;

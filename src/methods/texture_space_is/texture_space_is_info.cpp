@@ -22,7 +22,7 @@ constexpr PassDecl kPasses[] = {
     {"irradiance", "stage 1: E' = (A_S / A_T) F_t E per texel from every light, shadowed (Eq. 7)"},
     {"mipmaps", "stage 2: the sum pyramid of E' (and the row-major CDF when order = row-major)"},
     {"sampling", "stage 2: N texels drawn with density E' / E'_total by the inverse CDF, one set per frame"},
-    {"shade", "stage 3: F_t E'_total / (N pi) sum R_d(|x_o - x_i|) per camera pixel (Eq. 11), accumulated while nothing moves"},
+    {"shade", "stage 3: F_t E'_total / N sum S_d(x_i, w_l, n_i; x_o, n_o) per camera pixel (Eq. 11 with the full S_d), accumulated while nothing moves"},
 };
 
 constexpr StatDecl kStats[] = {
@@ -47,8 +47,8 @@ const MethodInfo texture_space_is_info{
     kPasses,
     kStats,
     R"({"atlas_size": 256, "N": 256, "light_map_size": 128, "specular": false})",
-    0.35,  // measured 0.275 on llvmpipe (2026-11-25): the conformance sphere uses the directional dipole, whose
-           // radial profile (normal incidence, bssrdf_radial_Rd) drops the oblique light; standard dipole: -0.2%
+    0.02,  // measured 0.005 on llvmpipe (2026-11-28; mean 0.08684 vs bssrdf reference 0.08731, directional dipole):
+           // the full S_d per sample; with the normal-incidence radial profile it was 0.272
     true,
     atlas_options,
     nullptr,

@@ -12,6 +12,7 @@
 #define LUCENT_TEX_TSIS_PYRAMID 8        // the E' pyramid with all its levels (sampling)
 #define LUCENT_BINDING_TSIS_SAMPLES 20   // TsisSamplesGPU (std430): the frame's N samples
 #define LUCENT_BINDING_TSIS_ROW_CDF 21   // float[size * size + size] (std430): row-major CDF (order row-major)
+#define LUCENT_TSIS_MAX_SAMPLES 4096     // bound of the shade pass's sample loop: N's range (texture_space_is_info.cpp)
 
 LUCENT_SHADER_BEGIN
 

@@ -1,46 +1,34 @@
 // shade.comp: the hybrid of Chang et al. 2008, Section 4: per camera pixel on a translucent object,
-// B = B_l + B_g. B_g (global): the frame's N texture-space samples (texture_space/irradiance_sample.comp) on the same
-// object, sum_i weight_i R_d(r_i) W_g(r_i) (Eq. 11 with R_d W_g). B_l (local): the circular pattern of L C + 1
-// points around x_o on its tangent plane (the centre and L rings of C points, radii and stratum weights from
-// bssrdf/hybrid_split.h), each looked up in the camera neighbourhood (the camera G-buffer pixel the point projects
-// to, if it lies on the same object within half the ring radius of the point) or else taken on the tangent plane,
-// where the transmitted irradiance F_t E is evaluated; the pattern is turned by a random angle per pixel and frame.
-// L = F_t(eta, n . w_o) / pi (B_l + B_g), accumulated while nothing, camera included, changes.
+// B = B_l + B_g, both integrals of the model's full S_d(x_i, w_l, n_i; x_o, n_o) over the lit surface, split by the
+// distance |x_o - x_i| with W_l + W_g = 1 (bssrdf/hybrid_split.h). B_g (global): the frame's N texture-space samples
+// (texture_space/irradiance_sample.comp) on the same object, pi sum_i weight_i S_d W_g (Eq. 11 with each sample's
+// own position, normal and light direction, texture_space/transmitted_sd.glsl). B_l (local): as the paper's local
+// part reads a light-space irradiance map, the circular pattern of L C + 1 points (the centre and L rings of C
+// points, radii and stratum weights from bssrdf/hybrid_split.h) is laid around x_o in each light's sampling plane
+// and each point looked up in the light's G-buffer (common/light_sampling.glsl), which shows only directly lit
+// surface of the object; a stratum's weight, the integral of 2 pi r R_d W_l over it, is scaled per point by the
+// ratio of the integrand there, pi S_d W_l F_t (in the plane's measure), to R_d W_l at the ring's radius, so a flat
+// surface lit at normal incidence gets exactly the tabulated pattern. The pattern is turned by a random angle per
+// pixel and frame. L = F_t(eta, n . w_o) / pi (B_l + B_g), accumulated while nothing, camera included, changes.
 #include "common/frame.glsl"
 #include "common/lights.glsl"
 #include "bssrdf/model.h"
 #include "bssrdf/hybrid_split.h"
 #include "shared/random.h"
 #include "methods/hybrid/hybrid_io.h"
-#include "texture_space/transmitted_irradiance.glsl"
+#include "common/light_sampling.glsl"
+#include "texture_space/transmitted_sd.glsl"
 #include "common/camera_pixel.glsl"
 
 layout(std140, binding = LUCENT_BINDING_METHOD) uniform MethodBlock { HybridGPU method; };
 layout(binding = HYBRID_TEX_POSITION) uniform sampler2D texel_position;
+layout(binding = HYBRID_TEX_NORMAL_RATIO) uniform sampler2D texel_normal_ratio;
 layout(std430, binding = LUCENT_BINDING_HYBRID_SAMPLES) readonly buffer Samples {
   vec4 total;
   TsisSampleGPU samples[];
 };
 layout(std430, binding = LUCENT_BINDING_HYBRID_PATTERN) readonly buffer Pattern { vec4 pattern[]; };
 layout(rgba32f, binding = LUCENT_IMAGE_HYBRID_SUM) uniform image2D accumulated;  // rgb: sum of B, a: frames
-
-// F_t E at the surface point near q (on the tangent plane at distance r from x_o): the camera neighbourhood when
-// the pixel q projects to shows the same object close to q, else q itself with x_o's normal.
-vec3 local_irradiance(int object_index, vec3 q, vec3 n, float eta, float r) {
-  vec4 clip = frame.clip_from_world * vec4(q, 1.0f);
-  if (clip.w > 0.0f) {
-    vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
-    ivec2 px = ivec2(floor(uv * vec2(frame.output_size.xy)));
-    if (all(greaterThanEqual(px, ivec2(0))) && all(lessThan(px, frame.output_size.xy))) {
-      vec4 p = texelFetch(camera_position, px, 0);
-      if (int(p.w) - 1 == object_index && distance(p.xyz, q) < 0.5f * r) {
-        vec3 n_p = normalize(texelFetch(camera_normal, px, 0).xyz);
-        return transmitted_irradiance(p.xyz, n_p, eta);
-      }
-    }
-  }
-  return transmitted_irradiance(q, n, eta);
-}
 
 vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o, MaterialGPU material) {
   float eta = material.sigma_a.w;
@@ -50,31 +38,41 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   BandMedium m[3];
   for (int band = 0; band < 3; ++band)
     m[band] = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
-  // Global: the texture-space samples of R_d W_g.
+  // Global: the texture-space samples of S_d W_g.
   vec3 B = vec3(0.0f);
-  for (int i = 0; i < method.counts.x; ++i) {
+  int N = min(method.counts.x, LUCENT_HYBRID_MAX_SAMPLES);
+  for (int i = 0; i < N; ++i) {
     TsisSampleGPU s = samples[i];
     vec4 p = texelFetch(texel_position, s.texel.xy, 0);
     if (int(p.w) - 1 != object_index) continue;
-    float r = length(x - p.xyz);
-    float w_g = hybrid_global_weight(r, Rp, K);
-    for (int band = 0; band < 3; ++band) B[band] += s.weight[band] * w_g * bssrdf_radial_Rd(model, m[band], eta, r);
+    vec3 n_i = normalize(texelFetch(texel_normal_ratio, s.texel.xy, 0).xyz);
+    float w_g = hybrid_global_weight(length(x - p.xyz), Rp, K);
+    B += kPi * w_g * s.weight.rgb * transmitted_Sd(model, m, eta, p.xyz, n_i, x, n);
   }
-  // Local: the circular pattern of R_d W_l around x_o.
-  vec3 t = normalize(cross(n, abs(n.x) > 0.5f ? vec3(0.0f, 1.0f, 0.0f) : vec3(1.0f, 0.0f, 0.0f)));
-  vec3 b = cross(n, t);
+  // Local: the circular pattern of S_d W_l around x_o in each light's sampling plane.
   float turn = next_float(seed_from(frame.seeds.x, uint(pixel.x), uint(pixel.y), frame.seeds.y ^ 0x4b1du));
-  B += pattern[base + 1].xyz * transmitted_irradiance(x, n, eta);
-  int L = method.counts.y, C = method.counts.z;
-  for (int j = 1; j <= L; ++j) {
-    vec4 ring = pattern[base + 1 + j];
-    vec3 sum = vec3(0.0f);
-    for (int c = 0; c < C; ++c) {
-      float phi = 2.0f * kPi * (float(c) + fract(turn + 0.618034f * float(j))) / float(C);
-      vec3 q = x + ring.w * (cos(phi) * t + sin(phi) * b);
-      sum += local_irradiance(object_index, q, n, eta, ring.w);
+  int L = min(method.counts.y, LUCENT_HYBRID_MAX_RINGS), C = min(method.counts.z, LUCENT_HYBRID_MAX_RING_POINTS);
+  for (int l = 0; l < frame.light_counts.x; ++l) {
+    LightPlane plane = light_plane(l, x);
+    vec3 B_l = vec3(0.0f);
+    for (int j = 0; j <= L; ++j) {
+      vec4 ring = pattern[base + 1 + j];
+      int points = j == 0 ? 1 : C;
+      vec3 sum = vec3(0.0f);
+      for (int c = 0; c < points; ++c) {
+        float phi = 2.0f * kPi * (float(c) + fract(turn + 0.618034f * float(j))) / float(points);
+        vec3 x_i, n_i, w_i;
+        float cos_i, weight = 1.0f;
+        if (!light_plane_entry(l, plane, object_index, x, ring.w, phi, x_i, n_i, w_i, cos_i, weight)) continue;
+        float f = weight * fresnel_transmittance(eta, cos_i) * hybrid_local_weight(length(x - x_i), Rp, K);
+        for (int band = 0; band < 3; ++band) sum[band] += f * bssrdf_Sd(model, m[band], eta, x_i, w_i, n_i, x, n);
+      }
+      for (int band = 0; band < 3; ++band) {
+        float profile = bssrdf_radial_Rd(model, m[band], eta, ring.w) * hybrid_local_weight(ring.w, Rp, K);
+        if (profile > 0.0f) B_l[band] += ring[band] * kPi * sum[band] / (float(points) * profile);
+      }
     }
-    B += ring.xyz * sum / float(C);
+    B += B_l * frame.lights[l].power.rgb;
   }
   vec4 acc = frame.seeds.z != 0u ? vec4(0.0f) : imageLoad(accumulated, pixel);
   acc += vec4(B, 1.0f);

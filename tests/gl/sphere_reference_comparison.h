@@ -1,0 +1,27 @@
+// sphere_reference_comparison.h: a texture-space method's image of the conformance sphere (skim-milk-like
+// material, eta 1.3, lit from the side) against the CPU bssrdf reference of the same diffusion model, in the mean
+// and per block of pixels.
+#ifndef LUCENT_TESTS_GL_SPHERE_REFERENCE_COMPARISON_H
+#define LUCENT_TESTS_GL_SPHERE_REFERENCE_COMPARISON_H
+#include <string>
+
+namespace lucent::test {
+
+struct SphereComparison {
+  double mean = 0.0, reference_mean = 0.0;
+  double relative_mean_error = 0.0;  // (mean - reference_mean) / reference_mean, signed
+  // Over the lit region, per block of 4 x 4 pixels wholly on the sphere whose reference exceeds a fifth of the
+  // reference's mean over the sphere: the RMSE relative to the reference's mean over those blocks, the largest
+  // |ours - reference| / reference, and the number of blocks.
+  double relative_rmse = 0.0, max_relative = 0.0;
+  int lit_blocks = 0;
+};
+
+// `method_keys`: the "method" object's keys besides "name"; `model`: the material's "model" ("standard",
+// "directional"). Band means per pixel; the reference takes `reference_spp` samples per pixel.
+SphereComparison compare_sphere_with_reference(const std::string& method, const std::string& method_keys,
+                                               const std::string& model, int frames, int reference_spp);
+
+}  // namespace lucent::test
+
+#endif
