@@ -29,7 +29,7 @@
 namespace lucent::texture_space {
 
 // Bumped whenever the builder's output changes for the same input (part of the precompute-cache key).
-inline constexpr std::uint32_t kAtlasBuilderVersion = 1;
+inline constexpr std::uint32_t kAtlasBuilderVersion = 2;
 
 struct AtlasOptions {
   int size = 1024;              // atlas width = height [texels]
