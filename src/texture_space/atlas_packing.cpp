@@ -9,11 +9,14 @@ namespace lucent::texture_space {
 namespace {
 
 // A chart at one scale and quarter turn: corners in its own texel frame (their minimum at (0.5, 0.5)), and per
-// texel row the leftmost and rightmost texel its triangles can touch (left > right: an empty row).
+// texel row the spans of texels its triangles can touch (inclusive x ranges, left to right; gaps of at most
+// 2 border texels, too narrow for any other chart, are closed), with the widest span of each row.
 struct Mask {
   std::vector<glm::dvec2> corners;
   int width = 0, height = 0;
-  std::vector<int> left, right;
+  std::vector<glm::ivec2> spans;
+  std::vector<std::size_t> first;  // row r's spans are spans[first[r] .. first[r + 1])
+  std::vector<int> widest;         // per row, the widest span's length minus one (-1: an empty row)
 };
 
 glm::dvec2 turn(glm::dvec2 p, int quarter_turns) {
@@ -21,7 +24,7 @@ glm::dvec2 turn(glm::dvec2 p, int quarter_turns) {
   return p;
 }
 
-Mask rasterise(const std::vector<glm::dvec2>& chart, double scale, int quarter_turns) {
+Mask rasterise(const std::vector<glm::dvec2>& chart, double scale, int quarter_turns, int border) {
   Mask m;
   m.corners.reserve(chart.size());
   glm::dvec2 lo(1e300);
@@ -30,6 +33,7 @@ Mask rasterise(const std::vector<glm::dvec2>& chart, double scale, int quarter_t
     lo = glm::min(lo, m.corners.back());
   }
   for (glm::dvec2& p : m.corners) p += glm::dvec2(0.5) - lo;
+  // Each triangle's texel box, then its x range in each of its rows, bucketed by row and sorted by start.
   std::vector<glm::ivec2> boxes;
   boxes.reserve(2 * (chart.size() / 3));
   glm::ivec2 extent(0);
@@ -41,13 +45,30 @@ Mask rasterise(const std::vector<glm::dvec2>& chart, double scale, int quarter_t
     extent = glm::max(extent, b + 1);
   }
   m.width = extent.x, m.height = extent.y;
-  m.left.assign(static_cast<std::size_t>(m.height), INT_MAX);
-  m.right.assign(static_cast<std::size_t>(m.height), INT_MIN);
+  std::vector<std::size_t> start(static_cast<std::size_t>(m.height) + 1, 0);
   for (std::size_t i = 0; i < boxes.size(); i += 2)
-    for (int y = boxes[i].y; y <= boxes[i + 1].y; ++y) {
-      m.left[static_cast<std::size_t>(y)] = std::min(m.left[static_cast<std::size_t>(y)], boxes[i].x);
-      m.right[static_cast<std::size_t>(y)] = std::max(m.right[static_cast<std::size_t>(y)], boxes[i + 1].x);
+    for (int y = boxes[i].y; y <= boxes[i + 1].y; ++y) ++start[static_cast<std::size_t>(y) + 1];
+  for (std::size_t r = 1; r < start.size(); ++r) start[r] += start[r - 1];
+  std::vector<glm::ivec2> pieces(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < boxes.size(); i += 2)
+    for (int y = boxes[i].y; y <= boxes[i + 1].y; ++y) pieces[fill[static_cast<std::size_t>(y)]++] = {boxes[i].x, boxes[i + 1].x};
+  m.first.assign(static_cast<std::size_t>(m.height) + 1, 0);
+  m.widest.assign(static_cast<std::size_t>(m.height), -1);
+  for (int row = 0; row < m.height; ++row) {
+    const auto begin = pieces.begin() + static_cast<std::ptrdiff_t>(start[static_cast<std::size_t>(row)]);
+    const auto end = pieces.begin() + static_cast<std::ptrdiff_t>(start[static_cast<std::size_t>(row) + 1]);
+    std::sort(begin, end, [](glm::ivec2 u, glm::ivec2 v) { return u.x < v.x; });
+    for (auto piece = begin; piece != end; ++piece) {
+      if (piece != begin && piece->x <= m.spans.back().y + 2 * border + 1)
+        m.spans.back().y = std::max(m.spans.back().y, piece->y);
+      else
+        m.spans.push_back(*piece);
     }
+    m.first[static_cast<std::size_t>(row) + 1] = m.spans.size();
+    for (std::size_t i = m.first[static_cast<std::size_t>(row)]; i < m.spans.size(); ++i)
+      m.widest[static_cast<std::size_t>(row)] = std::max(m.widest[static_cast<std::size_t>(row)], m.spans[i].y - m.spans[i].x);
+  }
   return m;
 }
 
@@ -55,32 +76,21 @@ Mask rasterise(const std::vector<glm::dvec2>& chart, double scale, int quarter_t
 // and the next free texel at or right of it, and the longest free run of the row.
 class Occupancy {
  public:
-  explicit Occupancy(int size) : size_(size), taken_(cells(), 0), run_(cells(), 0), next_free_(cells(), 0), longest_(static_cast<std::size_t>(size), 0) {
+  explicit Occupancy(int size)
+      : size_(size), taken_(cells(), 0), run_(cells(), 0), next_free_(cells(), 0), longest_(static_cast<std::size_t>(size), 0) {
     for (int y = 0; y < size; ++y) update_row(y);
   }
 
-  // The lowest row (then leftmost texel) where every mask row lies on free texels; false when there is none
-  // below `below` (a row index the mask's top must stay under).
+  // The lowest row (then leftmost texel) where every span of the mask lies on free texels; false when there is
+  // none with the mask's top at most `below` (a row count).
   bool find(const Mask& m, int below, int& out_x, int& out_y) const {
     for (int y = 0; y + m.height <= std::min(size_, below); ++y) {
       bool possible = true;
       for (int r = 0; r < m.height && possible; ++r)
-        possible = m.left[static_cast<std::size_t>(r)] > m.right[static_cast<std::size_t>(r)] ||
-                   longest_[static_cast<std::size_t>(y + r)] > m.right[static_cast<std::size_t>(r)] - m.left[static_cast<std::size_t>(r)];
+        possible = longest_[static_cast<std::size_t>(y + r)] > m.widest[static_cast<std::size_t>(r)];
       if (!possible) continue;
       for (int x = 0; x + m.width <= size_;) {
-        int next = x;
-        for (int r = 0; r < m.height; ++r) {
-          const int l = m.left[static_cast<std::size_t>(r)], rr = m.right[static_cast<std::size_t>(r)];
-          if (l > rr) continue;
-          const std::size_t i = index(x + l, y + r);
-          if (run_[i] > rr - l) continue;
-          // Blocked: the row's span must start after the taken texel that ends this run, at the next free one.
-          const int taken = x + l + run_[i];
-          const int free = taken >= size_ ? size_ : next_free_[index(taken, y + r)];
-          next = std::max(next, free - l);
-          break;
-        }
+        const int next = blocked_until(m, x, y);
         if (next == x) {
           out_x = x, out_y = y;
           return true;
@@ -93,20 +103,34 @@ class Occupancy {
 
   // Marks the mask at (x, y) grown by `border` texels as taken.
   void take(const Mask& m, int x, int y, int border) {
-    for (int r = 0; r < m.height; ++r) {
-      const int l = m.left[static_cast<std::size_t>(r)], rr = m.right[static_cast<std::size_t>(r)];
-      if (l > rr) continue;
-      const int x0 = std::max(0, x + l - border), x1 = std::min(size_ - 1, x + rr + border);
-      for (int row = std::max(0, y + r - border); row <= std::min(size_ - 1, y + r + border); ++row)
-        std::fill(taken_.begin() + static_cast<std::ptrdiff_t>(index(x0, row)),
-                  taken_.begin() + static_cast<std::ptrdiff_t>(index(x1, row)) + 1, 1);
-    }
+    for (int r = 0; r < m.height; ++r)
+      for (std::size_t i = m.first[static_cast<std::size_t>(r)]; i < m.first[static_cast<std::size_t>(r) + 1]; ++i) {
+        const int x0 = std::max(0, x + m.spans[i].x - border), x1 = std::min(size_ - 1, x + m.spans[i].y + border);
+        for (int row = std::max(0, y + r - border); row <= std::min(size_ - 1, y + r + border); ++row)
+          std::fill(taken_.begin() + static_cast<std::ptrdiff_t>(index(x0, row)),
+                    taken_.begin() + static_cast<std::ptrdiff_t>(index(x1, row)) + 1, 1);
+      }
     for (int row = std::max(0, y - border); row <= std::min(size_ - 1, y + m.height - 1 + border); ++row) update_row(row);
   }
 
  private:
   std::size_t cells() const { return static_cast<std::size_t>(size_) * static_cast<std::size_t>(size_); }
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(size_) + static_cast<std::size_t>(x); }
+
+  // x when the mask fits at (x, y), else the least x' > x where the span that is blocked first could fit: its
+  // start moved to the next free texel after the taken one that ends its free run.
+  int blocked_until(const Mask& m, int x, int y) const {
+    for (int r = 0; r < m.height; ++r)
+      for (std::size_t i = m.first[static_cast<std::size_t>(r)]; i < m.first[static_cast<std::size_t>(r) + 1]; ++i) {
+        const int l = m.spans[i].x, rr = m.spans[i].y;
+        const std::size_t at = index(x + l, y + r);
+        if (run_[at] > rr - l) continue;
+        const int taken = x + l + run_[at];
+        const int free = taken >= size_ ? size_ : next_free_[index(taken, y + r)];
+        return free - l;
+      }
+    return x;
+  }
 
   void update_row(int y) {
     int run = 0, next_free = size_, longest = 0;
@@ -131,16 +155,16 @@ bool pack_at(const std::vector<std::vector<glm::dvec2>>& charts, int size, int b
   Occupancy occupancy(size);
   texels.resize(charts.size());
   for (std::size_t k = 0; k < charts.size(); ++k) {
-    int best_x = -1, best_y = 0, best_top = size + 1, best_turns = 0;
+    int best_x = -1, best_y = size;
+    Mask best;
     for (int quarter_turns = 0; quarter_turns < 4; ++quarter_turns) {
-      Mask m = rasterise(charts[k], scale, quarter_turns);
+      Mask m = rasterise(charts[k], scale, quarter_turns, border);
       int x = 0, y = 0;
-      // Only a placement whose top ends lower than the best so far is of interest.
-      if (m.width > size || !occupancy.find(m, best_top - 1, x, y)) continue;
-      if (y + m.height < best_top) best_x = x, best_y = y, best_top = y + m.height, best_turns = quarter_turns;
+      // Only a placement as low as the best so far is of interest (then the leftmost).
+      if (m.width > size || !occupancy.find(m, best_y + m.height, x, y)) continue;
+      if (y < best_y || (y == best_y && x < best_x)) best_x = x, best_y = y, best = std::move(m);
     }
     if (best_x < 0) return false;
-    Mask best = rasterise(charts[k], scale, best_turns);
     occupancy.take(best, best_x, best_y, border);
     texels[k] = std::move(best.corners);
     for (glm::dvec2& p : texels[k]) p += glm::dvec2(best_x, best_y);

@@ -1,11 +1,11 @@
 // atlas_packing.h: packing of charts by their own shapes into a square texture with one global scale.
 //
-// At a trial scale every chart is rasterised in four quarter turns into a texel mask: per texel row, the span from
-// the leftmost to the rightmost texel whose square one of its triangles can touch (each triangle's texel bounding
-// box; gaps inside a row count as taken). Charts go in the caller's order (largest first packs best); each goes to
-// the turn and integer texel offset where its top ends lowest, found by scanning an occupancy bitmap bottom-up,
-// left to right (first fit: the lowest row, then the leftmost texel, where every mask row lies on free texels), so
-// that ragged charts interlock and small ones fill the holes left between large ones. A placed mask is marked in
+// At a trial scale every chart is rasterised in four quarter turns into a texel mask: per texel row, the spans of
+// texels whose square one of its triangles can touch (the union of the triangles' texel bounding boxes; a gap of
+// at most 2 border texels inside a row, too narrow for another chart, counts as taken). Charts go in the caller's
+// order (largest first packs best); each goes to the turn and integer texel offset that is lowest, then leftmost,
+// where every span lies on free texels of an occupancy bitmap (first fit, scanned bottom-up, left to right), so
+// ragged charts interlock and small ones fill the holes left in and between large ones. A placed mask is marked in
 // the bitmap grown by `border` texels on every side (square neighbourhood), so at least `border` empty texels
 // separate the texels of any two charts. Free runs per row (their length from each texel, the next free texel,
 // the longest run of the row) let the scan skip taken texels and rows. The largest scale that fits is found by

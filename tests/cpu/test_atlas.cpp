@@ -155,15 +155,15 @@ double covered_fraction(const Atlas& atlas) {
   return static_cast<double>(std::count(covered.begin(), covered.end(), 1)) / static_cast<double>(covered.size());
 }
 
-// Charts packed by their shapes: the bunny's 677 charts cover at least half of a 1024^2 atlas (bounding boxes
-// covered 0.344), and more at the smaller sizes the methods use than bounding boxes did (512: 0.275, 256: 0.131;
-// with 3 empty texels around each of 677 charts, half is out of reach there), with no texel shared by two charts
-// and 3 empty texels between any two.
+// Charts packed by their shapes: the bunny's 677 charts cover at least half of a 512^2 and of a 1024^2 atlas
+// (measured 0.514 and 0.613; their bounding boxes packed covered 0.275 and 0.344), and more of a 256^2 one than the
+// boxes did (0.289 against 0.131; 3 empty texels around each of 677 charts leave half out of reach there), with no
+// texel shared by two charts and 3 empty texels between any two.
 TEST(AtlasPacking, BunnyChartsCoverHalfTheTexelsWithBordersKept) {
   if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << kBunny << " missing (Debian package glmark2-data)";
   TriangleMesh bunny = lucent::load_mesh(kBunny);
   bunny.uvs.clear();
-  const std::pair<int, double> minimum[] = {{256, 0.25}, {512, 0.45}, {1024, 0.5}};
+  const std::pair<int, double> minimum[] = {{256, 0.25}, {512, 0.5}, {1024, 0.5}};
   for (auto [size, least] : minimum) {
     SCOPED_TRACE(size);
     Atlas atlas = build_atlas(bunny, {.size = size});
