@@ -6,13 +6,14 @@
 // et al. 2008 (Eqs. 6-7) then integrate over the atlas with the per-triangle area ratio A_S / A_T, which
 // texture_gbuffer.h stores per texel.
 //
-// Charts (grow_charts): from a seed triangle, edge-adjacent triangles are added (least deviation from the chart's
-// axis when they were reached first) while the smallest cone enclosing the chart's normals (its axis turned toward
-// each new normal) keeps a half-angle of at most `cone_deg` (triangles of zero area join freely) and the chart stays a topological disk (a triangle joins along one edge with its third vertex new to
-// the chart, or along two edges). A chart is then checked: every triangle within `cone_deg` of the cone's axis and
-// no two triangles overlapping once projected along the axis; a chart that fails is regrown with half the cone (a
-// single triangle always passes). Each chart is projected onto the plane of its cone axis and turned to its
-// minimal-area bounding box; the packer (atlas_packing.h) places the charts' own texel masks, not their boxes.
+// Charts (grow_charts): from a seed triangle, edge-adjacent triangles are added (least deviation from the chart's axis
+// when they were reached first) while the smallest cone enclosing the chart's normals (its axis turned toward each new
+// normal) keeps a half-angle of at most `cone_deg` (triangles of zero area join freely) and the chart stays a
+// topological disk (a triangle joins along one edge with its third vertex new to the chart, or along two edges). A
+// chart is then checked: every triangle within `cone_deg` of the cone's axis and no two triangles overlapping once
+// projected along the axis; a chart that fails is regrown with half the cone (a single triangle always passes). Each
+// chart is projected onto the plane of its cone axis and turned to its minimal-area bounding box; the packer
+// (atlas_packing.h) places the charts' own texel masks, not their boxes.
 //
 // Known limits: orthographic projection stretches a triangle tilted by theta against the chart plane by
 // 1 / cos(theta) in one direction (at most 2 for a 60 degree cone); texel density is uniform in world space, so
