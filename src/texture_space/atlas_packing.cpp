@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <numeric>
 
 namespace lucent::texture_space {
 namespace {
@@ -17,6 +18,9 @@ struct Mask {
   std::vector<glm::ivec2> spans;
   std::vector<std::size_t> first;  // row r's spans are spans[first[r] .. first[r + 1])
   std::vector<int> widest;         // per row, the widest span's length minus one (-1: an empty row)
+  std::vector<int> rows_by_width;  // the non-empty rows, widest first (the likeliest to be blocked)
+  std::vector<std::size_t> spans_by_length;  // span indices, longest first
+  std::vector<int> span_row;                 // the row of each span
 };
 
 glm::dvec2 turn(glm::dvec2 p, int quarter_turns) {
@@ -68,7 +72,18 @@ Mask rasterise(const std::vector<glm::dvec2>& chart, double scale, int quarter_t
     m.first[static_cast<std::size_t>(row) + 1] = m.spans.size();
     for (std::size_t i = m.first[static_cast<std::size_t>(row)]; i < m.spans.size(); ++i)
       m.widest[static_cast<std::size_t>(row)] = std::max(m.widest[static_cast<std::size_t>(row)], m.spans[i].y - m.spans[i].x);
+    if (m.widest[static_cast<std::size_t>(row)] >= 0) m.rows_by_width.push_back(row);
   }
+  std::stable_sort(m.rows_by_width.begin(), m.rows_by_width.end(),
+                   [&](int a, int b) { return m.widest[static_cast<std::size_t>(a)] > m.widest[static_cast<std::size_t>(b)]; });
+  m.span_row.resize(m.spans.size());
+  for (int row = 0; row < m.height; ++row)
+    for (std::size_t i = m.first[static_cast<std::size_t>(row)]; i < m.first[static_cast<std::size_t>(row) + 1]; ++i) m.span_row[i] = row;
+  m.spans_by_length.resize(m.spans.size());
+  std::iota(m.spans_by_length.begin(), m.spans_by_length.end(), std::size_t{0});
+  std::stable_sort(m.spans_by_length.begin(), m.spans_by_length.end(), [&](std::size_t a, std::size_t b) {
+    return m.spans[a].y - m.spans[a].x > m.spans[b].y - m.spans[b].x;
+  });
   return m;
 }
 
@@ -86,8 +101,10 @@ class Occupancy {
   bool find(const Mask& m, int below, int& out_x, int& out_y) const {
     for (int y = 0; y + m.height <= std::min(size_, below); ++y) {
       bool possible = true;
-      for (int r = 0; r < m.height && possible; ++r)
+      for (std::size_t i = 0; i < m.rows_by_width.size() && possible; ++i) {
+        const int r = m.rows_by_width[i];
         possible = longest_[static_cast<std::size_t>(y + r)] > m.widest[static_cast<std::size_t>(r)];
+      }
       if (!possible) continue;
       for (int x = 0; x + m.width <= size_;) {
         const int next = blocked_until(m, x, y);
@@ -120,15 +137,14 @@ class Occupancy {
   // x when the mask fits at (x, y), else the least x' > x where the span that is blocked first could fit: its
   // start moved to the next free texel after the taken one that ends its free run.
   int blocked_until(const Mask& m, int x, int y) const {
-    for (int r = 0; r < m.height; ++r)
-      for (std::size_t i = m.first[static_cast<std::size_t>(r)]; i < m.first[static_cast<std::size_t>(r) + 1]; ++i) {
-        const int l = m.spans[i].x, rr = m.spans[i].y;
-        const std::size_t at = index(x + l, y + r);
-        if (run_[at] > rr - l) continue;
-        const int taken = x + l + run_[at];
-        const int free = taken >= size_ ? size_ : next_free_[index(taken, y + r)];
-        return free - l;
-      }
+    for (std::size_t i : m.spans_by_length) {
+      const int l = m.spans[i].x, rr = m.spans[i].y, row = y + m.span_row[i];
+      const std::size_t at = index(x + l, row);
+      if (run_[at] > rr - l) continue;
+      const int taken = x + l + run_[at];
+      const int free = taken >= size_ ? size_ : next_free_[index(taken, row)];
+      return free - l;
+    }
     return x;
   }
 
