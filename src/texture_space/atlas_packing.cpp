@@ -99,6 +99,7 @@ class Occupancy {
   // The lowest row (then leftmost texel) where every span of the mask lies on free texels; false when there is
   // none with the mask's top at most `below` (a row count).
   bool find(const Mask& m, int below, int& out_x, int& out_y) const {
+    std::size_t hint = 0;
     for (int y = 0; y + m.height <= std::min(size_, below); ++y) {
       bool possible = true;
       for (std::size_t i = 0; i < m.rows_by_width.size() && possible; ++i) {
@@ -107,7 +108,7 @@ class Occupancy {
       }
       if (!possible) continue;
       for (int x = 0; x + m.width <= size_;) {
-        const int next = blocked_until(m, x, y);
+        const int next = blocked_until(m, x, y, hint);
         if (next == x) {
           out_x = x, out_y = y;
           return true;
@@ -134,13 +135,19 @@ class Occupancy {
   std::size_t cells() const { return static_cast<std::size_t>(size_) * static_cast<std::size_t>(size_); }
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(size_) + static_cast<std::size_t>(x); }
 
-  // x when the mask fits at (x, y), else the least x' > x where the span that is blocked first could fit: its
-  // start moved to the next free texel after the taken one that ends its free run.
-  int blocked_until(const Mask& m, int x, int y) const {
-    for (std::size_t i : m.spans_by_length) {
+  // x when the mask fits at (x, y), else an x' > x below which it cannot fit either: a blocked span's start moved
+  // to the next free texel after the taken one that ends its free run. The span that blocked last (`hint`, an index
+  // into spans_by_length) is tried first, as it tends to block again at the next x; which blocked span answers
+  // changes how far the scan jumps, never where the mask first fits.
+  int blocked_until(const Mask& m, int x, int y, std::size_t& hint) const {
+    const std::size_t count = m.spans_by_length.size();
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t order = k == 0 ? hint : (k <= hint ? k - 1 : k);
+      const std::size_t i = m.spans_by_length[order];
       const int l = m.spans[i].x, rr = m.spans[i].y, row = y + m.span_row[i];
       const std::size_t at = index(x + l, row);
       if (run_[at] > rr - l) continue;
+      hint = order;
       const int taken = x + l + run_[at];
       const int free = taken >= size_ ? size_ : next_free_[index(taken, row)];
       return free - l;
