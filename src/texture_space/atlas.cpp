@@ -1,5 +1,5 @@
-// atlas.cpp: see atlas.h. Charts (charts.cpp), their minimal-area boxes, packing (atlas_packing.cpp), texture
-// coordinates with vertices split at seams, and the metrics.
+// atlas.cpp: see atlas.h. Charts (charts.cpp) turned to their minimal-area boxes, packing by their shapes
+// (atlas_packing.cpp), texture coordinates with vertices split at seams, and the metrics.
 #include "texture_space/atlas.h"
 
 #include <algorithm>
@@ -23,7 +23,7 @@ struct PlacedChart {
   std::uint32_t object = 0;
   Chart chart;
   std::vector<glm::dvec2> corners;  // three per chart triangle [scene units]
-  glm::dvec2 extent{0.0};           // box size, x >= y [scene units]
+  double area = 0.0;                // of its triangles [scene units^2]
 };
 
 std::vector<glm::dvec2> convex_hull(std::vector<glm::dvec2> points) {
@@ -67,7 +67,6 @@ void fit_minimal_box(PlacedChart& placed) {
     p -= lo;
     if (turn) p = {hi.y - lo.y - p.y, p.x};
   }
-  placed.extent = turn ? glm::dvec2(hi.y - lo.y, hi.x - lo.x) : hi - lo;
 }
 
 std::vector<PlacedChart> chart_object(const TriangleMesh& world, std::uint32_t object, float cone_deg) {
@@ -79,6 +78,8 @@ std::vector<PlacedChart> chart_object(const TriangleMesh& world, std::uint32_t o
       for (int c = 0; c < 3; ++c) placed.corners.push_back(project(world.positions[world.indices[3 * f + c]], chart.normal));
     placed.chart = std::move(chart);
     fit_minimal_box(placed);
+    for (std::size_t t = 0; t < placed.corners.size(); t += 3)
+      placed.area += 0.5 * std::abs(signed_area2(placed.corners[t], placed.corners[t + 1], placed.corners[t + 2]));
     out.push_back(std::move(placed));
   }
   return out;
@@ -86,7 +87,7 @@ std::vector<PlacedChart> chart_object(const TriangleMesh& world, std::uint32_t o
 
 // The object's mesh with one vertex per (input vertex, chart) and texture coordinates from the packed charts.
 void emit_object(const TriangleMesh& input, const std::vector<const PlacedChart*>& charts,
-                 const std::vector<std::uint32_t>& chart_ids, const std::vector<PackedBox>& boxes, double scale,
+                 const std::vector<std::uint32_t>& chart_ids, const std::vector<std::vector<glm::dvec2>>& texels,
                  int size, AtlasObject& out) {
   const std::size_t triangles = input.indices.size() / 3;
   out.mesh.indices.resize(input.indices.size());
@@ -102,7 +103,7 @@ void emit_object(const TriangleMesh& input, const std::vector<const PlacedChart*
         std::uint32_t source = input.indices[3 * f + c];
         auto [it, inserted] = vertex_of.try_emplace(std::uint64_t{id} << 32 | source, static_cast<std::uint32_t>(out.mesh.positions.size()));
         if (inserted) {
-          glm::dvec2 texel = boxes[id].origin + placed.corners[3 * t + c] * scale;
+          glm::dvec2 texel = texels[id][3 * t + c];
           out.mesh.positions.push_back(input.positions[source]);
           out.mesh.normals.push_back(input.normals[source]);
           out.mesh.uvs.emplace_back(texel / static_cast<double>(size));
@@ -182,23 +183,23 @@ AtlasMetrics compute_metrics(const std::vector<MetricInput>& inputs, int size) {
 
 Atlas build_atlas(std::span<const AtlasInput> inputs, const AtlasOptions& options) {
   auto start = std::chrono::steady_clock::now();
-  // Charts of every object in world space, then ordered by object and, within one, by decreasing height.
+  // Charts of every object in world space, numbered object by object; packed in order of decreasing area (large
+  // charts first pack best).
   std::vector<PlacedChart> charts;
-  for (std::size_t o = 0; o < inputs.size(); ++o) {
-    std::vector<PlacedChart> object = chart_object(transformed(*inputs[o].mesh, inputs[o].world_from_object),
-                                                   static_cast<std::uint32_t>(o), options.cone_deg);
-    std::stable_sort(object.begin(), object.end(), [](const PlacedChart& a, const PlacedChart& b) { return a.extent.y > b.extent.y; });
-    for (PlacedChart& c : object) charts.push_back(std::move(c));
-  }
-  std::vector<glm::dvec2> extents;
-  for (const PlacedChart& c : charts) extents.push_back(c.extent);
-  std::vector<PackedBox> boxes;
-  // The gap between boxes is border + 2 texels: a chart ending at X touches texels up to floor(X), one starting at
-  // X + border + 2 texels from ceil(X + border + 2) - 1 >= floor(X) + border + 1, so border texels lie between.
-  double scale = pack_boxes(extents, options.size, options.border_texels + 2, boxes);
+  for (std::size_t o = 0; o < inputs.size(); ++o)
+    for (PlacedChart& c : chart_object(transformed(*inputs[o].mesh, inputs[o].world_from_object),
+                                       static_cast<std::uint32_t>(o), options.cone_deg))
+      charts.push_back(std::move(c));
+  std::vector<std::size_t> order(charts.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return charts[a].area > charts[b].area; });
+  std::vector<std::vector<glm::dvec2>> shapes, packed, texels(charts.size());
+  for (std::size_t i : order) shapes.push_back(charts[i].corners);
+  const double scale = pack_charts(shapes, options.size, options.border_texels, packed);
   if (scale <= 0.0)
     throw Error(fmt::format("{} charts do not fit into a {} x {} atlas with {}-texel borders; use a larger size",
                             charts.size(), options.size, options.size, options.border_texels));
+  for (std::size_t i = 0; i < order.size(); ++i) texels[order[i]] = std::move(packed[i]);
   Atlas atlas;
   atlas.size = options.size;
   for (std::size_t o = 0; o < inputs.size(); ++o) {
@@ -207,7 +208,7 @@ Atlas build_atlas(std::span<const AtlasInput> inputs, const AtlasOptions& option
     for (std::size_t c = 0; c < charts.size(); ++c)
       if (charts[c].object == o) mine.push_back(&charts[c]), ids.push_back(static_cast<std::uint32_t>(c));
     AtlasObject object;
-    emit_object(*inputs[o].mesh, mine, ids, boxes, scale, options.size, object);
+    emit_object(*inputs[o].mesh, mine, ids, texels, options.size, object);
     atlas.objects.push_back(std::move(object));
   }
   std::vector<MetricInput> metric_inputs;

@@ -1,16 +1,19 @@
 // atlas.h: texture atlases for texture-space subsurface scattering (CPU only, no GL).
 //
 // Source: Lensch et al. 2002, "Interactive Rendering of Translucent Objects", Section 5.1: the mesh is split into
-// charts by normal deviation, each chart is projected orthographically onto the plane of its average normal,
-// rotated to its minimal-area bounding box, and the boxes are packed into a square texture with a global scale
-// and at least 3 texels between charts (support of a 7x7 filter). Chang et al. 2008 (Eqs. 6-7) then integrate over
-// the atlas with the per-triangle area ratio A_S / A_T, which texture_gbuffer.h stores per texel.
+// charts by normal deviation, each chart is projected orthographically onto a plane facing its normals and packed
+// into a square texture with a global scale and at least 3 texels between charts (support of a 7x7 filter). Chang
+// et al. 2008 (Eqs. 6-7) then integrate over the atlas with the per-triangle area ratio A_S / A_T, which
+// texture_gbuffer.h stores per texel.
 //
-// Charts (grow_charts): from a seed triangle, edge-adjacent triangles are added while their normal stays within
-// `cone_deg` of the chart's area-weighted average normal and the chart stays a topological disk (a triangle joins
-// along one edge with its third vertex new to the chart, or along two edges). A chart is then checked: every
-// triangle within the cone of the final average normal and no two projected triangles overlapping; a chart that
-// fails is regrown with half the cone (a single triangle always passes).
+// Charts (grow_charts): from a seed triangle, edge-adjacent triangles are added (least deviation from the chart's axis
+// when they were reached first) while the smallest cone enclosing the chart's normals (its axis turned toward each new
+// normal) keeps a half-angle of at most `cone_deg` (triangles of zero area join freely) and the chart stays a
+// topological disk (a triangle joins along one edge with its third vertex new to the chart, or along two edges). A
+// chart is then checked: every triangle within `cone_deg` of the cone's axis and no two triangles overlapping once
+// projected along the axis; a chart that fails is regrown with half the cone (a single triangle always passes). Each
+// chart is projected onto the plane of its cone axis and turned to its minimal-area bounding box; the packer
+// (atlas_packing.h) places the charts' own texel masks, not their boxes.
 //
 // Known limits: orthographic projection stretches a triangle tilted by theta against the chart plane by
 // 1 / cos(theta) in one direction (at most 2 for a 60 degree cone); texel density is uniform in world space, so
@@ -28,8 +31,9 @@
 
 namespace lucent::texture_space {
 
-// Bumped whenever the builder's output changes for the same input (part of the precompute-cache key).
-inline constexpr std::uint32_t kAtlasBuilderVersion = 1;
+// Bumped whenever the builder's output changes for the same input (part of the precompute-cache key); 2: charts
+// packed by their shapes instead of their bounding boxes.
+inline constexpr std::uint32_t kAtlasBuilderVersion = 2;
 
 struct AtlasOptions {
   int size = 1024;              // atlas width = height [texels]

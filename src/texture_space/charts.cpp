@@ -149,7 +149,7 @@ class ChartGrower {
   std::vector<int> vertex_use_;  // chart triangles using each welded vertex (zeroed after each chart)
 };
 
-// Within the cone of the final average normal and free of overlaps once projected.
+// Every triangle within the cone around the chart's axis, and free of overlaps once projected along it.
 bool chart_is_valid(const Topology& t, const Chart& chart, double cos_cone) {
   std::vector<glm::dvec2> corners;
   corners.reserve(3 * chart.triangles.size());

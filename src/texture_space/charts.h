@@ -1,5 +1,5 @@
-// charts.h: segmentation of a mesh into charts by normal deviation and their orthographic projection (Lensch et
-// al. 2002, Section 5.1; see atlas.h for the rules).
+// charts.h: segmentation of a mesh into charts by normal deviation and their orthographic projection (after Lensch
+// et al. 2002, Section 5.1; see atlas.h for the rules).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -10,7 +10,8 @@ namespace lucent::texture_space {
 
 struct Chart {
   std::vector<std::uint32_t> triangles;  // into the mesh's triangles
-  glm::dvec3 normal{0.0, 0.0, 1.0};      // unit area-weighted average normal: the projection direction
+  glm::dvec3 normal{0.0, 0.0, 1.0};      // unit axis of the cone enclosing the triangles' normals (every normal
+                                         // within the cone's half-angle of it): the projection direction
 };
 
 // Charts covering every triangle once. `positions` are world space [scene units]; triangles are adjacent when
