@@ -52,6 +52,18 @@ struct PrecomputeDecl {
   std::vector<std::byte> (*compute)(const PrecomputeInput& input, const std::function<void(double)>& progress) = nullptr;
 };
 
+// Agreement a method promises with its reference (the bssrdf reference; volpath's for a method that estimates it)
+// where methods are weakest: per pixel on the conformance sphere (about two transport mean free paths across), and
+// on a thin slab lit from behind and a coarse box (eight vertices) lit obliquely. Each value is a relative error:
+// `*_mean` of the mean radiance over the object's pixels, `*_pixels` the noise-corrected RMS error per pixel over
+// the mean reference radiance (tests/gl/test_method_conformance.cpp). Each method declares them beside the values it
+// measured.
+struct ConformanceTolerances {
+  double sphere_pixels = 1.0;
+  double slab_mean = 1.0, slab_pixels = 1.0;
+  double box_mean = 1.0, box_pixels = 1.0;
+};
+
 struct MethodInfo {
   std::string_view name;
   std::string_view summary;
@@ -78,6 +90,7 @@ struct MethodInfo {
   // from the scene as loaded (a method that needs other meshes, e.g. remeshed, makes and caches them itself);
   // null: the scene's own meshes. Throws lucent::Error for meshes the method cannot use.
   Scene (*prepare_meshes)(const Scene& scene, const std::function<void(double)>& progress) = nullptr;
+  ConformanceTolerances weakest = {};  // the sphere per pixel, the backlit thin slab and the coarse box
 };
 
 // The registered method that estimates volpath's image (estimates_volpath), or null.

@@ -2,10 +2,15 @@
 // tested by registering it): on a small scene (a sphere of skim-milk-like material lit from the side, with the
 // method's quick_settings) the output is finite and not blank, the same for the same seed, its passes and
 // statistics are the ones it declares, a bad parameter value is one clear error naming the parameter, and the mean
-// radiance over the sphere agrees with the CPU bssrdf reference within the tolerance the method declares.
+// radiance over the sphere agrees with the CPU bssrdf reference within the tolerance the method declares. Where methods
+// are weakest, each method is compared per pixel with its reference (bssrdf, or volpath for a method that estimates
+// it) on the sphere, a thin slab lit from behind and a coarse box lit obliquely, within the tolerances it declares
+// (MethodInfo::weakest) beside the values it measured.
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -127,6 +132,101 @@ TEST_P(MethodConformance, AgreesWithTheBssrdfReferenceWithinItsTolerance) {
              method.name, ours, theirs, relative, method.reference_tolerance);
   EXPECT_LE(relative, method.reference_tolerance) << method.name;
 }
+
+// The scenes where methods are weakest: the method's quick_settings, the sphere's material, 48 x 48 pixels.
+enum class WeakScene { Sphere, BacklitSlab, CoarseBox };
+constexpr WeakScene kWeakScenes[] = {WeakScene::Sphere, WeakScene::BacklitSlab, WeakScene::CoarseBox};
+
+const char* weak_scene_name(WeakScene s) {
+  return s == WeakScene::Sphere ? "sphere" : s == WeakScene::BacklitSlab ? "backlit_slab" : "coarse_box";
+}
+
+std::string weak_scene_json(const lucent::methods::MethodInfo& method, WeakScene which) {
+  std::string json = scene_json(method);
+  if (which == WeakScene::Sphere) return json;
+  // A slab 0.5 mm thick (about 1.2 transport mean free paths) filling the view, lit from behind: only light that
+  // crossed it reaches the camera. A box of eight vertices, 1.6 mm on a side, three faces seen, lit obliquely.
+  const std::string sphere = R"("shape": "sphere", "radius": 1, "segments": 64,)";
+  const std::string shape = which == WeakScene::BacklitSlab
+                                ? R"("shape": "box", "size": [4, 4, 0.5],)"
+                                : R"("shape": "box", "size": [1.6, 1.6, 1.6], "rotate_deg": [25, 35, 0],)";
+  json.replace(json.find(sphere), sphere.size(), shape);
+  if (which == WeakScene::BacklitSlab) {
+    const std::string light = R"("direction": [-0.8, -0.3, -0.5])";
+    json.replace(json.find(light), light.size(), R"("direction": [0.25, -0.15, 0.95])");
+  }
+  return json;
+}
+
+struct WeakCase {
+  const lucent::methods::MethodInfo* method;
+  WeakScene scene;
+};
+
+class MethodWhereWeakest : public ::testing::TestWithParam<WeakCase> {};
+
+// Relative error of the mean and noise-corrected relative RMS error per pixel over the object's pixels.
+TEST_P(MethodWhereWeakest, AgreesWithItsReferencePerPixel) {
+  const lucent::methods::MethodInfo& method = *GetParam().method;
+  const WeakScene which = GetParam().scene;
+  lucent::test::ensure_gl_context();
+  lucent::Scene scene = lucent::parse_scene(weak_scene_json(method, which), "conformance scene", ".");
+  scene.render.frames = 8;
+  const Rendered rendered = render(scene);
+  lucent::reference::ReferenceSettings settings;
+  settings.integrator =
+      method.estimates_volpath ? lucent::reference::Integrator::Volpath : lucent::reference::Integrator::Bssrdf;
+  settings.samples_per_pixel = method.estimates_volpath ? 64 : 4096;
+  const lucent::reference::ReferenceImage reference = lucent::reference::render_reference(scene, settings);
+  double sum_a = 0.0, sum_b = 0.0, squared = 0.0, noise = 0.0;
+  int n = 0;
+  const std::vector<float>& a = rendered.radiance.pixels;
+  for (std::size_t i = 0; i < a.size(); i += 4) {
+    if (a[i + 3] <= 0.5f) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double ours = a[i + c], theirs = reference.mean.pixels[i + c], se = reference.standard_error.pixels[i + c];
+      sum_a += ours;
+      sum_b += theirs;
+      squared += (ours - theirs) * (ours - theirs);
+      noise += se * se;
+    }
+    ++n;
+  }
+  ASSERT_GT(n, kSize * kSize / 8) << method.name;
+  ASSERT_GT(sum_b, 0.0) << method.name;
+  const double mean_b = sum_b / (3.0 * n);
+  const double mean_error = std::fabs(sum_a - sum_b) / sum_b;
+  const double pixel_error = std::sqrt(std::max(0.0, squared - noise) / (3.0 * n)) / mean_b;
+  const lucent::methods::ConformanceTolerances& t = method.weakest;
+  const double mean_tolerance = which == WeakScene::Sphere        ? method.reference_tolerance
+                                : which == WeakScene::BacklitSlab ? t.slab_mean
+                                                                  : t.box_mean;
+  const double pixel_tolerance = which == WeakScene::Sphere        ? t.sphere_pixels
+                                 : which == WeakScene::BacklitSlab ? t.slab_pixels
+                                                                   : t.box_pixels;
+  fmt::print("{} on the {}: mean {:.5f} against {:.5f} ({} reference), relative error of the mean {:.3f} (declared "
+             "{:.2f}), per pixel {:.3f} (declared {:.2f})\n",
+             method.name, weak_scene_name(which), sum_a / (3.0 * n), mean_b,
+             method.estimates_volpath ? "volpath" : "bssrdf", mean_error, mean_tolerance, pixel_error, pixel_tolerance);
+  EXPECT_LE(mean_error, mean_tolerance) << method.name << " on the " << weak_scene_name(which);
+  EXPECT_LE(pixel_error, pixel_tolerance) << method.name << " on the " << weak_scene_name(which);
+}
+
+std::vector<WeakCase> weak_cases() {
+  std::vector<WeakCase> cases;
+  for (const lucent::methods::MethodInfo* method : lucent::methods::method_registry())
+    for (WeakScene s : kWeakScenes) cases.push_back({method, s});
+  return cases;
+}
+
+std::string weak_case_name(const ::testing::TestParamInfo<WeakCase>& info) {
+  std::string name = std::string(info.param.method->name) + "_" + weak_scene_name(info.param.scene);
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryMethod, MethodWhereWeakest, ::testing::ValuesIn(weak_cases()), weak_case_name);
 
 std::string method_test_name(const ::testing::TestParamInfo<const lucent::methods::MethodInfo*>& info) {
   std::string name(info.param->name);

@@ -84,14 +84,19 @@ const MethodInfo local_global_info{
     kPasses,
     kStats,
     R"({"atlas_size": 128, "light_map_size": 128, "specular": false})",
-    0.35,  // measured 0.274 on llvmpipe (2026-11-28, remeshed; mean 0.06339 vs bssrdf reference 0.08735): as texture-space-is
-           // (0.275), the normal-incidence radial profile of the directional dipole (bssrdf_radial_Rd) drops the oblique light
+    0.02,  // measured 0.007 on llvmpipe (2026-11-28, remeshed, the standard dipole: 0.04285 against 0.04314); with the
+           // directional dipole 0.274 (0.06339 against 0.08735): its kernels use the normal-incidence radial profile
+           // (bssrdf_radial_Rd), which drops the directional dipole's oblique light
     true,
     atlas_options,
     &kPrecompute,
     false,
     false,
     prepare_meshes,
+    // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
+    ConformanceTolerances{0.01,   // sphere, per pixel: 0.000
+                          0.02, 0.02,  // backlit thin slab, mean and per pixel: 0.004, 0.006
+                          0.02, 0.03},  // coarse box: 0.007, 0.016
 };
 
 }  // namespace lucent::methods
