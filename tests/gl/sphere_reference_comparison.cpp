@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include "image_compare.h"
 #include "lucent/lucent.h"
@@ -76,6 +77,19 @@ SphereComparison compare_sphere_with_reference(const std::string& method, const 
     }
   if (out.lit_blocks > 0) out.relative_rmse = std::sqrt(squared / out.lit_blocks) / (lit_reference / out.lit_blocks);
   return out;
+}
+
+void expect_sphere_agrees(const std::string& method, const std::string& method_keys, const std::string& model,
+                          double mean_tolerance, double rmse_tolerance, double max_tolerance) {
+  const SphereComparison c = compare_sphere_with_reference(method, method_keys, model, 8, 1024);
+  fmt::print("{}, {} dipole: mean {:.5f}, bssrdf reference {:.5f}, relative error {:+.4f}; lit region ({} 4x4 blocks): "
+             "relative RMSE {:.4f}, max relative {:.4f}\n",
+             method, model, c.mean, c.reference_mean, c.relative_mean_error, c.lit_blocks, c.relative_rmse,
+             c.max_relative);
+  ASSERT_GT(c.lit_blocks, 40);
+  EXPECT_LE(std::fabs(c.relative_mean_error), mean_tolerance) << method << ", " << model;
+  EXPECT_LE(c.relative_rmse, rmse_tolerance) << method << ", " << model;
+  EXPECT_LE(c.max_relative, max_tolerance) << method << ", " << model;
 }
 
 }  // namespace lucent::test

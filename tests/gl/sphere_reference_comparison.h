@@ -22,6 +22,11 @@ struct SphereComparison {
 SphereComparison compare_sphere_with_reference(const std::string& method, const std::string& method_keys,
                                                const std::string& model, int frames, int reference_spp);
 
+// The comparison over 8 frames against a 1024-spp reference, printed, with the mean, the lit region's relative RMSE
+// and its largest block error expected within the tolerances (gtest expectations).
+void expect_sphere_agrees(const std::string& method, const std::string& method_keys, const std::string& model,
+                          double mean_tolerance, double rmse_tolerance, double max_tolerance);
+
 }  // namespace lucent::test
 
 #endif
