@@ -22,9 +22,9 @@
 #define LUCENT_BINDING_LG_CORNERS 27          // uvec4 per corner of the scene's index buffer (std430): atlas uv bits, vertex
 #define LUCENT_BINDING_LG_SCENE_VERTICES 28   // VertexGPU[] (std430): SceneGpu::vertex_buffer()
 #define LUCENT_BINDING_LG_SCENE_INDICES 29    // uint[] (std430): SceneGpu::index_buffer()
-// The vertex_irradiance pass reuses two slots of atlas_view's (which binds its own buffers there):
-#define LUCENT_BINDING_LG_CHUNK_SUMS 28       // vec4 pairs per chunk (std430): the chunk's part of E^g, B^d
-#define LUCENT_BINDING_LG_VERTEX_CHUNKS 29    // uint[vertices + 1] (std430): each vertex's chunks
+// The vertex_irradiance passes reuse two slots of atlas_view's (which binds its own buffers there):
+#define LUCENT_BINDING_LG_CHUNK_SUMS 28       // vec4 pairs per chunk (std430): the chunk's part of E^g, B^d; shares slot 28 with LUCENT_BINDING_LG_SCENE_VERTICES
+#define LUCENT_BINDING_LG_VERTEX_CHUNKS 29    // uint[vertices + 1] (std430): each vertex's chunks; shares slot 29 with LUCENT_BINDING_LG_SCENE_INDICES
 
 // Mesa's llvmpipe ends an invocation's loops silently after 65,535 iterations in all (kLlvmpipeLoopIterations in
 // platform/gl_capabilities.h). A vertex's texels (up to a whole atlas face on a coarse mesh) are therefore summed
