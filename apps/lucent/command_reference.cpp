@@ -54,6 +54,12 @@ void check_resumable(const nlohmann::json& meta, const ReferenceOptions& o, cons
                             "estimators, this lucent renders version {}; its samples estimate another image: render "
                             "it anew",
                             path, version, reference::kReferenceVersion));
+  // A bssrdf reference integrates the objects' models, which a scene without "model" keys leaves to the default:
+  // one rendered before its models were recorded cannot be told to be the same image.
+  const std::string models = reference::scene_models(scene);
+  if (o.integrator == "bssrdf" && (!meta.contains("models") || meta["models"] != models))
+    throw Error(fmt::format("{}: cannot resume: the reference integrates the models {}, this run {}; render it anew",
+                            path, meta.contains("models") ? meta["models"].dump() : "(not recorded)", models));
   for (const auto& [key, now] : keys)
     if (differs(key, now))
       throw Error(fmt::format("{}: cannot resume: the reference has {} {}, this run {}", path, key, meta[key].dump(),
@@ -126,6 +132,7 @@ void run(ReferenceOptions o) {
                              {"scene_hash", scene_hash},
                              {"reference_version", reference::kReferenceVersion},
                              {"integrator", o.integrator},
+                             {"models", reference::scene_models(scene)},
                              {"seed", o.settings.seed},
                              {"jitter", o.settings.jitter},
                              {"max_scatter", o.settings.max_scatter},

@@ -70,6 +70,7 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
   // makes it stale) and the same version of the estimators.
   const Scene scene = load_scene(scene_path, sets);
   const std::string scene_hash = scene_content_hash(scene);
+  const std::string models = scene_models(scene);
   std::optional<ReferenceImage> cached;
   std::error_code listing;
   for (const auto& entry : fs::directory_iterator(exr.parent_path(), listing)) {
@@ -82,6 +83,7 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
       auto text = [&](const char* key) { return m->contains(key) && (*m)[key].is_string() ? (*m)[key].get<std::string>() : ""; };
       if (!m || text("scene") != scene_path || text("integrator") != integrator) continue;
       if (text("scene_hash") != scene_hash || reference_version(*m) != kReferenceVersion) continue;
+      if (integrator == "bssrdf" && text("models") != models) continue;  // older entries record none: re-rendered
       if (relevant_overrides(strings(*m, "overrides"), integrator, scene_path) !=
           relevant_overrides(sets, integrator, scene_path))
         continue;
@@ -106,7 +108,8 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
                   {"scene_hash", scene_hash},
                   {"reference_version", kReferenceVersion},
                   {"overrides", sets},
-                  {"integrator", integrator}});
+                  {"integrator", integrator},
+                  {"models", models}});
   return image;
 }
 

@@ -62,6 +62,16 @@ std::string scene_content_hash(const Scene& scene) {
   return hasher.finish().hex();
 }
 
+std::string scene_models(const Scene& scene) {
+  std::string models;
+  for (const SceneObject& object : scene.objects) {
+    if (!object.translucent()) continue;
+    if (!models.empty()) models += ",";
+    models += to_string(object.material->model);
+  }
+  return models;
+}
+
 std::vector<std::uint64_t> reference_seeds(const json& meta, const std::string& path) {
   std::vector<std::uint64_t> seeds;
   auto add = [&](const json& seed) {
@@ -126,6 +136,10 @@ StoredReference merge_references(const std::vector<std::string>& inputs) {
     if (setting(m, scene) != setting(m0, scene))
       throw Error(fmt::format("{}: cannot merge: another scene ({} {} differs from {} in {})", b.path, scene_key,
                               setting(m, scene).dump(), setting(m0, scene).dump(), first.path));
+    const auto models = [](const json& j) { return j.contains("models") ? j["models"] : json(); };
+    if (models(m) != models(m0))
+      throw Error(fmt::format("{}: cannot merge: the models {} differ from {} in {}", b.path, models(m).dump(),
+                              models(m0).dump(), first.path));
     if (overrides_of(m) != overrides_of(m0))
       throw Error(fmt::format("{}: cannot merge: overrides {} differ from {} in {}", b.path, json(overrides_of(m)).dump(),
                               json(overrides_of(m0)).dump(), first.path));

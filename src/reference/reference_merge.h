@@ -17,6 +17,11 @@ namespace lucent::reference {
 // order scene_input_files lists them: 32 hex digits, the same on every host for the same files wherever they lie.
 std::string scene_content_hash(const Scene& scene);
 
+// The diffusion model of each translucent object, in order ("standard,directional"): what a bssrdf reference
+// integrates besides the scene's files. A material that names no model takes the default (kDefaultBssrdfModel),
+// which the files do not record, so a bssrdf reference is reused or resumed only for the same models.
+std::string scene_models(const Scene& scene);
+
 // The seeds whose samples a reference holds: its "seeds" (a merged reference) or its "seed". Throws lucent::Error
 // naming `path` when the metadata has neither.
 std::vector<std::uint64_t> reference_seeds(const nlohmann::json& metadata, const std::string& path);

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "reference/reference_cache.h"
 #include "../cli_runner.h"
 #include "lucent/image.h"
 #include <nlohmann/json.hpp>
@@ -126,6 +127,47 @@ TEST(CliReferences, ResumeRefusesAnythingButTheSameReference) {
   Result edited = run(resume);
   EXPECT_NE(edited.exit_code, 0);
   EXPECT_NE(edited.output.find("cannot resume: the reference has scene_hash"), std::string::npos) << edited.output;
+}
+
+// A bssrdf reference integrates the objects' models; a scene file that names none leaves them to the default, so
+// the same file can mean another image under another default. The models are recorded, and a reference of other
+// models (or of unrecorded ones) is neither resumed nor reused by the bench's cache.
+TEST(CliReferences, ABssrdfReferenceOfOtherModelsIsNeitherResumedNorReused) {
+  auto dir = references_dir();
+  const std::string scene = (dir / "models_sphere.json").string(), exr = (dir / "models.exr").string(),
+                    meta = (dir / "models.meta.json").string();
+  std::ofstream(scene) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
+    "render": {"width": 12, "height": 8}})";
+  ASSERT_EQ(run("reference " + scene + " --integrator bssrdf --spp 2 -q -o " + exr).exit_code, 0);
+  nlohmann::json m = nlohmann::json::parse(std::ifstream(meta));
+  EXPECT_EQ(m["models"], std::string(lucent::to_string(lucent::kDefaultBssrdfModel)));
+  m["models"] = "directional";  // as if rendered when the default was another model
+  std::ofstream(meta) << m.dump();
+  Result resumed = run("reference " + scene + " --integrator bssrdf --spp 2 -q --resume -o " + exr);
+  EXPECT_NE(resumed.exit_code, 0);
+  EXPECT_EQ(resumed.output, "lucent: " + meta + ": cannot resume: the reference integrates the models \"directional\", "
+                            "this run " + std::string(lucent::to_string(lucent::kDefaultBssrdfModel)) +
+                            "; render it anew\n");
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(meta))["samples_per_pixel"].get<int>(), 2);  // left as it was
+
+  // The bench's cache: an entry of other models is rendered anew beside it, not returned.
+  const std::string cache = (dir / "models_cache").string();
+  std::filesystem::remove_all(cache);
+  std::filesystem::create_directories(cache);
+  const lucent::reference::ReferenceImage a = lucent::reference::cached_reference(cache, scene, {}, "bssrdf", 2, {});
+  for (const auto& entry : std::filesystem::directory_iterator(cache)) {
+    if (!entry.path().string().ends_with(".meta.json")) continue;
+    nlohmann::json cm = nlohmann::json::parse(std::ifstream(entry.path()));
+    EXPECT_EQ(cm["models"], std::string(lucent::to_string(lucent::kDefaultBssrdfModel)));
+    cm["models"] = "directional";
+    std::ofstream(entry.path()) << cm.dump();
+    const lucent::reference::ReferenceImage b = lucent::reference::cached_reference(cache, scene, {}, "bssrdf", 2, {});
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(entry.path()))["models"],
+              std::string(lucent::to_string(lucent::kDefaultBssrdfModel)))
+        << "the entry of other models was returned instead of rendered anew";
+    EXPECT_EQ(a.samples_per_pixel, b.samples_per_pixel);
+  }
 }
 
 TEST(CliReferences, BadInputsNameTheInput) {
