@@ -5,11 +5,16 @@
 // Shader: src/methods/per_pixel/shaders/shade.comp.
 #include "methods/method.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
+
+#include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
 #include "methods/per_pixel/per_pixel_io.h"
 #include "gpu/shader_program.h"
+#include "platform/gl_capabilities.h"
 #include "render/light_gbuffer.h"
 #include "render/view_accumulator.h"
 
@@ -32,6 +37,13 @@ class PerPixel final : public Method {
     // View dependent: a camera change restarts accumulation too.
     restart = accumulated_.begin_frame(frame, restart || !params_.boolean("progressive"));
     light_gbuffer_.fill_frame(frame);
+    // One invocation samples N per band and light in one loop nest (light_sampling.glsl): refused on llvmpipe
+    // when that passes the driver's loop cap, which would end the loops early and darken the image.
+    const std::uint64_t lights = static_cast<std::uint64_t>(std::max(frame.light_counts.x, 1));
+    const std::uint64_t n = static_cast<std::uint64_t>(params_.integer("N"));
+    platform::check_loop_iterations(
+        fmt::format("per-pixel: N {} x 3 bands x {} lights", n, lights), n * 3u * lights,
+        fmt::format("lower method.N to {}", platform::kLlvmpipeLoopIterations / (3u * lights)));
     frame.light_counts.w = params_.integer("visibility_taps");
     frame.seeds.z = restart ? 1u : 0u;
     frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);

@@ -114,6 +114,13 @@ class RadiosityMaps final : public Method {
       ++accumulated_;
     }
     light_gbuffer_.fill_frame(frame);
+    // One invocation samples N per band and light in one loop nest (light_sampling.glsl): refused on llvmpipe
+    // when that passes the driver's loop cap, which would end the loops early and darken the image.
+    const std::uint64_t lights = static_cast<std::uint64_t>(std::max(frame.light_counts.x, 1));
+    const std::uint64_t n = static_cast<std::uint64_t>(params_.integer("N"));
+    platform::check_loop_iterations(
+        fmt::format("radiosity-maps: N {} x 3 bands x {} lights", n, lights), n * 3u * lights,
+        fmt::format("lower method.N to {}", platform::kLlvmpipeLoopIterations / (3u * lights)));
     frame.light_counts.w = params_.integer("visibility_taps");
     frame.seeds.z = restart ? 1u : 0u;
     const bool coverage_view = params_.text("view") == "coverage";

@@ -52,6 +52,7 @@ uint loop_count = 0u;
 // counts the iterations of the SIMD loop over 8 or 16 invocations at once.)
 bool loops_were_cut() {
   uint n = 0u;
+  // loop bound: checked; the probe of the cap: random_walk.cpp sets its count from kLlvmpipeLoopIterations
   for (uint i = 0u; i < method.dispatch.w; ++i) ++n;
   return n != method.dispatch.w;
 }
@@ -95,6 +96,7 @@ Hit trace(vec3 origin, vec3 direction, float t_max, float t_min) {
     int count = floatBitsToInt(n.upper.w);
     if (count > 0) {
       int first = floatBitsToInt(n.lower.w);
+      // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
       for (int i = first; i < first + count; ++i) {
         ++loop_count;
         TriangleGPU tri = triangles[i];
@@ -220,6 +222,7 @@ Beam refracted_beam(int object, vec3 x, bool point, vec3 x_l, vec3 light_dir) {
   Hit hit;
   bool converged = false;
   int iterations = point ? 32 : 16;
+  // loop bound: checked; at most 32 iterations per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int iteration = 0; iteration < iterations && !converged; ++iteration) {
     ++loop_count;
     hit = trace_from_surface(x, toward, 1e30f);
@@ -259,6 +262,7 @@ Beam refracted_beam(int object, vec3 x, bool point, vec3 x_l, vec3 light_dir) {
 vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
   vec3 g = walk_objects[object].g.xyz;
   vec3 L = vec3(0.0f);
+  // loop bound: checked; at most LUCENT_MAX_LIGHTS lights per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     ++loop_count;
     LightGPU light = frame.lights[l];
@@ -294,6 +298,7 @@ vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
 vec3 lambertian_next_event(Hit hit, vec3 n, vec3 albedo) {
   vec3 L = vec3(0.0f);
   vec3 origin = hit.position + hit.offset * n;
+  // loop bound: checked; at most LUCENT_MAX_LIGHTS lights per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     ++loop_count;
     LightGPU light = frame.lights[l];
@@ -604,6 +609,7 @@ void main() {
   bool counted = pixel.x % method.jump_info.y == 0 && pixel.y % method.jump_info.y == 0;
   bool limited = false;
   // Events while the loop iterations stay under the budget (each event stays far below the cap minus it).
+  // loop bound: checked; events end once loop_count reaches method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
   for (int event = 0; event < 1000000 && loop_count < method.dispatch.y; ++event) {
     ++loop_count;
     bool alive = path_event();
