@@ -90,6 +90,7 @@ Hit trace(vec3 origin, vec3 direction, float t_max, float t_min) {
   int stack[64];
   int depth = 0, node = 0;
   if (box_entry(nodes[0].lower.xyz, nodes[0].upper.xyz, origin, inv_direction, t_max) < 0.0f) return hit;
+  // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y (random_walk.cpp budgets it well under kLlvmpipeLoopIterations)
   for (int step = 0; step < kMaxTraversalSteps; ++step) {
     ++loop_count;
     BvhNodeGPU n = nodes[node];
@@ -169,6 +170,7 @@ vec3 transmittance(int object, vec3 a, vec3 b) {
   vec3 direction = (b - a) / max(length_ab, 1e-30f), sigma_t = sigma_t_of(object);
   vec3 T = vec3(1.0f);
   float t = free_flight(mu, rnd());
+  // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y (random_walk.cpp budgets it well under kLlvmpipeLoopIterations)
   for (int i = 0; i < kMaxRatioTrackingSteps && t < length_ab; ++i) {
     ++loop_count;
     T *= max(vec3(0.0f), 1.0f - multiplier(object, a + t * direction) * sigma_t / mu);
@@ -435,6 +437,7 @@ int delta_track(float boundary_t, out vec3 x) {
   float mu = sigma_maj[path_hero];
   float t = 0.0f;
   x = path_origin;
+  // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y (random_walk.cpp budgets it well under kLlvmpipeLoopIterations)
   for (int i = 0; i < kMaxRatioTrackingSteps; ++i) {
     ++loop_count;
     float dt = free_flight(mu, rnd());
