@@ -39,7 +39,7 @@ const GLCapabilities& current_capabilities();
 // instead of as an incomplete framebuffer (or, on llvmpipe, the kernel's out-of-memory killer).
 void require_device_memory(std::uint64_t bytes, const std::string& what);
 
-// On llvmpipe, throws lucent::Error("<what> = 393230 shader loop iterations per invocation; llvmpipe ends an
+// On llvmpipe, throws lucent::Error("<what> = 393224 shader loop iterations per invocation; llvmpipe ends an
 // invocation's loops past 32000 (<advice>)") when `iterations` pass kLlvmpipeLoopBudget, instead of an image
 // that darkens silently where the driver cut the loops short. Other drivers have no such cap: nothing is checked.
 // `what` names the parameters and their product ("per-pixel: N 65536 x 3 bands x 2 lights").
