@@ -24,10 +24,11 @@ struct GLCapabilities {
 // sources (tests/cpu/test_shader_loops.cpp); a bound that only parameters can keep under it is refused at run time
 // by check_loop_iterations.
 inline constexpr unsigned kLlvmpipeLoopIterations = 65535;
-// The iterations a shader's loops may be planned for: under half the cap. Measured (llvmpipe, Mesa 22.3.6, 2
-// cores): the per-pixel invocation with two lights runs 2 x (1 + 3 x (1 + N)) loop iterations and renders 2% darker
-// from N 5,459 (32,762 iterations) on, unchanged at N 5,450 (32,708): the driver's counter runs about twice as fast
-// as one invocation's own count of these loops (it counts the SIMD loop over several invocations at once).
+// The iterations a shader's loops may be planned for: under half the cap, the worst measured (llvmpipe, Mesa
+// 22.3.6, 2 cores). The per-pixel invocation with two lights runs 2 x (1 + 3 x (1 + N)) loop iterations by its own
+// count and renders 2% darker from N 5,459 (32,762) on, unchanged at N 5,450 (32,708): there the driver's counter
+// ran out at about half. The voxel-paths triangle loop, by contrast, lost its columns only past the full 65,535.
+// Why the counter runs faster in some loop nests is not known; the budget covers the worst case seen.
 inline constexpr unsigned kLlvmpipeLoopBudget = 32000;
 
 // Queries the current context and throws lucent::Error naming the missing version or limit.
