@@ -14,6 +14,7 @@
 
 vec3 transmitted_irradiance(vec3 x, vec3 n, float eta, float wrap, bool shadows) {
   vec3 E_t = vec3(0.0f);
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; the light G-buffer holds at most LUCENT_MAX_LIGHTS lights, each tested with at most 7 x 7 shadow taps (visibility_taps <= 7)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     vec3 w_l;
     vec3 E = light_incidence(frame.lights[l], x, w_l);

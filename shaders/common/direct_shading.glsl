@@ -7,6 +7,7 @@
 
 vec3 lambertian_direct(vec3 x, vec3 n, vec3 albedo) {
   vec3 L = vec3(0.0f);
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; at most LUCENT_MAX_LIGHTS lights, each with at most 7 x 7 shadow taps
   for (int l = 0; l < frame.light_counts.x; ++l) {
     vec3 w_l;
     vec3 E = light_incidence(frame.lights[l], x, w_l);
@@ -22,6 +23,7 @@ vec3 lambertian_direct(vec3 x, vec3 n, vec3 albedo) {
 vec3 specular_direct(vec3 x, vec3 n, vec3 w_o, float eta) {
   vec3 L = vec3(0.0f);
   if (frame.shading.x <= 0.5f) return L;
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; at most LUCENT_MAX_LIGHTS lights, each with at most 7 x 7 shadow taps
   for (int l = 0; l < frame.light_counts.x; ++l) {
     LightGPU light = frame.lights[l];
     if (int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL && light.axis.w < 0.5f) continue;  // environment light

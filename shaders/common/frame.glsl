@@ -26,7 +26,9 @@ float multisample_visibility(sampler2DArray depth, vec3 t, int layer, int size, 
   int h = taps / 2;
   ivec2 center = ivec2(t.xy * float(size));
   float visible = 0.0f;
+  // loop bound: LUCENT_MAX_MAPS x 7 x 7; taps <= 7 (visibility_taps' range; 3 where a method fixes it), called once per map (K <= LUCENT_MAX_MAPS) or per light by a few light loops (<= 4 x LUCENT_MAX_LIGHTS)
   for (int dy = -h; dy <= h; ++dy)
+    // loop bound: LUCENT_MAX_MAPS x 7 x 7; the taps of one row, counted with the loop above
     for (int dx = -h; dx <= h; ++dx) {
       ivec2 p = clamp(center + ivec2(dx, dy), ivec2(0), ivec2(size - 1));
       visible += t.z <= texelFetch(depth, ivec3(p, layer), 0).r + bias ? 1.0f : 0.0f;

@@ -76,6 +76,7 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
   int model = int(material.sigma_s.w);
   LightPlane plane = light_plane(l, x_o);
   float sum = 0.0f;
+  // loop bound: checked; N samples x 3 bands x the lights per invocation, refused on llvmpipe above the cap by per-pixel and radiosity-maps (platform::check_loop_iterations)
   for (int j = 0; j < samples; ++j) {
     // Sample (r, alpha) from p_exp (eq. 12) around x_o.
     float xi_1 = next_float(state + uint(2 * j));
@@ -102,6 +103,7 @@ vec3 scattered_radiosity(int object, vec3 x_o, vec3 n_o, vec2 uv_o, uint point_i
   material = material_at(material, uv_o);
 #endif
   vec3 B = vec3(0.0f);
+  // loop bound: checked; the lights x 3 bands x N samples inside, refused on llvmpipe above the cap (platform::check_loop_iterations)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     for (int band = 0; band < 3; ++band) {
       uint stream = uint((int(stream_base) * LUCENT_MAX_LIGHTS + l) * 3 + band);

@@ -56,7 +56,9 @@ float light_visibility(int l, vec3 x, vec3 n) {
   float own = length(d);
   float bias = 3.0f * texel_angle * own;
   float visible = 0.0f;
+  // loop bound: 4 x LUCENT_MAX_LIGHTS x 7 x 7; visibility_taps <= 7 (3 where a method fixes it), once per light by at most four light loops of a stage
   for (int dy = -h; dy <= h; ++dy)
+    // loop bound: 4 x LUCENT_MAX_LIGHTS x 7 x 7; the taps of one row, counted with the loop above
     for (int dx = -h; dx <= h; ++dx) {
       ivec2 p = clamp(center + ivec2(dx, dy), ivec2(0), ivec2(size - 1));
       vec4 hit = texelFetch(light_position, ivec3(p, layer), 0);

@@ -42,6 +42,7 @@ void emit_triangles(ivec3 cell, uint i, int cube_inside, uint capacity) {
   uint slot = offsets[i].y;
   for (int tet = 0; tet < LUCENT_MT_TETS_PER_CELL; ++tet) {
     int inside = mt_tet_inside_mask(tet, cube_inside);
+    // loop bound: LUCENT_MT_TETS_PER_CELL x 2; marching tetrahedra emit at most two triangles per tetrahedron
     for (int t = 0; t < mt_tet_triangle_count(inside); ++t) {
       if (slot >= capacity) return;
       ivec3 edges = mt_tet_triangle(inside, mt_tet_parity(tet), t);

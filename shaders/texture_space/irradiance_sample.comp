@@ -27,6 +27,7 @@ layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { Counters
 // First index in [first, first + n) whose cdf exceeds target (n when none).
 int search(int first, int n, float target) {
   int lo = 0, hi = n;
+  // loop bound: 2 x 13; two binary searches over atlas_size <= 4096 entries (at most log2(4096) + 1 steps each)
   while (lo < hi) {
     int mid = (lo + hi) / 2;
     if (cdf[first + mid] > target) hi = mid;
@@ -53,6 +54,7 @@ void main() {
     int x = min(search(y * size, size, target - before), size - 1);
     t = ivec2(x, y);
   } else {
+    // loop bound: 13; the levels of the irradiance pyramid of an atlas of at most 4096^2 texels
     for (int level = levels - 2; level >= 0; --level) {
       ivec2 c = 2 * t;
       vec4 w = vec4(texelFetch(pyramid, c, level).a, texelFetch(pyramid, c + ivec2(1, 0), level).a,

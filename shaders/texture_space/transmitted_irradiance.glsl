@@ -4,6 +4,7 @@
 // common/frame.glsl, common/lights.glsl and bssrdf/fresnel.h.
 vec3 transmitted_irradiance(vec3 x, vec3 n, float eta) {
   vec3 E = vec3(0.0f);
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; at most LUCENT_MAX_LIGHTS lights, each with at most 7 x 7 shadow taps
   for (int l = 0; l < frame.light_counts.x; ++l) {
     vec3 w_l;
     vec3 E_l = light_incidence(frame.lights[l], x, w_l);

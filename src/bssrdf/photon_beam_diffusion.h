@@ -86,6 +86,7 @@ LUCENT_INLINE float photon_beam_integrand(PhotonBeamMedium p, float r, float z_r
 LUCENT_INLINE float photon_beam_diffusion_Rms(BandMedium m, float eta, float r, int n_samples, float d_r_min) {
   PhotonBeamMedium p = make_photon_beam_medium(m, eta);
   float sum = 0.0f;
+  // loop bound: checked; kPhotonBeamSamples per S_d evaluation, which the shaders call once per BSSRDF sample: per-pixel and radiosity-maps count them in check_loop_iterations
   for (int i = 0; i < n_samples; ++i) {
     float z_r = -log(1.0f - (float(i) + 0.5f) / float(n_samples)) / p.sigma_t_prime;
     sum += photon_beam_integrand(p, r, z_r, d_r_min);
@@ -113,6 +114,7 @@ LUCENT_INLINE float photon_beam_single_scattering(BandMedium m, float eta, float
   float rho = m.sigma_s / m.sigma_t;
   float t_c = r * sqrt(max(eta * eta - 1.0f, 0.0f));
   float sum = 0.0f;
+  // loop bound: 0; no shader calls it (C++ only, the CPU tests)
   for (int i = 0; i < n_samples; ++i) {
     float t = t_c - log(1.0f - (float(i) + 0.5f) / float(n_samples)) / m.sigma_t;
     float d = sqrt(r * r + t * t);

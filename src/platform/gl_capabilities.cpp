@@ -68,4 +68,11 @@ void require_device_memory(std::uint64_t bytes, const std::string& what) {
                           static_cast<double>(available) / kGiB));
 }
 
+void check_loop_iterations(std::string_view what, std::uint64_t iterations, std::string_view advice) {
+  if (!g_capabilities.is_llvmpipe || iterations <= kLlvmpipeLoopBudget) return;
+  throw Error(fmt::format("{} = {} shader loop iterations per invocation; llvmpipe ends an invocation's loops past {} "
+                          "({})",
+                          what, iterations, kLlvmpipeLoopBudget, advice));
+}
+
 }  // namespace lucent::platform

@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace lucent::platform {
 
@@ -18,8 +19,17 @@ struct GLCapabilities {
 // Mesa's llvmpipe ends every loop of a shader invocation, silently, once the loops' iterations together reach
 // this many (one counter per invocation, decremented by each iteration of any loop and never reset). Shaders
 // whose loop counts come from data bound them below it, or split their work over dispatches (the random-walk
-// method counts its iterations and starts another event only well under it).
+// method counts its iterations and starts another event only well under it). Every shader loop whose count comes
+// from data states its bound in a `// loop bound: ...` comment, checked against this cap by a scan of the embedded
+// sources (tests/cpu/test_shader_loops.cpp); a bound that only parameters can keep under it is refused at run time
+// by check_loop_iterations.
 inline constexpr unsigned kLlvmpipeLoopIterations = 65535;
+// The iterations a shader's loops may be planned for: under half the cap, the worst measured (llvmpipe, Mesa
+// 22.3.6, 2 cores). The per-pixel invocation with two lights runs 2 x (1 + 3 x (1 + N)) loop iterations by its own
+// count and renders 2% darker from N 5,459 (32,762) on, unchanged at N 5,450 (32,708): there the driver's counter
+// ran out at about half. The voxel-paths triangle loop, by contrast, lost its columns only past the full 65,535.
+// Why the counter runs faster in some loop nests is not known; the budget covers the worst case seen.
+inline constexpr unsigned kLlvmpipeLoopBudget = 32000;
 
 // Queries the current context and throws lucent::Error naming the missing version or limit.
 GLCapabilities check_capabilities();
@@ -29,5 +39,11 @@ const GLCapabilities& current_capabilities();
 // exceed the device's memory, so a too-large allocation fails at once with the parameters that asked for it
 // instead of as an incomplete framebuffer (or, on llvmpipe, the kernel's out-of-memory killer).
 void require_device_memory(std::uint64_t bytes, const std::string& what);
+
+// On llvmpipe, throws lucent::Error("<what> = 393224 shader loop iterations per invocation; llvmpipe ends an
+// invocation's loops past 32000 (<advice>)") when `iterations` pass kLlvmpipeLoopBudget, instead of an image
+// that darkens silently where the driver cut the loops short. Other drivers have no such cap: nothing is checked.
+// `what` names the parameters and their product ("per-pixel: N 65536 x 3 bands x 2 lights").
+void check_loop_iterations(std::string_view what, std::uint64_t iterations, std::string_view advice);
 
 }  // namespace lucent::platform

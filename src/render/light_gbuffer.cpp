@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "bssrdf/photon_beam_diffusion.h"
 #include "gpu/gl_debug.h"
 
 namespace lucent::render {
@@ -16,6 +17,13 @@ std::string light_sampling_defines(const Scene& scene) {
     }
   if (has_material_maps(scene)) defines += "#define LUCENT_MATERIAL_MAPS 1\n";  // media/material_map.h
   return defines;
+}
+
+std::uint64_t light_sampling_iterations_per_sample(const Scene& scene) {
+  for (const SceneObject& object : scene.objects)
+    if (object.translucent() && object.material->model == BssrdfModel::PhotonBeamDiffusion)
+      return 1u + static_cast<std::uint64_t>(shader::kPhotonBeamSamples);
+  return 1u;
 }
 
 LightGBuffer::LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int size)

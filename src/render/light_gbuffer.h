@@ -1,6 +1,7 @@
 // light_gbuffer.h: step 1 shared by the methods that sample light space (radiosity-maps, per-pixel): the lights
 // as the GPU sees them, the layered light G-buffer (render/light_views.h) and the pass that renders it.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "gpu/gbuffer.h"
@@ -14,6 +15,10 @@ namespace lucent::render {
 // Preprocessor defines for shaders that include common/light_sampling.glsl or bssrdf/model.h: the point-light path
 // is compiled only when the scene has point or spot lights, the tabulated model only when a material uses it.
 std::string light_sampling_defines(const Scene& scene);
+// The shader loop iterations of one S_d evaluation of light_sampling.glsl: 1, or 1 + kPhotonBeamSamples when a
+// translucent object uses photon beam diffusion (its beam integral is a loop), so that a method can count the
+// iterations an invocation runs against llvmpipe's loop cap (platform::check_loop_iterations).
+std::uint64_t light_sampling_iterations_per_sample(const Scene& scene);
 
 class LightGBuffer {
  public:

@@ -30,6 +30,7 @@ LUCENT_INLINE MipChoice mip_choose_child(vec4 w, float u) {
   // Rounding past the end: the last child with non-zero weight.
   if (c.child < 0) c.child = w.w > 0.0f ? 3 : (w.z > 0.0f ? 2 : (w.y > 0.0f ? 1 : 0));
   float before = 0.0f;
+  // loop bound: 3; the children before the chosen one of a 2 x 2 quad
   for (int i = 0; i < c.child; ++i) before += w[i];
   float width = w[c.child];
   c.u = width > 0.0f ? clamp((target - before) / width, 0.0f, 0.99999994f) : 0.0f;

@@ -86,6 +86,10 @@ void IrradianceSampler::build(int order) {
     glProgramUniform1i(row_cdf_.id(), 0, size_);
     glBindImageTexture(static_cast<GLuint>(slots_.source_image), pyramid_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(slots_.row_cdf_buffer), row_cdf_buffer_);
+    glProgramUniform1i(row_cdf_.id(), 1, 0);  // every row, one invocation each
+    glDispatchCompute(groups(size_, 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glProgramUniform1i(row_cdf_.id(), 1, 1);  // the row totals
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

@@ -1,6 +1,7 @@
 // test_radiosity_maps.cpp: image tests of the radiosity-maps method on llvmpipe (small resolutions):
 // (a) light bleeds past the terminator, farther in red than in blue; (b) same seed, same image; (c) golden
-// image; (d) converged scattered radiosity of a flat slab equals the model's total diffuse reflectance.
+// image; (d) converged scattered radiosity of a flat slab equals the model's total diffuse reflectance; (e) on
+// llvmpipe, an N whose loops would pass the driver's loop budget is one clear error naming method.N.
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -13,7 +14,9 @@
 
 #include "bssrdf/model.h"
 #include "image_compare.h"
+#include "lucent/error.h"
 #include "lucent/lucent.h"
+#include "platform/gl_capabilities.h"
 #include "../test_paths.h"
 
 namespace {
@@ -229,6 +232,55 @@ TEST(RadiosityMaps, SlabRadiosityApproachesModelTotalReflectance) {
       RecordProperty(fmt::format("model{}_band{}_measured_over_expected", model, band), std::to_string(measured / expected));
     }
   }
+}
+
+// Three lights: a map texel's invocation runs 3 x (1 + 3 x (1 + N)) loop iterations, so N 4096 (the parameter's
+// maximum) is refused and N 3554 is the largest within llvmpipe's loop budget of 32,000; it renders finite and as
+// bright as N 256 in the mean (a cut loop drops the last light's samples: a third of the light or more).
+TEST(RadiosityMaps, AnNPastTheDriverLoopBudgetIsOneErrorAndTheLargestUnderItRenders) {
+  lucent::test::ensure_gl_context();
+  if (!lucent::platform::current_capabilities().is_llvmpipe) GTEST_SKIP() << "only llvmpipe caps shader loops";
+  auto render = [](int N) {
+    lucent::Scene scene = lucent::parse_scene(fmt::format(R"({{
+      "scale_mm": 10,
+      "camera": {{ "eye": [0, 0, 6], "target": [0, 0, 0], "fov_y_deg": 22 }},
+      "lights": [{{ "direction": [1, 0, -0.3], "radiance": [1, 1, 1] }},
+                 {{ "direction": [-1, 0.2, -0.5], "radiance": [0.5, 0.5, 0.5] }},
+                 {{ "direction": [0, -1, -0.4], "radiance": [0.5, 0.5, 0.5] }}],
+      "objects": [{{ "shape": "sphere", "radius": 1, "segments": 48, "material": "Potato" }}],
+      "method": {{ "name": "radiosity-maps", "K": 2, "N": {}, "map_size": 16, "light_map_size": 64, "vpls": 0,
+                   "specular": false }},
+      "render": {{ "width": 16, "height": 16, "frames": 1 }} }})",
+                                                         N),
+                                              "three-light sphere", ".");
+    lucent::OffscreenFramebuffer framebuffer(16, 16);
+    lucent::Renderer renderer(scene);
+    renderer.render(scene.camera, {framebuffer.id(), 16, 16});
+    return renderer.read_radiance();
+  };
+  try {
+    render(4096);
+    ADD_FAILURE() << "N 4096 with three lights rendered on llvmpipe";
+  } catch (const lucent::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("radiosity-maps: N 4096 x 3 bands x 3 lights"), std::string::npos) << message;
+    EXPECT_NE(message.find("lower method.N to 3554"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  const lucent::ImageRGBA32F largest = render(3554), reference = render(256);
+  double sum[2] = {0.0, 0.0};
+  int covered = 0;
+  for (std::size_t i = 0; i < largest.pixels.size(); i += 4) {
+    if (reference.pixels[i + 3] <= 0.0f) continue;  // background
+    ++covered;
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(largest.pixels[i + c])) << "pixel " << i / 4;
+      sum[0] += largest.pixels[i + c], sum[1] += reference.pixels[i + c];
+    }
+  }
+  ASSERT_GT(covered, 20);
+  fmt::print("N 3554 mean / N 256 mean = {:.4f} over {} pixels\n", sum[0] / sum[1], covered);
+  EXPECT_NEAR(sum[0] / sum[1], 1.0, 0.05);
 }
 
 }  // namespace

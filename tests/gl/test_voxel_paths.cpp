@@ -80,7 +80,9 @@ TEST(VoxelPaths, VoxelizedSphereHasTheSpheresVolume) {
 }
 
 // A 2 x 1 x 0.5 box whose faces lie on voxel boundaries: exactly its cell count, with or without padding. The
-// columns through the diagonals of its top and bottom faces cross two triangles' shared edge: counted once.
+// columns through the diagonals of its top and bottom faces cross two triangles' shared edge: counted once. A
+// cube at R = 256: a face triangle's footprint spans 256 x 256 columns, past llvmpipe's 65,535 loop iterations for
+// one invocation; the voxelization splits its rows over slices (a cut loop leaves columns unflipped).
 TEST(VoxelPaths, VoxelizedBoxIsExactlyItsCells) {
   lucent::test::ensure_gl_context();
   const lucent::Scene scene = scene_with(lucent::make_box(glm::vec3(2.0f, 1.0f, 0.5f)), glm::vec3(1.0f, 2.0f, 3.0f));
@@ -93,6 +95,11 @@ TEST(VoxelPaths, VoxelizedBoxIsExactlyItsCells) {
     const std::size_t inner = static_cast<std::size_t>(resolution - 2 * padding);
     EXPECT_EQ(inside_count(labels), inner * inner / 2 * inner / 4) << "R = " << resolution << ", padding " << padding;
   }
+  const lucent::Scene cube = scene_with(lucent::make_box(glm::vec3(1.0f)), glm::vec3(0.0f));
+  const TranslucentTriangles cube_triangles = gather_translucent_triangles(cube);
+  const VoxelGrid grid = grid_around(cube_triangles.lower, cube_triangles.upper, 256, 0);
+  voxelizer.voxelize(cube_triangles, grid);
+  EXPECT_EQ(inside_count(voxelizer.read_labels()), std::size_t{256} * 256 * 256) << "cube, R = 256";
 }
 
 // GPU relaxation against the CPU Dijkstra on the same voxels: a sphere and a box, three sources each with

@@ -5,11 +5,16 @@
 // Shader: src/methods/per_pixel/shaders/shade.comp.
 #include "methods/method.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
+
+#include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
 #include "methods/per_pixel/per_pixel_io.h"
 #include "gpu/shader_program.h"
+#include "platform/gl_capabilities.h"
 #include "render/light_gbuffer.h"
 #include "render/view_accumulator.h"
 
@@ -21,6 +26,7 @@ class PerPixel final : public Method {
   PerPixel(const Scene& scene, const render::SceneGpu& scene_gpu)
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
+        iterations_per_sample_(render::light_sampling_iterations_per_sample(scene)),
         program_(gpu::ShaderProgram::compute("methods/per_pixel/shaders/shade.comp", render::light_sampling_defines(scene))) {
     glCreateBuffers(1, &block_buffer_);
     glNamedBufferStorage(block_buffer_, sizeof(shader::PerPixelGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -32,6 +38,19 @@ class PerPixel final : public Method {
     // View dependent: a camera change restarts accumulation too.
     restart = accumulated_.begin_frame(frame, restart || !params_.boolean("progressive"));
     light_gbuffer_.fill_frame(frame);
+    // One invocation samples N per band and light in one loop nest (light_sampling.glsl), each sample a loop of
+    // its own under photon beam diffusion: refused on llvmpipe when that passes the driver's loop cap, which would
+    // end the loops early and darken the image.
+    const std::uint64_t lights = static_cast<std::uint64_t>(std::max(frame.light_counts.x, 1));
+    const std::uint64_t n = static_cast<std::uint64_t>(params_.integer("N"));
+    // Iterations: the light loop, its band loop, the sample loop inside (scattered_radiosity).
+    const std::uint64_t iterations = lights * (1u + 3u * (1u + n * iterations_per_sample_));
+    const std::uint64_t n_max = (platform::kLlvmpipeLoopBudget / lights - 4u) / (3u * iterations_per_sample_);
+    if (iterations > platform::kLlvmpipeLoopBudget)  // formats the message only then
+      platform::check_loop_iterations(
+          fmt::format("per-pixel: N {} x 3 bands x {} lights{}", n, lights,
+                      iterations_per_sample_ > 1 ? fmt::format(" x {} (photon beam)", iterations_per_sample_) : ""),
+          iterations, fmt::format("lower method.N to {}", n_max));
     frame.light_counts.w = params_.integer("visibility_taps");
     frame.seeds.z = restart ? 1u : 0u;
     frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
@@ -65,7 +84,7 @@ class PerPixel final : public Method {
     return true;
   }
   bool update_materials(const Scene& scene) override {
-    (void)scene;
+    iterations_per_sample_ = render::light_sampling_iterations_per_sample(scene);
     return true;
   }
   std::size_t gpu_memory_bytes() const override {
@@ -75,6 +94,7 @@ class PerPixel final : public Method {
  private:
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;
+  std::uint64_t iterations_per_sample_;  // shader loop iterations per BSSRDF sample (check_loop_iterations)
   gpu::ShaderProgram program_;
   render::ViewAccumulator accumulated_{"per-pixel accumulated radiosity"};
   GLuint block_buffer_ = 0;

@@ -76,6 +76,7 @@ class RadiosityMaps final : public Method {
         combine_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/combine.comp")),
         vpl_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/vpl.comp")),
         probe_program_(gpu::ShaderProgram::compute("methods/radiosity_maps/shaders/probe.comp")) {
+    iterations_per_sample_ = render::light_sampling_iterations_per_sample(scene);
     radiosity_ = make_radiosity_texture(map_size_, K_);
     glCreateBuffers(1, &vpl_buffer_);
     glNamedBufferStorage(vpl_buffer_, static_cast<GLsizeiptr>(sizeof(shader::VplGPU)) * std::max(1, vpl_count_), nullptr,
@@ -114,6 +115,19 @@ class RadiosityMaps final : public Method {
       ++accumulated_;
     }
     light_gbuffer_.fill_frame(frame);
+    // One invocation samples N per band and light in one loop nest (light_sampling.glsl), each sample a loop of
+    // its own under photon beam diffusion: refused on llvmpipe when that passes the driver's loop cap, which would
+    // end the loops early and darken the image.
+    const std::uint64_t lights = static_cast<std::uint64_t>(std::max(frame.light_counts.x, 1));
+    const std::uint64_t n = static_cast<std::uint64_t>(params_.integer("N"));
+    // Iterations: the light loop, its band loop, the sample loop inside (scattered_radiosity).
+    const std::uint64_t iterations = lights * (1u + 3u * (1u + n * iterations_per_sample_));
+    const std::uint64_t n_max = (platform::kLlvmpipeLoopBudget / lights - 4u) / (3u * iterations_per_sample_);
+    if (iterations > platform::kLlvmpipeLoopBudget)  // formats the message only then
+      platform::check_loop_iterations(
+          fmt::format("radiosity-maps: N {} x 3 bands x {} lights{}", n, lights,
+                      iterations_per_sample_ > 1 ? fmt::format(" x {} (photon beam)", iterations_per_sample_) : ""),
+          iterations, fmt::format("lower method.N to {}", n_max));
     frame.light_counts.w = params_.integer("visibility_taps");
     frame.seeds.z = restart ? 1u : 0u;
     const bool coverage_view = params_.text("view") == "coverage";
@@ -176,6 +190,7 @@ class RadiosityMaps final : public Method {
   // Materials are read from the scene's material buffer by every pass: a restart is all a change needs.
   bool update_materials(const Scene& scene) override {
     warn_about_low_albedo(scene);
+    iterations_per_sample_ = render::light_sampling_iterations_per_sample(scene);
     return true;
   }
 
@@ -350,6 +365,7 @@ class RadiosityMaps final : public Method {
   int K_, map_size_, light_map_size_;
   int accumulated_ = 0;
   render::LightGBuffer light_gbuffer_;
+  std::uint64_t iterations_per_sample_ = 1;  // shader loop iterations per BSSRDF sample (check_loop_iterations)
   gpu::GBuffer map_gbuffer_;
   int vpl_count_, vpl_map_size_;
   gpu::GBuffer vpl_gbuffer_;

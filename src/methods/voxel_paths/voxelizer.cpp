@@ -77,7 +77,9 @@ void Voxelizer::voxelize(const TriangleSource& source, const VoxelGrid& grid) {
     glUniform3fv(glGetUniformLocation(p, "u_origin"), 1, &grid.origin.x);
     glUniform1f(glGetUniformLocation(p, "u_voxel_size"), grid.voxel_size);
     glUniform1i(glGetUniformLocation(p, "u_resolution"), grid.resolution);
-    glDispatchCompute((triangle_count + 63) / 64, 1, 1);
+    // Four row slices per triangle: at resolution 256 one invocation loops over at most 64 x 256 columns, under
+    // llvmpipe's loop budget, which one whole grid of 256^2 columns passes.
+    glDispatchCompute((triangle_count + 63) / 64, 4, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     p = scan_program_.id();
     glUseProgram(p);

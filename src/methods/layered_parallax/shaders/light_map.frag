@@ -13,6 +13,7 @@ layout(location = 0) out vec4 out_irradiance;
 void main() {
   vec3 n = normalize(v_in.normal);
   vec3 E = vec3(0.0f);
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; at most LUCENT_MAX_LIGHTS lights, each with at most 7 x 7 shadow taps
   for (int l = 0; l < frame.light_counts.x; ++l) {
     vec3 w_l;
     vec3 incident = light_incidence(frame.lights[l], v_in.position, w_l);

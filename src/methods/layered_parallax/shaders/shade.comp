@@ -41,6 +41,7 @@ vec3 shade(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o, vec2 uv_mesh
   vec3 view_t = vec3(dot(w_o, t), dot(w_o, b), dot(w_o, n));
   // Outer layer, lit directly through its normal map.
   vec3 E_outer = vec3(0.0f);
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; at most LUCENT_MAX_LIGHTS lights, each with at most 7 x 7 shadow taps
   for (int l = 0; l < frame.light_counts.x; ++l) {
     vec3 w_l;
     vec3 incident = light_incidence(frame.lights[l], x, w_l);

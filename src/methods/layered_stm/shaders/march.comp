@@ -55,6 +55,7 @@ vec3 march(vec3 x, vec3 n, vec3 w_o, vec2 uv, vec3 gu, vec3 gv, vec3 fit_n, vec3
   vec3 E[LUCENT_MAX_LIGHTS];
   vec3 w_l[LUCENT_MAX_LIGHTS];
   bool any_light = false;
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; at most LUCENT_MAX_LIGHTS lights, each with at most 7 x 7 shadow taps
   for (int l = 0; l < frame.light_counts.x; ++l) {
     E[l] = light_incidence(frame.lights[l], x, w_l[l]);
     if (any(greaterThan(E[l], vec3(0.0f)))) E[l] *= light_visibility(l, x, n);
@@ -73,6 +74,7 @@ vec3 march(vec3 x, vec3 n, vec3 w_o, vec2 uv, vec3 gu, vec3 gv, vec3 fit_n, vec3
   vec3 radiance = vec3(0.0f);
   vec3 attenuation = vec3(1.0f);  // exp(-int_P^M sigma_t), Eq. 8
   float previous = 0.0f;
+  // loop bound: param.samples x LUCENT_MAX_LIGHTS; the samples parameter's range, the light loop inside
   for (int i = 0; i < samples; ++i) {
     float s = (float(i) + offset) * step_length;
     vec3 M = x + s * w_v;
@@ -88,6 +90,7 @@ vec3 march(vec3 x, vec3 n, vec3 w_o, vec2 uv, vec3 gu, vec3 gv, vec3 fit_n, vec3
     vec3 n_m = normalize(alpha * n + beta * fit_n);
     vec3 p_m = (alpha * x + beta * fit_p) / (alpha + beta);
     float h = max(dot(p_m - M, n_m), 0.0f);
+    // loop bound: param.samples x LUCENT_MAX_LIGHTS; at most LUCENT_MAX_LIGHTS lights per march sample
     for (int l = 0; l < frame.light_counts.x; ++l) {
       float cos_i = dot(w_l[l], n_m);
       if (cos_i <= 0.0f || all(equal(E[l], vec3(0.0f)))) continue;

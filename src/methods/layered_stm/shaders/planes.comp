@@ -22,10 +22,12 @@ void main() {
   vec3 origin = vertices[vertex].position.xyz;
   vec3 n0 = normalize(vertices[vertex].normal.xyz);
   vec3 sum = vec3(0.0f);
+  // loop bound: param.max_neighbours; build_neighbours thins every vertex's list to max_neighbours
   for (uint i = first; i < last; ++i) sum += vertices[neighbours[i]].position.xyz - origin;
   float count = max(float(last - first), 1.0f);
   vec3 mean = sum / count;
   mat3 c = mat3(0.0f);
+  // loop bound: param.max_neighbours; build_neighbours thins every vertex's list to max_neighbours
   for (uint i = first; i < last; ++i) {
     vec3 d = vertices[neighbours[i]].position.xyz - origin - mean;
     c += outerProduct(d, d);

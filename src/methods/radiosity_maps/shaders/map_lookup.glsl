@@ -14,7 +14,9 @@ vec4 visible_taps(int k, vec3 t, float bias) {
   ivec2 center = ivec2(t.xy * float(size));
   vec3 sum = vec3(0.0f);
   float visible = 0.0f;
+  // loop bound: LUCENT_MAX_MAPS x 7 x 7; visibility_taps <= 7, once per map (K <= LUCENT_MAX_MAPS)
   for (int dy = -h; dy <= h; ++dy)
+    // loop bound: LUCENT_MAX_MAPS x 7 x 7; the taps of one row, counted with the loop above
     for (int dx = -h; dx <= h; ++dx) {
       ivec3 p = ivec3(clamp(center + ivec2(dx, dy), ivec2(0), ivec2(size - 1)), k);
       if (t.z > texelFetch(map_depth, p, 0).r + bias) continue;
@@ -33,6 +35,7 @@ vec4 combine_maps(vec3 x_o, vec3 n_o) {
   int size = method.counts.z;
   vec3 color = vec3(0.0f);
   float n = 0.0f;
+  // loop bound: LUCENT_MAX_MAPS x 7 x 7; K <= LUCENT_MAX_MAPS maps, each with at most 7 x 7 visibility taps
   for (int k = 0; k < method.counts.x; ++k) {
     vec3 d_k = method.maps[k].direction.xyz;
     float texel_width = method.maps[k].direction.w / float(size);

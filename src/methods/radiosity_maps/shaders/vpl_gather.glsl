@@ -10,6 +10,7 @@ layout(std430, binding = LUCENT_BINDING_VPLS) readonly buffer VplBlock { VplGPU 
 // E = sum F_t B / pi * A_v cos theta_v cos theta_x / d^2, with d^2 bounded below by A_v / pi (its footprint).
 vec3 vpl_irradiance(vec3 x, vec3 n) {
   vec3 E = vec3(0.0f);
+  // loop bound: param.vpls; the vpls parameter's range, once per shaded point
   for (int v = 0; v < method.vpls.x; ++v) {
     VplGPU vpl = vpls[v];
     float area = vpl.position.w;

@@ -52,6 +52,7 @@ uint loop_count = 0u;
 // counts the iterations of the SIMD loop over 8 or 16 invocations at once.)
 bool loops_were_cut() {
   uint n = 0u;
+  // loop bound: checked; the probe of the cap: random_walk.cpp sets its count from kLlvmpipeLoopIterations
   for (uint i = 0u; i < method.dispatch.w; ++i) ++n;
   return n != method.dispatch.w;
 }
@@ -89,12 +90,14 @@ Hit trace(vec3 origin, vec3 direction, float t_max, float t_min) {
   int stack[64];
   int depth = 0, node = 0;
   if (box_entry(nodes[0].lower.xyz, nodes[0].upper.xyz, origin, inv_direction, t_max) < 0.0f) return hit;
+  // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y (random_walk.cpp budgets it well under kLlvmpipeLoopIterations)
   for (int step = 0; step < kMaxTraversalSteps; ++step) {
     ++loop_count;
     BvhNodeGPU n = nodes[node];
     int count = floatBitsToInt(n.upper.w);
     if (count > 0) {
       int first = floatBitsToInt(n.lower.w);
+      // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
       for (int i = first; i < first + count; ++i) {
         ++loop_count;
         TriangleGPU tri = triangles[i];
@@ -167,6 +170,7 @@ vec3 transmittance(int object, vec3 a, vec3 b) {
   vec3 direction = (b - a) / max(length_ab, 1e-30f), sigma_t = sigma_t_of(object);
   vec3 T = vec3(1.0f);
   float t = free_flight(mu, rnd());
+  // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y (random_walk.cpp budgets it well under kLlvmpipeLoopIterations)
   for (int i = 0; i < kMaxRatioTrackingSteps && t < length_ab; ++i) {
     ++loop_count;
     T *= max(vec3(0.0f), 1.0f - multiplier(object, a + t * direction) * sigma_t / mu);
@@ -220,6 +224,7 @@ Beam refracted_beam(int object, vec3 x, bool point, vec3 x_l, vec3 light_dir) {
   Hit hit;
   bool converged = false;
   int iterations = point ? 32 : 16;
+  // loop bound: checked; at most 32 iterations per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int iteration = 0; iteration < iterations && !converged; ++iteration) {
     ++loop_count;
     hit = trace_from_surface(x, toward, 1e30f);
@@ -259,6 +264,7 @@ Beam refracted_beam(int object, vec3 x, bool point, vec3 x_l, vec3 light_dir) {
 vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
   vec3 g = walk_objects[object].g.xyz;
   vec3 L = vec3(0.0f);
+  // loop bound: checked; at most LUCENT_MAX_LIGHTS lights per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     ++loop_count;
     LightGPU light = frame.lights[l];
@@ -294,6 +300,7 @@ vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
 vec3 lambertian_next_event(Hit hit, vec3 n, vec3 albedo) {
   vec3 L = vec3(0.0f);
   vec3 origin = hit.position + hit.offset * n;
+  // loop bound: checked; at most LUCENT_MAX_LIGHTS lights per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     ++loop_count;
     LightGPU light = frame.lights[l];
@@ -430,6 +437,7 @@ int delta_track(float boundary_t, out vec3 x) {
   float mu = sigma_maj[path_hero];
   float t = 0.0f;
   x = path_origin;
+  // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y (random_walk.cpp budgets it well under kLlvmpipeLoopIterations)
   for (int i = 0; i < kMaxRatioTrackingSteps; ++i) {
     ++loop_count;
     float dt = free_flight(mu, rnd());
@@ -604,6 +612,7 @@ void main() {
   bool counted = pixel.x % method.jump_info.y == 0 && pixel.y % method.jump_info.y == 0;
   bool limited = false;
   // Events while the loop iterations stay under the budget (each event stays far below the cap minus it).
+  // loop bound: checked; events end once loop_count reaches method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
   for (int event = 0; event < 1000000 && loop_count < method.dispatch.y; ++event) {
     ++loop_count;
     bool alive = path_event();

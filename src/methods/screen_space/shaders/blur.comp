@@ -58,6 +58,7 @@ void main() {
   float pixels_per_unit = length(pixel_of(p.xyz + probe * side) - pixel_of(p.xyz)) / probe;
   float tolerance = max(method.blur.x * radius, 1e-12f);
   vec3 sum = vec3(0.0f);
+  // loop bound: LUCENT_SCREEN_SPACE_MAX_TAPS; the kernel holds at most that many taps per material
   for (int j = 0; j < taps; ++j) {
     vec4 tap = kernel[first + j].tap;
     // The tap's offset in pixels, read between the two pixels around it (linear interpolation).

@@ -29,6 +29,7 @@ vec3 back_irradiance(int object, vec3 x, vec3 n, MaterialGPU material, int profi
                 burley_scale(material.sigma_a.z, material.sigma_s.z, material.g.z, eta));
   int size = frame.light_counts.z;
   vec3 E = vec3(0.0f);
+  // loop bound: LUCENT_MAX_LIGHTS x 7 x 7; at most LUCENT_MAX_LIGHTS lights, each with at most 7 x 7 taps
   for (int l = 0; l < frame.light_counts.x; ++l) {
     LightGPU light = frame.lights[l];
     vec3 w_l;

@@ -12,6 +12,7 @@ void main() {
   ivec2 column = ivec2(gl_GlobalInvocationID.xy);
   if (column.x >= u_resolution || column.y >= u_resolution) return;
   uint r = uint(u_resolution), parity = 0u;
+  // loop bound: param.resolution; one column of the grid, resolution <= 256
   for (uint k = 0u; k < r; ++k) {
     uint index = (k * r + uint(column.y)) * r + uint(column.x);
     parity ^= flips[index];

@@ -1,5 +1,5 @@
 // voxelize_triangles.comp: solid voxelization by parity, step 1 of 2 (voxel-paths, paper Section 2.1 "solid
-// voxelization"). One invocation per triangle of one object, read in place from the scene's vertex and index
+// voxelization"). One invocation per triangle of one object and row slice, read in place from the scene's vertex and index
 // buffers (so deforming objects voxelize as they are this frame): for every voxel column (x, y) whose centre its
 // xy projection covers, the crossing of the column's +z ray toggles the flip bit of the first voxel whose centre
 // lies above the crossing. voxelize_scan.comp then XOR-accumulates the flips up each column: a voxel is inside
@@ -54,7 +54,12 @@ void main() {
   vec2 upper = (max(a.xy, max(b.xy, c.xy)) - u_origin.xy) / u_voxel_size - 0.5f;
   ivec2 first = max(ivec2(ceil(lower)), ivec2(0));
   ivec2 last = min(ivec2(floor(upper)), ivec2(u_resolution - 1));
-  for (int j = first.y; j <= last.y; ++j)
+  // Rows interleaved over the dispatch's gl_NumWorkGroups.y slices (voxelizer.cpp dispatches 4), so that a
+  // triangle covering the whole grid runs at most 64 x 256 iterations per invocation, under llvmpipe's loop cap.
+  int slices = int(gl_NumWorkGroups.y);
+  // loop bound: 64 x 256; resolution <= 256 rows over 4 slices (voxelizer.cpp), resolution <= 256 columns each
+  for (int j = first.y + int(gl_GlobalInvocationID.y); j <= last.y; j += slices)
+    // loop bound: 64 x 256; the columns of one row, resolution <= 256, counted with the loop above
     for (int i = first.x; i <= last.x; ++i) {
       vec2 p = u_origin.xy + (vec2(i, j) + 0.5f) * u_voxel_size;
       float e_a = edge_function(b.xy, c.xy, p), e_b = edge_function(c.xy, a.xy, p), e_c = edge_function(a.xy, b.xy, p);
