@@ -11,6 +11,7 @@
 // `medium` are the three bands at x_o (the coefficients where the light leaves, as the references).
 vec3 transmitted_Sd(int model, BandMedium medium[3], float eta, vec3 x_i, vec3 n_i, vec3 x_o, vec3 n_o) {
   vec3 weighted = vec3(0.0f), E = vec3(0.0f);
+  // loop bound: checked; texture-space-is and hybrid count it per sample, with its shadow taps and bands
   for (int l = 0; l < frame.light_counts.x; ++l) {
     vec3 w_l;
     vec3 E_l = light_incidence(frame.lights[l], x_i, w_l);

@@ -46,9 +46,11 @@ int order_of(const ParamValues& params) { return texture_space::sampling_order(p
 // Loop iterations of one shade.comp invocation, all loops counted (the band loops of 3 and, with several lights,
 // each global sample's loop over the lights with its shadow lookup of taps^2 + taps): the global sum, then per
 // light the L + 1 strata (with their band loop) and the L C + 1 points (with theirs).
-long long shade_loop_iterations(long long N, long long lights, long long L, long long C, long long taps) {
-  const long long per_global = 1 + (lights > 1 ? lights * (1 + 3 + taps * taps + taps) : 1);
-  return N * per_global + lights * ((L + 1) * 4 + (L * C + 1) * 4);
+// `sd`: the loop iterations of one S_d evaluation (photon beam diffusion's integral; 0 for the closed forms).
+std::uint64_t shade_loop_iterations(std::uint64_t N, std::uint64_t lights, std::uint64_t L, std::uint64_t C,
+                                    std::uint64_t taps, std::uint64_t sd) {
+  const std::uint64_t per_global = 1 + (lights > 1 ? lights * (1 + 3 + taps * taps + taps + 3 * sd) + 3 : 1 + 3 * sd);
+  return N * per_global + lights * ((L + 1) * (4 + 3 * sd) + (L * C + 1) * (4 + 3 * sd));
 }
 
 // R_p [scene units] of a material: the largest over the bands (Section 4.1).
@@ -70,6 +72,7 @@ class Hybrid final : public Method {
   Hybrid(const Scene& scene, const render::SceneGpu& scene_gpu, const texture_space::SceneAtlas& atlas)
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
+        iterations_per_sample_(render::light_sampling_iterations_per_sample(scene)),
         texture_gbuffer_(scene_gpu, atlas),
         sampler_(texture_gbuffer_.size(), kSamplerSlots, irradiance_defines(scene)),
         shade_(gpu::ShaderProgram::compute("methods/hybrid/shaders/shade.comp", shade_defines(scene))) {
@@ -131,6 +134,7 @@ class Hybrid final : public Method {
   // The local pattern depends on the materials: tabulated again.
   bool update_materials(const Scene& scene) override {
     upload_pattern(scene);
+    iterations_per_sample_ = render::light_sampling_iterations_per_sample(scene);
     return true;
   }
   std::size_t gpu_memory_bytes() const override {
@@ -142,15 +146,16 @@ class Hybrid final : public Method {
  private:
   static constexpr int kShadowTaps = 3;
 
-  // Mesa llvmpipe ends a shader's loops after kLlvmpipeLoopIterations in all: a setting that would reach it is one
-  // clear error, not a silently dark image. The shader clamps N, L and C to hybrid_io.h's bounds besides.
+  // Mesa llvmpipe ends a shader's loops past a budget (platform::check_loop_iterations): a setting that would pass
+  // it is one clear error, not a silently dark image. The shader clamps N, L and C to hybrid_io.h's bounds besides.
   void check_loop_budget(int lights) const {
-    if (!platform::current_capabilities().is_llvmpipe) return;
-    const long long n = shade_loop_iterations(params_.integer("N"), lights, rings_, ring_points_, kShadowTaps);
-    if (n > static_cast<long long>(platform::kLlvmpipeLoopIterations))
-      throw Error(fmt::format("hybrid: N = {}, rings x ring_points = {} x {} and {} light(s) need {} shader loop "
-                              "iterations per pixel, more than llvmpipe's {}; lower N, rings or ring_points",
-                              params_.integer("N"), rings_, ring_points_, lights, n, platform::kLlvmpipeLoopIterations));
+    const std::uint64_t N = static_cast<std::uint64_t>(params_.integer("N"));
+    const std::uint64_t n = shade_loop_iterations(N, static_cast<std::uint64_t>(lights), rings_, ring_points_,
+                                                  kShadowTaps, iterations_per_sample_ - 1u);
+    if (n > platform::kLlvmpipeLoopBudget)  // formats the message only then
+      platform::check_loop_iterations(fmt::format("hybrid: N {}, rings x ring_points {} x {}, {} light(s){}", N, rings_,
+                                                  ring_points_, lights, iterations_per_sample_ > 1 ? ", photon beam" : ""),
+                                      n, "lower method.N, rings or ring_points");
   }
 
   // Per translucent object (the order of SceneGpu's materials): R_p, then the L + 1 strata of hybrid_ring.
@@ -190,6 +195,7 @@ class Hybrid final : public Method {
 
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;
+  std::uint64_t iterations_per_sample_ = 1;  // loop iterations of one S_d evaluation plus one
   texture_space::TextureGBuffer texture_gbuffer_;
   texture_space::IrradianceSampler sampler_;
   gpu::ShaderProgram shade_;

@@ -133,10 +133,10 @@ class LocalGlobal final : public Method {
     std::uint32_t longest_row = 0;
     for (std::size_t j = 0; j + 1 < data_.row_offsets.size(); ++j)
       longest_row = std::max(longest_row, data_.row_offsets[j + 1] - data_.row_offsets[j]);
-    if (platform::current_capabilities().is_llvmpipe && longest_row >= platform::kLlvmpipeLoopIterations)
-      throw Error(fmt::format("{}: /method/cutoff: a vertex's row of the global matrix holds {} form factors, more than "
-                              "llvmpipe runs in one shader loop ({}); raise /method/cutoff or /method/vertex_spacing",
-                              scene.source, longest_row, platform::kLlvmpipeLoopIterations));
+    platform::check_loop_iterations(
+        fmt::format("{}: /method/cutoff: local-global's longest row of the global matrix, {} form factors", scene.source,
+                    longest_row),
+        longest_row, "raise /method/cutoff or /method/vertex_spacing");
     row_offsets_ = make_buffer(data_.row_offsets, "local-global row offsets", memory_);
     form_factors_ = make_buffer(data_.form_factors, "local-global form factors", memory_);
     vertex_irradiance_ = make_empty_buffer(vertices * 32, "local-global vertex irradiance", memory_);

@@ -38,6 +38,7 @@ class TextureSpaceIs final : public Method {
   TextureSpaceIs(const Scene& scene, const render::SceneGpu& scene_gpu, const texture_space::SceneAtlas& atlas)
       : params_(scene.method_params),
         light_gbuffer_(scene, scene_gpu, params_.integer("light_map_size")),
+        iterations_per_sample_(render::light_sampling_iterations_per_sample(scene)),
         texture_gbuffer_(scene_gpu, atlas),
         sampler_(texture_gbuffer_.size(), kSamplerSlots, defines(scene)),
         shade_(gpu::ShaderProgram::compute("methods/texture_space_is/shaders/shade.comp", defines(scene))) {
@@ -93,7 +94,7 @@ class TextureSpaceIs final : public Method {
     return true;
   }
   bool update_materials(const Scene& scene) override {
-    (void)scene;
+    iterations_per_sample_ = render::light_sampling_iterations_per_sample(scene);
     return true;
   }
   std::size_t gpu_memory_bytes() const override {
@@ -105,21 +106,25 @@ class TextureSpaceIs final : public Method {
  private:
   static constexpr int kShadowTaps = 3;
 
-  // Mesa llvmpipe ends a shader's loops after kLlvmpipeLoopIterations in all. shade.comp loops over the N samples
-  // and, with several lights, over the lights per sample (transmitted_sd.glsl: bands and a shadow lookup of
-  // taps^2 + taps each): a setting that would reach the limit is one clear error, not a silently dark image.
+  // Mesa llvmpipe ends a shader's loops past a budget (platform::check_loop_iterations). shade.comp loops over the
+  // N samples and, with several lights, over the lights per sample (transmitted_sd.glsl: bands and a shadow lookup
+  // of taps^2 + taps each); each S_d of photon beam diffusion is a loop of its own (iterations_per_sample_ - 1):
+  // a setting that would pass the budget is one clear error, not a silently dark image.
   void check_loop_budget(int lights) const {
-    if (!platform::current_capabilities().is_llvmpipe) return;
-    const long long N = params_.integer("N");
-    const long long n = N * (1 + (lights > 1 ? lights * (1 + 3 + kShadowTaps * kShadowTaps + kShadowTaps) : 1));
-    if (n > static_cast<long long>(platform::kLlvmpipeLoopIterations))
-      throw Error(fmt::format("texture-space-is: N = {} and {} lights need {} shader loop iterations per pixel, more "
-                              "than llvmpipe's {}; lower N",
-                              N, lights, n, platform::kLlvmpipeLoopIterations));
+    const std::uint64_t N = static_cast<std::uint64_t>(params_.integer("N")), l = static_cast<std::uint64_t>(lights);
+    const std::uint64_t sd = 3u * (iterations_per_sample_ - 1u);  // the three bands' S_d loops
+    const std::uint64_t per_sample =
+        1u + (l > 1u ? l * (1u + 3u + kShadowTaps * kShadowTaps + kShadowTaps + sd) + 3u : 1u + sd);
+    if (N * per_sample > platform::kLlvmpipeLoopBudget)  // formats the message only then
+      platform::check_loop_iterations(
+          fmt::format("texture-space-is: N {} x {} per sample ({} light(s){})", N, per_sample, lights,
+                      sd > 0u ? ", photon beam" : ""),
+          N * per_sample, fmt::format("lower method.N to {}", platform::kLlvmpipeLoopBudget / per_sample));
   }
 
   const ParamValues& params_;
   render::LightGBuffer light_gbuffer_;
+  std::uint64_t iterations_per_sample_ = 1;  // loop iterations of one S_d evaluation plus one
   texture_space::TextureGBuffer texture_gbuffer_;
   texture_space::IrradianceSampler sampler_;
   gpu::ShaderProgram shade_;

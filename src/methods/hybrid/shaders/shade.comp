@@ -41,6 +41,8 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   // Global: the texture-space samples of S_d W_g.
   vec3 B = vec3(0.0f);
   int N = min(method.counts.x, LUCENT_HYBRID_MAX_SAMPLES);
+  // loop bound: checked; hybrid.cpp counts the global samples, the local pattern per light and the loops inside
+  // them (shade_loop_iterations) and refuses on llvmpipe a setting past the loop budget
   for (int i = 0; i < N; ++i) {
     TsisSampleGPU s = samples[i];
     vec4 p = texelFetch(texel_position, s.texel.xy, 0);
@@ -52,13 +54,16 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   // Local: the circular pattern of S_d W_l around x_o in each light's sampling plane.
   float turn = next_float(seed_from(frame.seeds.x, uint(pixel.x), uint(pixel.y), frame.seeds.y ^ 0x4b1du));
   int L = min(method.counts.y, LUCENT_HYBRID_MAX_RINGS), C = min(method.counts.z, LUCENT_HYBRID_MAX_RING_POINTS);
+  // loop bound: checked; counted with the global samples (hybrid.cpp, shade_loop_iterations)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     LightPlane plane = light_plane(l, x);
     vec3 B_l = vec3(0.0f);
+    // loop bound: checked; counted with the global samples (hybrid.cpp, shade_loop_iterations)
     for (int j = 0; j <= L; ++j) {
       vec4 ring = pattern[base + 1 + j];
       int points = j == 0 ? 1 : C;
       vec3 sum = vec3(0.0f);
+      // loop bound: checked; counted with the global samples (hybrid.cpp, shade_loop_iterations)
       for (int c = 0; c < points; ++c) {
         float phi = 2.0f * kPi * (float(c) + fract(turn + 0.618034f * float(j))) / float(points);
         vec3 x_i, n_i, w_i;

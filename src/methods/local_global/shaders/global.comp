@@ -14,6 +14,7 @@ void main() {
   uint j = gl_GlobalInvocationID.x;
   if (j >= uint(method.counts.y)) return;
   vec3 B = vertex_irradiance[2u * j + 1u].rgb;
+  // loop bound: checked; local_global.cpp refuses on llvmpipe a row of more form factors than the loop budget
   for (uint k = row_offsets[j]; k < row_offsets[j + 1u]; ++k) {
     uvec4 f = form_factors[k];
     B += uintBitsToFloat(f.yzw) * vertex_irradiance[2u * f.x].rgb;

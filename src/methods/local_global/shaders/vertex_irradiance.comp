@@ -16,6 +16,7 @@ void main() {
   if (c >= uint(method.options.y)) return;
   uvec2 range = chunks[c];
   vec3 E = vec3(0.0f), B = vec3(0.0f);
+  // loop bound: LUCENT_LG_VERTEX_CHUNK; local_global.cpp cuts each vertex's texels into chunks of at most this many
   for (uint k = range.x; k < range.y; ++k) {
     uvec4 a = vertex_texels[2u * k];
     vec3 w = uintBitsToFloat(vertex_texels[2u * k + 1u].xyz);

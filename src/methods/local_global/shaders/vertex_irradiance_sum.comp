@@ -13,6 +13,7 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uint(method.counts.y)) return;
   vec4 E = vec4(0.0f), B = vec4(0.0f);
+  // loop bound: LUCENT_LG_VERTEX_CHUNK; local_global.cpp refuses a vertex of more chunks
   for (uint c = vertex_chunks[i]; c < vertex_chunks[i + 1u]; ++c) {
     E += chunk_sums[2u * c];
     B += chunk_sums[2u * c + 1u];

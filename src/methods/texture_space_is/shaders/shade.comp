@@ -33,6 +33,8 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
     m[band] = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
   vec3 B = vec3(0.0f);
   int N = min(method.counts.x, LUCENT_TSIS_MAX_SAMPLES);
+  // loop bound: checked; texture_space_is.cpp counts N x (this loop, transmitted_Sd's light and band loops, photon
+  // beam's integral) and refuses on llvmpipe a setting past the loop budget
   for (int i = 0; i < N; ++i) {
     TsisSampleGPU s = samples[i];
     vec4 p = texelFetch(texel_position, s.texel.xy, 0);
