@@ -25,3 +25,12 @@ $L render scenes/deforming_inclusion.json $S --set render.height=240 --animate -
   -o out/gallery/deforming_inclusion.png
 cp out/gallery/deforming_inclusion_0000.png docs/images/deforming_inclusion_t0.png
 cp out/gallery/deforming_inclusion_0001.png docs/images/deforming_inclusion_t075.png
+# the bunny in the materials of Dal Corso et al. (Fig. 6, Fig. 13), 320 x 240, 4 frames
+for m in marble grapefruit shampoo potato; do
+  $L render scenes/bunny_$m.json $S --set render.height=240 --frames 4 -o docs/images/bunny_$m.png
+done
+# every method's example scene that has no picture above, 320 x 240
+for s in bunny_per_pixel bunny_screen_space bunny_diffuse_wrap; do
+  $L render scenes/$s.json $S --set render.height=240 -o docs/images/$s.png
+done
+$L render scenes/bunny_random_walk.json $S --set render.height=240 --frames 8 -o docs/images/bunny_random_walk.png
