@@ -3,8 +3,11 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "bssrdf/photon_beam_diffusion.h"
 #include "gpu/gl_debug.h"
+#include "platform/gl_capabilities.h"
 
 namespace lucent::render {
 
@@ -24,6 +27,19 @@ std::uint64_t light_sampling_iterations_per_sample(const Scene& scene) {
     if (object.translucent() && object.material->model == BssrdfModel::PhotonBeamDiffusion)
       return 1u + static_cast<std::uint64_t>(shader::kPhotonBeamSamples);
   return 1u;
+}
+
+void check_light_sampling_loops(std::string_view method, int light_count, std::uint64_t N,
+                                std::uint64_t iterations_per_sample) {
+  const std::uint64_t lights = static_cast<std::uint64_t>(std::max(light_count, 1));
+  // Iterations: the light loop, its band loop, the sample loop inside.
+  const std::uint64_t iterations = lights * (1u + 3u * (1u + N * iterations_per_sample));
+  if (iterations <= platform::kLlvmpipeLoopBudget) return;  // formats the message only past it
+  const std::uint64_t n_max = (platform::kLlvmpipeLoopBudget / lights - 4u) / (3u * iterations_per_sample);
+  platform::check_loop_iterations(
+      fmt::format("{}: N {} x 3 bands x {} lights{}", method, N, lights,
+                  iterations_per_sample > 1 ? fmt::format(" x {} (photon beam)", iterations_per_sample) : ""),
+      iterations, fmt::format("lower method.N to {}", n_max));
 }
 
 LightGBuffer::LightGBuffer(const Scene& scene, const SceneGpu& scene_gpu, int size)

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "gpu/gbuffer.h"
 #include "gpu/frame_profiler.h"
@@ -19,6 +20,11 @@ std::string light_sampling_defines(const Scene& scene);
 // translucent object uses photon beam diffusion (its beam integral is a loop), so that a method can count the
 // iterations an invocation runs against llvmpipe's loop cap (platform::check_loop_iterations).
 std::uint64_t light_sampling_iterations_per_sample(const Scene& scene);
+// One invocation of scattered_radiosity (light_sampling.glsl) samples N per band and light in one loop nest, each
+// sample `iterations_per_sample` loop iterations: refused on llvmpipe, with one line naming `method` and the N that
+// fits, when that passes the driver's loop budget, which would end the loops early and darken the image.
+void check_light_sampling_loops(std::string_view method, int lights, std::uint64_t N,
+                                std::uint64_t iterations_per_sample);
 
 class LightGBuffer {
  public:

@@ -38,19 +38,8 @@ class PerPixel final : public Method {
     // View dependent: a camera change restarts accumulation too.
     restart = accumulated_.begin_frame(frame, restart || !params_.boolean("progressive"));
     light_gbuffer_.fill_frame(frame);
-    // One invocation samples N per band and light in one loop nest (light_sampling.glsl), each sample a loop of
-    // its own under photon beam diffusion: refused on llvmpipe when that passes the driver's loop cap, which would
-    // end the loops early and darken the image.
-    const std::uint64_t lights = static_cast<std::uint64_t>(std::max(frame.light_counts.x, 1));
-    const std::uint64_t n = static_cast<std::uint64_t>(params_.integer("N"));
-    // Iterations: the light loop, its band loop, the sample loop inside (scattered_radiosity).
-    const std::uint64_t iterations = lights * (1u + 3u * (1u + n * iterations_per_sample_));
-    const std::uint64_t n_max = (platform::kLlvmpipeLoopBudget / lights - 4u) / (3u * iterations_per_sample_);
-    if (iterations > platform::kLlvmpipeLoopBudget)  // formats the message only then
-      platform::check_loop_iterations(
-          fmt::format("per-pixel: N {} x 3 bands x {} lights{}", n, lights,
-                      iterations_per_sample_ > 1 ? fmt::format(" x {} (photon beam)", iterations_per_sample_) : ""),
-          iterations, fmt::format("lower method.N to {}", n_max));
+    render::check_light_sampling_loops("per-pixel", frame.light_counts.x, static_cast<std::uint64_t>(params_.integer("N")),
+                                       iterations_per_sample_);
     frame.light_counts.w = params_.integer("visibility_taps");
     frame.seeds.z = restart ? 1u : 0u;
     frame.shading = glm::vec4(params_.boolean("specular") ? 1.0f : 0.0f, params_.number("roughness"), 0.0f, 0.0f);
