@@ -14,6 +14,8 @@ packages=(
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev
   # maths, scenes, images, command line, tests
   libglm-dev libassimp-dev libopenexr-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev
+  # glTF materials, textures, cameras and lights in and out (src/scene/gltf_*.cpp)
+  libtinygltf-dev
   libgtest-dev libgmock-dev
   # CPU ground truth (reference renderers)
   libembree-dev libtbb-dev

@@ -12,3 +12,4 @@
 #include "lucent/params.h"
 #include "lucent/renderer.h"
 #include "lucent/scene.h"
+#include "lucent/warning.h"

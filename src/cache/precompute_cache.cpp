@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 
 #include "io/input_file.h"
+#include "lucent/warning.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
 
@@ -233,7 +234,6 @@ Settings& settings() {
   return s;
 }
 
-void warn(const std::string& message) { std::cerr << "lucent: warning: " << message << "\n"; }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 
 #include "io/file_path_check.h"
 #include "io/printable_text.h"
+#include "lucent/warning.h"
 #include "lucent/error.h"
 #include "lucent/image.h"
 #include "lucent/output_file.h"
@@ -165,11 +166,11 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
     }
     if (clamped > 0) {
       const AlbedoCurve& curve = curves.front();
-      std::cerr << fmt::format(
-          "lucent: warning: {}/albedo_map: {}: {} of {} texel values are outside the surface albedos the {} model "
-          "reaches ({:.4g}, {:.4g}) at g {} and eta {}; clamped to them\n",
+      warn(fmt::format(
+          "{}/albedo_map: {}: {} of {} texel values are outside the surface albedos the {} model "
+          "reaches ({:.4g}, {:.4g}) at g {} and eta {}; clamped to them",
           where, albedo->file, clamped, 3 * albedo->texels.size(), to_string(curve_model), curve.lowest(),
-          std::min(curve.highest(), 1.0), curve.g(), base.eta);
+          std::min(curve.highest(), 1.0), curve.g(), base.eta));
     }
   }
   if (mfp_scale) {

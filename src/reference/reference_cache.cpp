@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "lucent/warning.h"
 #include "lucent/scene.h"
 #include "io/input_file.h"
 #include "reference/reference_files.h"
@@ -91,7 +92,7 @@ ReferenceImage cached_reference(const std::string& folder, const std::string& sc
       cached = load_reference(files).image;
       exr = entry.path();
     } catch (const std::exception& e) {
-      fmt::print(stderr, "lucent: warning: {}; that cached reference is ignored\n", e.what());
+      warn(fmt::format("{}; that cached reference is ignored", e.what()));
     }
   }
   if (cached && cached->samples_per_pixel >= spp) return *cached;

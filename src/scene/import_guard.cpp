@@ -38,6 +38,7 @@
 #include <fmt/format.h>
 
 #include "io/printable_text.h"
+#include "io/warning_capture.h"
 #include "lucent/error.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -129,7 +130,13 @@ void apply_limits(const ImportLimits& limits, std::uint64_t inherited_address_sp
   apply_limits(limits, inherited_address_space);
   bool sent = false;
   try {
-    sent = send_result(fd, data_fd, read());
+    std::vector<std::string> warnings;
+    std::string result;
+    {
+      const WarningCapture capture(&warnings);  // returned with the result, warned by the parent
+      result = read();
+    }
+    sent = send_result(fd, data_fd, pack_warnings(warnings, std::move(result)));
   } catch (const Error& e) {
     sent = send_error(fd, e.what());
   } catch (const std::bad_alloc&) {
@@ -386,7 +393,7 @@ std::string read_in_child(const std::string& path, const GuardedReader& names,
     throw Error(fmt::format("{}: {}: {}", path, names.failure,
                             child_failure(status, reader.timed_out(), limits, names.reader)));
   if (!reply->result) throw Error(reply->error);
-  return std::move(*reply->result);
+  return unpack_warnings(std::move(*reply->result));
 }
 
 TriangleMesh import_in_child(const std::string& path, const std::function<TriangleMesh()>& import,

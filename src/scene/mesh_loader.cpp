@@ -17,6 +17,7 @@
 
 #include "io/file_path_check.h"
 #include "io/printable_text.h"
+#include "lucent/warning.h"
 #include "lucent/error.h"
 #include "io/input_file.h"
 #include "lucent/mesh.h"
@@ -113,8 +114,8 @@ TriangleMesh import_triangles(const std::string& path) {
                                       [](const aiMesh* m) { return m->HasTextureCoords(0); });
   const bool with_uvs = !triangle_meshes.empty() && textured == std::ssize(triangle_meshes);
   if (textured > 0 && !with_uvs)  // printed by the importer's process, on the same stderr
-    std::cerr << "lucent: warning: " << path << ": texture coordinates dropped: only " << textured << " of "
-              << triangle_meshes.size() << " meshes have them\n";
+    warn(fmt::format("{}: texture coordinates dropped: only {} of {} meshes have them", path, textured,
+                     triangle_meshes.size()));
   TriangleMesh mesh;
   for (const aiMesh* m : triangle_meshes) append_mesh(*m, mesh, with_uvs, path);
   return mesh;

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/file_path_check.h"
+#include "lucent/warning.h"
 #include "lucent/environment.h"
 #include "lucent/error.h"
 #include "io/input_file.h"
@@ -442,7 +443,7 @@ void orient_normals_outward(TriangleMesh& mesh, const std::string& what) {
     outwardness += glm::dot(mesh.normals[i], mesh.positions[i] - centroid);
   if (outwardness >= 0.0) return;
   for (glm::vec3& n : mesh.normals) n = -n;
-  std::cerr << "lucent: warning: " << what << ": normals point inward; flipped\n";
+  warn(what + ": normals point inward; flipped");
 }
 
 // Every vertex in world space within kMaxWorldCoordinate (which also excludes inf and NaN).
@@ -617,8 +618,7 @@ void warn_if_unlit(const Scene& scene) {
   bool translucent = std::any_of(scene.objects.begin(), scene.objects.end(),
                                  [](const SceneObject& object) { return object.translucent(); });
   if (translucent && scene.lights.empty() && scene.point_lights.empty())
-    std::cerr << "lucent: warning: " << scene.source
-              << ": translucent objects but no light (lights, environment); the image will be black\n";
+    warn(scene.source + ": translucent objects but no light (lights, environment); the image will be black");
 }
 
 // A translucent object is a medium only inside a closed surface, and a point light inside one lights it only in
@@ -631,18 +631,18 @@ void warn_about_enclosures(const Scene& scene) {
     const std::string what = fmt::format("{}: /objects/{}{}", scene.source, i,
                                          object.name.empty() || object.name[0] == '/' ? "" : fmt::format(" ('{}')", object.name));
     if (const std::size_t open = open_edge_count(world); open > 0)
-      std::cerr << fmt::format("lucent: warning: {}: a translucent object with an open surface ({} edges border "
+      warn(fmt::format("{}: a translucent object with an open surface ({} edges border "
                                "one triangle only) encloses no medium: paths that enter it in volpath may never "
-                               "leave (dark), while the real-time methods treat its surface as closed\n",
-                               what, open);
+                               "leave (dark), while the real-time methods treat its surface as closed",
+                       what, open));
     else
       for (const PointLight& light : scene.point_lights)
         if (encloses(world, glm::dvec3(light.position)))
-          std::cerr << fmt::format("lucent: warning: {}: the point light at ({}, {}, {}) is inside this translucent "
+          warn(fmt::format("{}: the point light at ({}, {}, {}) is inside this translucent "
                                    "object; only the volpath reference renders light from inside a medium (the "
                                    "real-time methods and the bssrdf reference light surfaces from outside, where "
-                                   "it lights nothing)\n",
-                                   what, light.position.x, light.position.y, light.position.z);
+                                   "it lights nothing)",
+                           what, light.position.x, light.position.y, light.position.z));
   }
 }
 

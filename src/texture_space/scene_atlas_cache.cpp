@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "lucent/warning.h"
 #include "lucent/error.h"
 #include "texture_space/atlas_encoding.h"
 
@@ -18,7 +19,7 @@ CachedSceneAtlas load_or_build_scene_atlas(const Scene& scene, const AtlasOption
       out.atlas = decode_scene_atlas(*bytes);
       out.from_cache = true;
     } catch (const Error& e) {  // a checksummed entry that does not decode: a format change without a version bump
-      fmt::print(stderr, "lucent: warning: {}: {}; rebuilding\n", cache::entry_path(key).string(), e.what());
+      warn(fmt::format("{}: {}; rebuilding", cache::entry_path(key).string(), e.what()));
     }
   }
   if (!out.from_cache) {

@@ -59,7 +59,7 @@ std::string coefficients(double albedo, double eta) {
                      1.0 - albedo, albedo, eta);
 }
 
-void expect_within_3_se(const Estimate& e, double exact, double rounding, const std::string& what) {
+void expect_volpath_within_3_se(const Estimate& e, double exact, double rounding, const std::string& what) {
   EXPECT_NEAR(e.mean, exact, 3.0 * e.standard_error + rounding)
       << what << ": " << e.mean << " +- " << e.standard_error << " vs exact " << exact;
   EXPECT_LT(e.standard_error, 0.01) << what;
@@ -68,7 +68,7 @@ void expect_within_3_se(const Estimate& e, double exact, double rounding, const 
 TEST(Volpath, SlabReflectanceIndexMatched) {
   // 300 mean free paths wide and deep: a half-space to within e^-300.
   Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 300, 300);
-  expect_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "a 0.9, n 1, normal");
+  expect_volpath_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "a 0.9, n 1, normal");
 }
 
 // Ground truth does not depend on what else is in the scene, nor on the unit of length. A black floor 1e5 wide
@@ -78,14 +78,14 @@ TEST(Volpath, SlabReflectanceIsIndependentOfAHugeFloorFarAway) {
   Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 300, 300, 1.0,
                            R"(, { "shape": "plane", "extent": [100000, 100000], "translate": [0, -2000, 0],
                                   "albedo": [0, 0, 0] })");
-  expect_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "beside a floor of extent 1e5");
+  expect_volpath_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "beside a floor of extent 1e5");
 }
 
 // The same half-space in units of 10 m (scale_mm 1e4): the mean free path is 1e-4 scene units, 3e-5 of the
 // box's size.
 TEST(Volpath, SlabReflectanceIsIndependentOfTheUnitOfLength) {
   Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 3, 1.5, 1e4);
-  expect_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "scale_mm 1e4");
+  expect_volpath_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "scale_mm 1e4");
 }
 
 // A ray Embree cannot take (NaN, or beyond float's range) is an error, not Embree's abort.
@@ -133,13 +133,13 @@ TEST(Volpath, PointLightInsideAMediumSingleScattering) {
       acc.add(volpath_radiance(rs, {b, 0.0, 10.0}, {0.0, 0.0, -1.0}, rng).x);
     }
     // The sphere's 256 segments put its surface within 1e-4 of the radius: a relative bias below 1e-3.
-    expect_within_3_se(acc.estimate(), exact, 2e-3 * exact, fmt::format("impact parameter {}", b));
+    expect_volpath_within_3_se(acc.estimate(), exact, 2e-3 * exact, fmt::format("impact parameter {}", b));
   }
 }
 
 TEST(Volpath, SlabReflectanceObliqueIndexMatched) {
   Scene scene = slab_scene(coefficients(0.9, 1.0), {std::sin(glm::radians(60.0f)), -0.5f, 0}, 300, 300);
-  expect_within_3_se(volpath_reflectance(scene, 20000), 0.507939, 1e-6, "a 0.9, n 1, 60 degrees");
+  expect_volpath_within_3_se(volpath_reflectance(scene, 20000), 0.507939, 1e-6, "a 0.9, n 1, 60 degrees");
 }
 
 TEST(Volpath, SlabReflectanceWithFresnelBoundary) {
@@ -147,7 +147,7 @@ TEST(Volpath, SlabReflectanceWithFresnelBoundary) {
   const double transmitted = 1.0 - std::pow(0.3 / 2.3, 2.0);
   for (auto [albedo, exact] : {std::pair{0.9, 0.29074}, std::pair{0.5, 0.06349}}) {
     Scene scene = slab_scene(coefficients(albedo, 1.3), {0, -1, 0}, 300, 300);
-    expect_within_3_se(volpath_reflectance(scene, 20000), transmitted * exact, 1e-4,
+    expect_volpath_within_3_se(volpath_reflectance(scene, 20000), transmitted * exact, 1e-4,
                        "n 1.3, albedo " + std::to_string(albedo));
   }
 }
@@ -184,7 +184,7 @@ void set_volume_field(Scene& scene, float m) {
 TEST(Volpath, HeterogeneousThinnedHalfSpaceKeepsItsReflectance) {
   Scene scene = slab_scene(coefficients(0.9, 1.0), {0, -1, 0}, 300, 300);
   set_volume_field(scene, 0.5f);
-  expect_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "m 0.5, a 0.9, n 1");
+  expect_volpath_within_3_se(volpath_reflectance(scene, 20000), 0.414948, 1e-6, "m 0.5, a 0.9, n 1");
   Scene fresnel = slab_scene(coefficients(0.9, 1.3), {std::sin(glm::radians(30.0f)), -std::cos(glm::radians(30.0f)), 0},
                              300, 300);
   set_volume_field(fresnel, 0.5f);
@@ -247,7 +247,7 @@ TEST(BssrdfIntegrator, FlatSlabReproducesModelTotalReflectance) {
       glm::dvec3 L = bssrdf_radiance(rs, glm::dvec3(0.0, 50.0, 0.0), glm::dvec3(0.0, -1.0, 0.0), rng);
       acc.add(M_PI * L[band] / (T * T));
     }
-    expect_within_3_se(acc.estimate(), total, 0.0, "band " + std::to_string(band));
+    expect_volpath_within_3_se(acc.estimate(), total, 0.0, "band " + std::to_string(band));
   }
 }
 

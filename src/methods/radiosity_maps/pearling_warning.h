@@ -15,7 +15,7 @@ namespace lucent::methods {
 inline std::string pearling_warning(std::string_view object, double length_mm, double texel_mm, int light_map_size,
                                     int max_light_map_size) {
   if (length_mm >= 2.0 * texel_mm) return {};
-  const std::string head = fmt::format("lucent: warning: {}: scattering length {:.3g} mm is under 2 light-map texels "
+  const std::string head = fmt::format("{}: scattering length {:.3g} mm is under 2 light-map texels "
                                        "({:.3g} mm each); expect pearling",
                                        object, length_mm, texel_mm);
   const double needed = std::ceil(2.0 * texel_mm / length_mm * light_map_size);

@@ -16,6 +16,7 @@
 #include "methods/radiosity_maps/pearling_warning.h"
 #include "methods/radiosity_maps/radiosity_maps_io.h"
 #include "platform/gl_capabilities.h"
+#include "lucent/warning.h"
 #include "lucent/error.h"
 #include "materials/material_maps.h"
 #include "render/light_gbuffer.h"
@@ -254,7 +255,7 @@ class RadiosityMaps final : public Method {
       float length_mm = 1.0f / std::max({sigma_tr.x, sigma_tr.y, sigma_tr.z});
       const std::string warning =
           pearling_warning(object.name, length_mm, texel_mm, light_map_size_, max_light_map_size);
-      if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
+      if (!warning.empty()) warn(warning);
     }
   }
 
@@ -268,10 +269,9 @@ class RadiosityMaps final : public Method {
       glm::vec3 alpha_prime = s / (s + m.sigma_a);
       float lowest = std::min({alpha_prime.x, alpha_prime.y, alpha_prime.z});
       if (lowest >= 0.3f) continue;
-      std::fprintf(stderr,
-                   "lucent: warning: %s: reduced albedo alpha' = (%.3g, %.3g, %.3g); the diffusion models are far "
-                   "outside their validity below about 0.3 and colours may be implausible\n",
-                   object.name.c_str(), alpha_prime.x, alpha_prime.y, alpha_prime.z);
+      warn(fmt::format("{}: reduced albedo alpha' = ({:.3g}, {:.3g}, {:.3g}); the diffusion models are far "
+                       "outside their validity below about 0.3 and colours may be implausible",
+                       object.name, alpha_prime.x, alpha_prime.y, alpha_prime.z));
     }
   }
 
