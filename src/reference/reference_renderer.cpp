@@ -58,6 +58,56 @@ PixelSums sums_from(const ReferenceImage& image) {
   return s;
 }
 
+using RadianceFunction = glm::dvec3 (*)(const ReferenceScene&, glm::dvec3, glm::dvec3, Rng&, const SurfaceHit*,
+                                        PathRecord*);
+
+struct PixelWork {
+  std::int64_t paths = 0, steps = 0;  // paths traced (none for a background pixel); their free flights and jumps
+};
+
+// Samples [s0, s1) of pixel (x, y) added to its sums. Without jitter every
+// sample's camera ray goes through the pixel centre: traced once here. A pixel whose ray misses everything shows the
+// background, exactly, in every sample (both integrators), so its sums are written without sampling.
+PixelWork render_pixel_samples(const ReferenceScene& rs, const ReferenceSettings& settings, RadianceFunction radiance,
+                               int x, int y, int s0, int s1, glm::dvec3& sum, glm::dvec3& sum2) {
+  const Scene& scene = rs.scene;
+  const int width = scene.render.width, height = scene.render.height;
+  const auto pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+  glm::dvec3 centre_origin, centre_direction;
+  SurfaceHit centre_hit;
+  if (!settings.jitter) {
+    camera_ray(scene.camera, width, height, x + 0.5, y + 0.5, centre_origin, centre_direction);
+    centre_hit = rs.rt.intersect(centre_origin, centre_direction);
+    if (!centre_hit.hit()) {
+      const glm::dvec3 background(scene.render.background);
+      const double count = s1 - s0;
+      sum += count * background;
+      sum2 += count * background * background;
+      return {};
+    }
+  }
+  std::int64_t steps = 0;
+  for (int sample = s0; sample < s1; ++sample) {
+    Rng rng = Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
+    glm::dvec3 L;
+    PathRecord record;
+    record.sample = sample;
+    if (settings.jitter) {
+      glm::dvec3 origin, direction;
+      double jx = rng.uniform(), jy = rng.uniform();
+      camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
+      L = radiance(rs, origin, direction, rng, nullptr, &record);
+    } else {
+      L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit, &record);
+    }
+    steps += record.steps;
+    if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
+    sum += L;
+    sum2 += L * L;
+  }
+  return {s1 - s0, steps};
+}
+
 }  // namespace
 
 ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSettings& settings,
@@ -81,7 +131,7 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
   std::size_t pixels = static_cast<std::size_t>(width) * height;
   PixelSums sums = previous ? sums_from(*previous) : PixelSums{std::vector<glm::dvec3>(pixels), std::vector<glm::dvec3>(pixels)};
   const int first_sample = previous ? previous->samples_per_pixel : 0;
-  auto radiance = settings.integrator == Integrator::Volpath ? volpath_radiance : bssrdf_radiance;
+  const RadianceFunction radiance = settings.integrator == Integrator::Volpath ? volpath_radiance : bssrdf_radiance;
 
   std::unique_ptr<tbb::global_control> limit;
   if (settings.threads > 0)
@@ -90,62 +140,43 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
   const int wanted = settings.samples_per_pixel;
   int done = 0;  // samples per pixel of this run in the sums, all of completed passes
   auto stop = [&] { return settings.stop_requested && settings.stop_requested(); };
+  // A chunk is a few rows times a few samples of the pass; its sample count adapts so that a chunk takes about
+  // kChunkSeconds, the most time between two polls of stop_requested (and two progress calls) whatever the spp.
+  // Each pixel still adds its samples in order, so the sums do not depend on the chunking.
+  constexpr double kChunkSeconds = 0.02;
+  int batch = 1;
   while (done < wanted) {
-    // A pass is at most an eighth of the samples done before it: few passes (the camera rays are traced once per
-    // pass), and a stop loses at most an eighth of the work.
+    // A pass is at most an eighth of the samples done before it: few passes, and a stop loses at most an eighth of
+    // the work.
     const int pass = std::min(wanted - done, std::max(1, (first_sample + done) / 8));
     const int pass_first = first_sample + done, pass_end = pass_first + pass;
     const PixelSums before = sums;  // restored when the pass is stopped part-way
     bool complete = true;
-    for (int row0 = 0; row0 < height; row0 += rows_per_chunk) {
-      if (stop()) {
-        complete = false;
-        break;
+    for (int row0 = 0; row0 < height && complete; row0 += rows_per_chunk) {
+      const int row1 = std::min(height, row0 + rows_per_chunk);
+      for (int s0 = pass_first; s0 < pass_end;) {
+        if (stop()) {
+          complete = false;
+          break;
+        }
+        const int s1 = std::min(pass_end, s0 + batch);
+        const auto chunk_start = std::chrono::steady_clock::now();
+        tbb::parallel_for(row0 * width, row1 * width, [&](int index) {
+          const auto pixel = static_cast<std::size_t>(index);
+          const PixelWork work = render_pixel_samples(rs, settings, radiance, index % width, index / width, s0, s1,
+                                                      sums.sum[pixel], sums.sum2[pixel]);
+          if (work.paths > 0) total_steps += work.steps, total_paths += work.paths;
+        });
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - chunk_start).count();
+        if (seconds < 0.5 * kChunkSeconds && batch < (1 << 20)) batch *= 2;
+        else if (seconds > 2.0 * kChunkSeconds && batch > 1) batch /= 2;
+        s0 = s1;
+        if (settings.progress) {
+          const double pass_done = static_cast<double>(row0) / height +
+                                   static_cast<double>(s1 - pass_first) / pass * (row1 - row0) / height;
+          settings.progress((done + pass * pass_done) / static_cast<double>(wanted));
+        }
       }
-      int row1 = std::min(height, row0 + rows_per_chunk);
-      tbb::parallel_for(row0 * width, row1 * width, [&](int index) {
-        int x = index % width, y = index / width;
-        auto pixel = static_cast<std::size_t>(index);
-        // Without jitter every sample's camera ray goes through the pixel centre: trace it once a pass. A pixel whose
-        // ray misses everything shows the background, exactly, in every sample (both integrators), so its sums are
-        // written without sampling.
-        glm::dvec3 centre_origin, centre_direction;
-        SurfaceHit centre_hit;
-        if (!settings.jitter) {
-          camera_ray(scene.camera, width, height, x + 0.5, y + 0.5, centre_origin, centre_direction);
-          centre_hit = rt.intersect(centre_origin, centre_direction);
-          if (!centre_hit.hit()) {
-            const glm::dvec3 background(scene.render.background);
-            const double count = pass;
-            sums.sum[pixel] += count * background;
-            sums.sum2[pixel] += count * background * background;
-            return;
-          }
-        }
-        std::int64_t steps = 0;
-        for (int sample = pass_first; sample < pass_end; ++sample) {
-          Rng rng = Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
-          glm::dvec3 L;
-          PathRecord record;
-          record.sample = sample;
-          if (settings.jitter) {
-            glm::dvec3 origin, direction;
-            double jx = rng.uniform(), jy = rng.uniform();
-            camera_ray(scene.camera, width, height, x + jx, y + jy, origin, direction);
-            L = radiance(rs, origin, direction, rng, nullptr, &record);
-          } else {
-            L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit, &record);
-          }
-          steps += record.steps;
-          if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
-          sums.sum[pixel] += L;
-          sums.sum2[pixel] += L * L;
-        }
-        total_steps += steps;
-        total_paths += pass;
-      });
-      if (settings.progress)
-        settings.progress((done + pass * (static_cast<double>(row1) / height)) / static_cast<double>(wanted));
     }
     if (!complete) {
       sums = before;

@@ -39,10 +39,13 @@ struct ReferenceSettings {
   // Volpath: sphere jumps deep inside homogeneous media (docs/references.md, "Sphere jumps"): the same image, in
   // far fewer steps per path in dense, high-albedo media.
   bool sphere_jumps = true;
+  // Both callbacks are called on the thread that called render_reference (never on a worker), between chunks of a
+  // few rows times a few samples, sized to take about 20 ms each whatever the sample count: a stop is seen within
+  // a chunk's time, and progress arrives as often.
   std::function<void(double done_fraction)> progress;
-  // Polled between chunks of rows: true stops the render, which returns the samples of the passes it completed
-  // (ReferenceImage::samples_per_pixel tells how many; a pass is a few samples over every pixel, so the image stays
-  // a uniform number of samples per pixel).
+  // True stops the render, which returns the samples of the passes it completed (ReferenceImage::samples_per_pixel
+  // tells how many; a pass is a few samples over every pixel, so the image stays a uniform number of samples per
+  // pixel).
   std::function<bool()> stop_requested;
 };
 
