@@ -9,6 +9,8 @@ namespace lucent::python {
 namespace py = pybind11;
 
 void bind_errors(py::module_& m);     // lucent.Error
+void bind_context(py::module_& m);    // devices, Context, release
+void bind_tonemap(py::module_& m);    // tonemap
 void bind_images(py::module_& m);     // read_exr, write_exr, write_png
 void bind_scene(py::module_& m);      // Scene, load_scene
 void bind_render(py::module_& m);     // render

@@ -2,11 +2,14 @@
 // comparison, BSSRDF evaluation and the catalogues of methods and materials, all through the C++ library
 // (docs/python.md).
 #include "bindings.h"
+#include "python_warnings.h"
 
 PYBIND11_MODULE(lucent, m) {
   m.doc() = "lucent: real-time translucent materials with physically based subsurface scattering";
   using namespace lucent::python;
   bind_errors(m);
+  bind_warnings(m);
+  bind_context(m);
   bind_images(m);
   bind_scene(m);
   bind_render(m);

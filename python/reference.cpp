@@ -6,8 +6,10 @@
 #include "arguments.h"
 #include "bindings.h"
 #include "image_arrays.h"
+#include "long_call.h"
 #include "lucent/error.h"
 #include "params/argument_ranges.h"
+#include "python_warnings.h"
 #include "reference/reference_renderer.h"
 #include "render_overrides.h"
 #include "scene_handle.h"
@@ -37,13 +39,16 @@ reference::ReferenceSettings settings_of(const std::string& integrator, const py
 }
 
 py::tuple render_reference_arrays(const SceneHandle& handle, const RenderArguments& arguments,
-                                  const reference::ReferenceSettings& settings) {
-  const Scene scene = handle.with(render_overrides(arguments));
+                                  reference::ReferenceSettings settings, const py::handle& progress) {
+  const Scene scene = emitting_warnings([&] { return handle.with(render_overrides(arguments)); });
   reference::ReferenceImage image;
-  {
-    py::gil_scoped_release unlocked;
-    image = reference::render_reference(scene, settings);
-  }
+  run_long_call(
+      [&](LongCallControl& control) {
+        settings.progress = [&control](double fraction) { control.fraction = fraction; };
+        settings.stop_requested = [&control] { return control.stop.load(); };
+        image = reference::render_reference(scene, settings);
+      },
+      progress);
   return py::make_tuple(to_array(image.mean), to_array(image.standard_error));
 }
 
@@ -54,19 +59,24 @@ void bind_reference(py::module_& m) {
       "reference",
       [](const SceneHandle& scene, const std::string& integrator, const py::object& spp, const py::object& seed,
          const py::object& threads, bool jitter, const py::object& max_scatter, const py::object& time,
-         py::object width, py::object height, bool sphere_jumps) {
+         py::object width, py::object height, bool sphere_jumps, const py::object& progress) {
         return render_reference_arrays(scene,
                                        {std::move(width), std::move(height), py::none(), py::none(), {}, py::none()},
-                                       settings_of(integrator, spp, seed, threads, jitter, max_scatter, time, sphere_jumps));
+                                       settings_of(integrator, spp, seed, threads, jitter, max_scatter, time, sphere_jumps),
+                                       progress);
       },
       py::arg("scene"), py::kw_only(), py::arg("integrator") = "volpath", py::arg("spp") = 16, py::arg("seed") = 1,
       py::arg("threads") = 0, py::arg("jitter") = false, py::arg("max_scatter") = 0, py::arg("time") = 0.0,
       py::arg("width") = py::none(), py::arg("height") = py::none(), py::arg("sphere_jumps") = true,
+      py::arg("progress") = py::none(),
       "Renders the CPU reference as `lucent reference` does: integrator \"volpath\" (the physics) or \"bssrdf\" "
       "(the model), spp samples per pixel, threads (0: all cores), jitter (rays jittered inside pixels; default "
       "pixel centres), max_scatter (volpath: end paths after this many scattering events; 0: no limit), time "
       "[s] for animated scenes, in [0, 1e9], sphere_jumps (volpath: jump across spheres deep inside homogeneous "
       "media; the same image). The numbers have the ranges of `lucent reference`'s options. "
+      "progress: None or a callable taking the fraction done in [0, 1], called on the calling thread about every "
+      "50 ms while the render runs and with 1.0 at its end. Ctrl-C (SIGINT) raises KeyboardInterrupt within a "
+      "fraction of a second, as does an exception raised by progress; nothing is returned then. "
       "Returns (mean, standard_error), each float32 (height, width, 3).");
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -24,6 +25,13 @@ class GLContext {
 // EGL device platform (NVIDIA). Throws lucent::Error with one line when no display, no OpenGL 4.5 core
 // context or a required limit is missing.
 std::unique_ptr<GLContext> create_headless_context();
+// The EGL devices a headless context can be created on (EGL_EXT_device_enumeration), in index order: each one's
+// renderer, DRM node or "software rasterizer (Mesa)". One entry, the default display, where the driver cannot
+// enumerate devices.
+std::vector<std::string> headless_devices();
+// A headless context on device `device` of headless_devices() (-1: the default, as above). Throws lucent::Error
+// naming the number of devices for an index beyond them.
+std::unique_ptr<GLContext> create_headless_context(int device);
 
 class WindowContext : public GLContext {
  public:

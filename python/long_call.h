@@ -1,0 +1,25 @@
+// long_call.h: calls that can run for seconds (references, renders of many frames) stay responsive to Python: the
+// work runs on a thread of its own while the calling thread waits with the GIL released, waking every 50 ms to
+// check for signals (Ctrl-C raises KeyboardInterrupt there and only there: Python runs signal handlers on the main
+// thread), to call the progress callback and to emit the warnings queued so far.
+#pragma once
+#include <atomic>
+#include <functional>
+
+#include <pybind11/pybind11.h>
+
+namespace lucent::python {
+
+// Shared between the waiting Python thread and the work.
+struct LongCallControl {
+  std::atomic<bool> stop{false};      // set when the call is interrupted: the work returns early, its result unused
+  std::atomic<double> fraction{-1.0};  // the work's progress in [0, 1] (negative: none reported yet)
+};
+
+// Runs `work` and waits for it. A signal handler that raises (KeyboardInterrupt), or a progress callback that
+// raises, sets control.stop, waits for the work to return (it must poll control.stop) and raises that exception;
+// nothing the work produced is used. Otherwise rethrows what `work` threw. `progress`: None or a callable
+// taking the fraction done, called on the calling thread with the GIL when it changed, and with 1.0 at the end.
+void run_long_call(const std::function<void(LongCallControl&)>& work, const pybind11::handle& progress);
+
+}  // namespace lucent::python
