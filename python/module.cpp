@@ -11,6 +11,7 @@ PYBIND11_MODULE(lucent, m) {
   bind_warnings(m);
   bind_context(m);
   bind_images(m);
+  bind_tonemap(m);
   bind_scene(m);
   bind_render(m);
   bind_reference(m);

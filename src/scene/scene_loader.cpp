@@ -575,13 +575,24 @@ json& override_target(json& doc, const std::string& path, const std::string& ass
   json* node = &doc;
   std::istringstream parts(path);
   std::string part;
+  std::string parent;  // the key of `node`
   while (std::getline(parts, part, '.')) {
     if (node->is_array()) {
       std::size_t index = 0;
-      try {
-        index = std::stoul(part);
-      } catch (const std::exception&) {
-        throw Error(fmt::format("{}: '{}' is not an array index", set_name(assignment), text_excerpt(part)));
+      if (!part.empty() && std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+        try {
+          index = std::stoul(part);
+        } catch (const std::exception&) {
+          throw Error(fmt::format("{}: '{}' is not an array index", set_name(assignment), text_excerpt(part)));
+        }
+      } else {  // an element by its "name" (objects.bunny)
+        const auto named = std::find_if(node->begin(), node->end(), [&](const json& element) {
+          return element.is_object() && element.value("name", json()) == part;
+        });
+        if (named == node->end())
+          throw Error(fmt::format("{}: '{}' is neither an index nor the name of an element of /{}", set_name(assignment),
+                                  text_excerpt(part), text_excerpt(parent)));
+        index = static_cast<std::size_t>(named - node->begin());
       }
       if (index >= node->size())
         throw Error(fmt::format("{}: index {} out of range ({} elements)", set_name(assignment), index, node->size()));
@@ -589,12 +600,14 @@ json& override_target(json& doc, const std::string& path, const std::string& ass
       pointer += "/" + std::to_string(index);
     } else {
       if (node->is_null()) *node = json::object();
+      if (node->is_string() && parent == "material") *node = json{{"preset", *node}};  // "Marble": a preset's name
       if (!node->is_object())
         throw Error(fmt::format("{}: cannot set '{}' inside {} (not an object)", set_name(assignment),
                                 text_excerpt(part), excerpt(*node)));
       node = &(*node)[part];
       pointer += "/" + part;
     }
+    parent = part;
   }
   return *node;
 }

@@ -513,9 +513,25 @@ TEST(SceneLoader, OverrideBadIndex) {
 }
 
 TEST(SceneLoader, OverrideIntoStringShorthand) {
-  // The default scene gives materials as preset-name strings, so a key below them cannot be set.
-  EXPECT_EQ(parse_error(minimal_scene(), {"objects.0.material.preset=Ketchup"}),
-            "--set 'objects.0.material.preset=Ketchup': cannot set 'preset' inside \"Marble\" (not an object)");
+  // A material given as a preset's name stands for {"preset": name}: a key below it can be set.
+  const Scene scene = parse(minimal_scene(), {"objects.0.material.eta=1.4"});
+  ASSERT_TRUE(scene.objects[0].material);
+  EXPECT_EQ(scene.objects[0].material->name, "Marble");
+  EXPECT_FLOAT_EQ(scene.objects[0].material->eta, 1.4f);
+  EXPECT_EQ(parse_error(minimal_scene(), {"objects.0.shape.size=2"}),
+            "--set 'objects.0.shape.size=2': cannot set 'size' inside \"sphere\" (not an object)");
+}
+
+TEST(SceneLoader, OverrideElementByName) {
+  json doc = minimal_scene();
+  doc["objects"].push_back(json{{"name", "ball"}, {"shape", "sphere"}, {"material", "Marble"}});
+  const Scene scene = parse(doc, {"objects.ball.material=Ketchup"});
+  ASSERT_TRUE(scene.objects[1].material && scene.objects[0].material);
+  EXPECT_EQ(scene.objects[1].material->name, "Ketchup");
+  EXPECT_EQ(scene.objects[0].material->name, "Marble");
+  EXPECT_EQ(parse_error(doc, {"objects.bunny.material=Ketchup"}),
+            "--set 'objects.bunny.material=Ketchup': 'bunny' is neither an index nor the name of an element of "
+            "/objects");
 }
 
 TEST(SceneLoader, OverrideWithoutEquals) {
