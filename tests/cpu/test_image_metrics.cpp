@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -108,6 +109,35 @@ TEST(ReferenceRenderer, ResumingAddsSamplesExactly) {
       EXPECT_NEAR(resumed.mean.pixels[i], whole.mean.pixels[i], 1e-5 * std::abs(whole.mean.pixels[i]) + 1e-7)
           << "value " << i;
   }
+}
+
+// A stop must not wait for a pass: at thousands of samples per pixel a pass of a few rows runs for seconds. With
+// 8000 samples already done the first pass holds 1000; its first chunk (where stop and progress are next polled)
+// must hold a small part of it, and a stop there keeps the previous samples only.
+TEST(ReferenceRenderer, StopIsPolledWithinLargePasses) {
+  lucent::Scene scene = lucent::parse_scene(R"({
+    "scale_mm": 10, "camera": { "eye": [0, 0, 5], "target": [0, 0, 0], "fov_y_deg": 30 },
+    "lights": [{ "direction": [0.6, -0.8, 0], "radiance": [1, 1, 1] }],
+    "objects": [{ "shape": "sphere", "radius": 1, "segments": 24, "material": "Potato" }],
+    "render": { "width": 8, "height": 6 } })", "stop", ".");
+  lucent::reference::ReferenceImage previous;
+  previous.samples_per_pixel = 8000;
+  previous.mean = {8, 6, std::vector<float>(8 * 6 * 4, 0.25f)};
+  previous.standard_error = {8, 6, std::vector<float>(8 * 6 * 4, 0.0f)};
+  lucent::reference::ReferenceSettings settings;
+  settings.integrator = lucent::reference::Integrator::Bssrdf;
+  settings.samples_per_pixel = 1000;
+  std::vector<double> fractions;
+  int polls = 0;
+  settings.progress = [&](double fraction) { fractions.push_back(fraction); };
+  settings.stop_requested = [&] { return ++polls == 2; };
+  const auto image = lucent::reference::render_reference(scene, settings, &previous);
+  EXPECT_EQ(polls, 2);
+  ASSERT_EQ(fractions.size(), 1u);
+  EXPECT_GT(fractions[0], 0.0);
+  EXPECT_LT(fractions[0], 0.01) << "the first chunk held " << fractions[0] * 1000 << " of the pass's 1000 samples";
+  EXPECT_EQ(image.samples_per_pixel, 8000);
+  EXPECT_EQ(image.mean.pixels, previous.mean.pixels);
 }
 
 // Without jitter the renderer traces each pixel's centre ray once and hands the hit to the integrator; pixels whose

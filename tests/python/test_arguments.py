@@ -98,9 +98,12 @@ def test_numpy_numbers_in_range_are_taken():
 @pytest.mark.parametrize("keyword, value, text", [("width", 2**40, "1099511627776"), ("frames", 2.5, "2.5"),
                                                   ("seed", -1, "-1")])
 def test_render_sizes_are_checked_as_render_values(keyword, value, text):
-    # Applied as the overrides render.<keyword>=<value>: the CLI's --set message, not a TypeError for a large int.
+    # Applied as the overrides render.<keyword>=<value>: the reason the CLI gives for --set, named as Python
+    # names the value (a ValueError, not an OverflowError for a large int).
     cli = run_cli("render", "--set", f"render.{keyword}={text}", "-o", "unwritten.png", check=False)
     assert cli.returncode == 1
-    with pytest.raises(lucent.Error) as error:
+    with pytest.raises(ValueError) as error:
         lucent.render(SCENE, **{keyword: value})
-    assert "lucent: " + str(error.value) == cli.stderr.strip()
+    reason = cli.stderr.strip().split(f"/render/{keyword}: ", 1)[1]
+    assert str(error.value) == f"render.{keyword}: {reason}"
+    assert "--set" not in str(error.value)
