@@ -123,6 +123,7 @@ TEST(ReferenceRenderer, StopIsPolledWithinLargePasses) {
   lucent::reference::ReferenceImage previous;
   previous.samples_per_pixel = 8000;
   previous.mean = {8, 6, std::vector<float>(8 * 6 * 4, 0.25f)};
+  for (std::size_t i = 3; i < previous.mean.pixels.size(); i += 4) previous.mean.pixels[i] = 1.0f;  // alpha
   previous.standard_error = {8, 6, std::vector<float>(8 * 6 * 4, 0.0f)};
   lucent::reference::ReferenceSettings settings;
   settings.integrator = lucent::reference::Integrator::Bssrdf;

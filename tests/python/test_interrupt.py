@@ -59,10 +59,16 @@ def test_caught_interrupt_leaves_the_module_usable():
     scene = lucent.load_scene(str(SCENES / "default.json"))
     before = lucent.reference(scene, **SMALL)
     fractions = []
-    timer = interrupt_after(1.0)
     start = time.monotonic()
+
+    def progress(fraction):
+        fractions.append(fraction)
+        if time.monotonic() - start > 10.0:  # not interrupted: end the test rather than wait for the render
+            raise AssertionError("still rendering 9 s after SIGINT")
+
+    timer = interrupt_after(1.0)
     with pytest.raises(KeyboardInterrupt):
-        lucent.reference(scene, progress=fractions.append, **LONG_REFERENCE)
+        lucent.reference(scene, progress=progress, **LONG_REFERENCE)
     timer.join()
     assert time.monotonic() - start < 10.0
     assert fractions and all(0.0 <= f < 1.0 for f in fractions) and fractions == sorted(fractions)
@@ -102,6 +108,8 @@ def test_sigint_stops_a_render_of_many_frames():
         if not seen.is_set():
             seen.set()
             os.kill(os.getpid(), signal.SIGINT)
+        elif time.monotonic() - start > 60.0:  # not interrupted: end the test rather than render a million frames
+            raise AssertionError("still rendering a minute after SIGINT")
 
     start = time.monotonic()
     with pytest.raises(KeyboardInterrupt):
