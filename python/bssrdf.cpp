@@ -1,11 +1,14 @@
 // bssrdf.cpp: lucent.bssrdf and lucent.bssrdf_total: S_d of a diffusion model at one configuration and the
 // model's flat half-space total reflectance, as `lucent bssrdf [--total] --json` print them. Units: mm, mm^-1,
 // S_d in mm^-2.
+#include <memory>
+
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "arguments.h"
 #include "bindings.h"
+#include "long_call.h"
 #include "lucent/error.h"
 #include "lucent/material.h"
 #include "materials/bssrdf_evaluation.h"
@@ -75,8 +78,11 @@ py::dict bssrdf(const py::handle& material, const std::string& model, const py::
                 const py::handle& no) {
   const Material m = material_of(material, model, eta);
   using argument_ranges::kPointMm;
-  const BssrdfEvaluation e = evaluate_bssrdf(m, rgb(xi, kPointMm, "xi"), unit(wi, "wi"), unit(ni, "ni"),
-                                             rgb(xo, kPointMm, "xo"), unit(no, "no"));
+  const glm::vec3 xi_mm = rgb(xi, kPointMm, "xi"), wi_unit = unit(wi, "wi"), ni_unit = unit(ni, "ni");
+  const glm::vec3 xo_mm = rgb(xo, kPointMm, "xo"), no_unit = unit(no, "no");
+  auto evaluation = std::make_shared<BssrdfEvaluation>();  // the tabulated model builds its tables first: minutes
+  run_abandonable([=] { *evaluation = evaluate_bssrdf(m, xi_mm, wi_unit, ni_unit, xo_mm, no_unit); });
+  const BssrdfEvaluation& e = *evaluation;
   py::dict out;
   out["model"] = std::string(to_string(m.model)), out["material"] = m.name, out["eta"] = m.eta;
   out["S_d"] = py::make_tuple(e.S_d.x, e.S_d.y, e.S_d.z), out["T12"] = e.T12, out["units"] = "mm^-2";
@@ -87,7 +93,9 @@ py::dict bssrdf_total(const py::handle& material, const std::string& model, cons
                       const py::handle& incidence) {
   const double incidence_deg = number_argument(incidence, argument_ranges::kIncidenceDeg, "incidence_deg");
   const Material m = material_of(material, model, eta);
-  const ModelTotalReflectance t = model_total_reflectance(m, incidence_deg);
+  auto total = std::make_shared<ModelTotalReflectance>();  // seconds (photon-beam), minutes (tabulated, first time)
+  run_abandonable([=] { *total = model_total_reflectance(m, incidence_deg); });
+  const ModelTotalReflectance& t = *total;
   py::dict out;
   out["model"] = std::string(to_string(m.model)), out["material"] = m.name, out["eta"] = m.eta;
   out["incidence_deg"] = incidence_deg;

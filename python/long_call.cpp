@@ -4,6 +4,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -64,7 +65,41 @@ void poll(LongCallControl& control, const py::handle& progress, double& reported
   emit_warnings();
 }
 
+// The outcome of abandonable work, shared with its thread (which may outlive the call).
+struct AbandonableState {
+  std::mutex mutex;
+  std::condition_variable finished_cv;
+  bool finished = false;
+  std::exception_ptr failure;
+};
+
 }  // namespace
+
+void run_abandonable(std::function<void()> work) {
+  auto state = std::make_shared<AbandonableState>();
+  std::thread([state, work = std::move(work)] {
+    std::exception_ptr failure;
+    try {
+      work();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    const std::lock_guard<std::mutex> lock(state->mutex);
+    state->failure = failure;
+    state->finished = true;
+    state->finished_cv.notify_all();
+  }).detach();
+  for (bool finished = false; !finished;) {
+    {
+      const py::gil_scoped_release unlocked;
+      std::unique_lock<std::mutex> lock(state->mutex);
+      finished = state->finished_cv.wait_for(lock, kPollInterval, [&] { return state->finished; });
+    }
+    emit_warnings();
+    if (!finished && PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+  if (state->failure) std::rethrow_exception(state->failure);
+}
 
 void run_long_call(const std::function<void(LongCallControl&)>& work, const py::handle& progress) {
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))

@@ -22,4 +22,10 @@ struct LongCallControl {
 // taking the fraction done, called on the calling thread with the GIL when it changed, and with 1.0 at the end.
 void run_long_call(const std::function<void(LongCallControl&)>& work, const pybind11::handle& progress);
 
+// For work that cannot poll a stop flag (a BSSRDF model's total, the tabulated model's photon tables, which are
+// cached on disk with a checksum): waits as run_long_call does, but on an interrupt raises at once and leaves the
+// work to finish on its own thread, its result unused. `work` therefore owns everything it uses (captures by value,
+// shared_ptr for its result).
+void run_abandonable(std::function<void()> work);
+
 }  // namespace lucent::python

@@ -116,3 +116,16 @@ def test_sigint_stops_a_render_of_many_frames():
         lucent.render(scene, frames=1000000, progress=progress, **args)
     assert seen.is_set() and time.monotonic() - start < 60.0
     np.testing.assert_array_equal(lucent.render(scene, frames=1, **args), first)
+
+
+def test_sigint_stops_a_model_total_that_cannot_poll():
+    # The photon-beam model's total integrates for seconds in code with no stop flag: the call returns at once and
+    # the integration finishes on its own thread, unused.
+    expected = lucent.bssrdf_total("Marble", model="standard")
+    timer = interrupt_after(0.5)
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        lucent.bssrdf_total("Marble", model="photon-beam", incidence_deg=45)
+    timer.join()
+    assert time.monotonic() - start < 2.0
+    assert lucent.bssrdf_total("Marble", model="standard") == expected
