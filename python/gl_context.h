@@ -15,7 +15,6 @@ class CurrentContext {
   ~CurrentContext();
   CurrentContext(const CurrentContext&) = delete;
   CurrentContext& operator=(const CurrentContext&) = delete;
-  const GLContext& context() const { return *context_; }
 
  private:
   std::unique_lock<std::mutex> lock_;

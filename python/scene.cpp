@@ -1,9 +1,9 @@
 // scene.cpp: lucent.load_scene and lucent.Scene.
-#include <fmt/format.h>
-#include <pybind11/stl.h>
-
 #include <algorithm>
 #include <regex>
+
+#include <fmt/format.h>
+#include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "lucent/error.h"
