@@ -54,7 +54,7 @@ def main():
     # Cell 3: a real-time render (the BSSRDF model on the GPU) and the array imshow wants.
     size = dict(width=args.width, height=args.height)
     image = lucent.render(scene, method="per-pixel", params={"N": 16, "light_map_size": 128}, frames=2, **size)
-    display = lucent.tonemap(image, exposure=0.0, operator="aces")
+    display = lucent.tonemap(image, exposure=scene.exposure, operator=scene.tonemap)  # as `lucent render` shows it
     print(f"render: {image.shape} {image.dtype}, display: {display.shape} {display.dtype}, "
           f"mean display value {display.mean():.1f}")
 

@@ -98,6 +98,12 @@ void bind_scene(py::module_& m) {
       .def_property_readonly("height", [](const SceneHandle& h) { return h.scene.render.height; })
       .def_property_readonly("frames", [](const SceneHandle& h) { return h.scene.render.frames; })
       .def_property_readonly("seed", [](const SceneHandle& h) { return h.scene.render.seed; })
+      .def_property_readonly("exposure", [](const SceneHandle& h) { return decimal(h.scene.render.exposure); },
+                             "render.exposure [stops], as lucent.tonemap takes it")
+      .def_property_readonly("tonemap", [](const SceneHandle& h) { return tonemap_name(h.scene.render.tonemap); },
+                             "render.tonemap, the operator lucent.tonemap takes")
+      .def_property_readonly("camera", [](const SceneHandle& h) { return camera_dict(h.scene.camera); },
+                             "eye, target, up [scene units] and fov_y_deg")
       .def_property_readonly("scale_mm", [](const SceneHandle& h) { return h.scene.scale_mm; },
                              "millimetres per scene unit")
       .def_property_readonly("objects", [](const SceneHandle& h) { return objects_of(h.scene); },

@@ -14,8 +14,6 @@
 namespace lucent::python {
 namespace {
 
-// A float as the shortest decimal that reads back as it (0.0024, not 0.002400000113993883), as the scene file wrote it.
-double decimal(float x) { return std::stod(fmt::format("{}", x)); }
 py::tuple rgb(glm::vec3 v) { return py::make_tuple(decimal(v.x), decimal(v.y), decimal(v.z)); }
 
 py::object typed_value(const ParamDecl& decl, const ParamValue& value) {
@@ -124,6 +122,19 @@ py::dict light_dict(const PointLight& light) {
 }
 
 }  // namespace
+
+double decimal(float x) { return std::stod(fmt::format("{}", x)); }
+
+py::dict camera_dict(const Camera& camera) {
+  py::dict d;
+  d["eye"] = rgb(camera.eye), d["target"] = rgb(camera.target), d["up"] = rgb(camera.up);
+  d["fov_y_deg"] = decimal(camera.fov_y_deg);
+  return d;
+}
+
+const char* tonemap_name(ToneMapOperator op) {
+  return op == ToneMapOperator::Aces ? "aces" : op == ToneMapOperator::Reinhard ? "reinhard" : "linear";
+}
 
 py::dict method_params_dict(const Scene& scene) {
   py::dict dict;

@@ -14,6 +14,13 @@ pybind11::object objects_of(const Scene& scene);
 // lucent.SceneItems of dicts: directional lights, then point and spot lights, then an environment's samples.
 pybind11::object lights_of(const Scene& scene);
 
+// {"eye", "target", "up", "fov_y_deg"}.
+pybind11::dict camera_dict(const Camera& camera);
+// "aces", "reinhard" or "linear" (render.tonemap).
+const char* tonemap_name(ToneMapOperator op);
+// A float as the shortest decimal that reads back as it (0.0024, not 0.002400000113993883), as the scene file wrote it.
+double decimal(float x);
+
 void bind_scene_values(pybind11::module_& m);  // SceneItems, SceneObject
 
 }  // namespace lucent::python

@@ -97,6 +97,10 @@ def test_objects_and_lights_read_back_as_the_file_writes_them():
             assert view.material["eta"] == pytest.approx(preset["eta"], rel=1e-6)
         else:
             assert view.material is None and view.albedo == tuple(o["albedo"])
+    assert scene.camera["eye"] == tuple(doc["camera"]["eye"]) and scene.camera["fov_y_deg"] == doc["camera"]["fov_y_deg"]
+    assert (scene.exposure, scene.tonemap) == (0.0, "aces")  # the defaults of render.exposure, render.tonemap
+    scene.set("render.tonemap", "reinhard").set("render.exposure", 0.7)
+    assert (scene.exposure, scene.tonemap) == (0.7, "reinhard")
     assert len(scene.lights) == len(doc["lights"])
     assert scene.lights[0]["radiance"] == tuple(doc["lights"][0]["radiance"])
     with pytest.raises(KeyError, match="no objects named 'bunny'"):
