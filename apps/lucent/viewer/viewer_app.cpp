@@ -102,10 +102,6 @@ class CameraInput {
   int drag_button_ = -1;
 };
 
-bool same_camera(const Camera& a, const Camera& b) {
-  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
-}
-
 // The view's size before the window exists: the options, else the scene's render size. A scene that does not
 // load is an error with `frames` (like `lucent render`), else the window opens and shows the message.
 glm::ivec2 initial_view_size(const ViewerOptions& o) {
