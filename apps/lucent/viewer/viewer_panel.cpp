@@ -28,11 +28,14 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
     return;
   }
   const FrameTimings& t = renderer->timings();
-  ImGui::Text("%d frames accumulated, %dx%d", renderer->accumulated_frames(), state.view_width, state.view_height);
+  // What is on screen and what is being computed: on a software rasterizer a frame takes seconds, and the window
+  // is redrawn only between frames.
+  ImGui::TextWrapped("%s", state.frame_status.c_str());
+  ImGui::Text("%dx%d pixels rendered, %s", state.view_width, state.view_height, state.frame_rate.c_str());
   if (ImGui::Button("restart")) session.restart();
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
-  ImGui::DragInt("stop after frames (0: never)", &state.stop_after_frames, 1.0f, 0, 1000000);
+  ImGui::DragInt("stop after (0: never)", &state.stop_after_frames, 1.0f, 0, 1000000, "%d frames");
   bool animated = false;
   for (const SceneObject& object : renderer->scene().objects) animated = animated || object.animated();
   if (animated) {
@@ -42,8 +45,11 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
     ImGui::SetNextItemWidth(120.0f);
     if (ImGui::DragFloat("time [s]", &state.time_seconds, 0.02f, 0.0f, 3600.0f, "%.2f")) state.playing = false;
   }
-  ImGui::Text("%.1f frames/s, GPU %.2f ms/frame, %.1f MiB", state.frames_per_second, t.total_ms,
-              static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0));
+  if (t.total_ms > 0.0)
+    ImGui::Text("GPU %.2f ms/frame (frame %llu), %.1f MiB", t.total_ms, static_cast<unsigned long long>(t.frame),
+                static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0));
+  else
+    ImGui::TextDisabled("GPU timings: after the first frames (read a few frames late)");
   // Passes and statistics as the method declares them, from the newest frame the GPU has reported (a few frames
   // behind: reading them never stalls the viewer).
   if (ImGui::TreeNode("GPU passes [ms]")) {
@@ -104,7 +110,10 @@ PanelActions files_section(ViewerSession& session, PanelState& state) {
 PanelActions draw_panel(ViewerSession& session, PanelState& state, float width, float height) {
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(width, height));
-  ImGui::Begin("lucent", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  // The panel is the window's height and scrolls (vertically, and sideways for a long label in a narrow panel).
+  ImGui::Begin("lucent", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_HorizontalScrollbar);
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.48f);  // the rest for labels with units
   ImGui::TextDisabled("%s", session.scene_path().empty() ? "<built-in default scene>" : session.scene_path().c_str());
   error_box(session.error());
