@@ -19,6 +19,8 @@
 #include <gtest/gtest.h>
 
 #include "reference/reference_cache.h"
+#include "reference/reference_renderer.h"
+#include "lucent/scene.h"
 #include "../cli_runner.h"
 #include "lucent/image.h"
 #include "progress_bar.h"
@@ -247,9 +249,30 @@ namespace cli_progress {
 TEST(CliReferences, PassScheduleGrowsByAnEighth) {
   EXPECT_EQ(lucent::cli::reference_pass_ends(0, 4), (std::vector<int>{1, 2, 3, 4}));
   EXPECT_EQ(lucent::cli::reference_pass_ends(0, 40),
-            (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24, 27, 30, 33, 36,
+            (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24, 27, 30, 33, 37,
                               40}));
   EXPECT_EQ(lucent::cli::reference_pass_ends(80, 25), (std::vector<int>{10, 21, 25}));
+}
+
+// The same schedule as the renderer's: an image one row tall reports its progress once a pass, at the pass's end.
+TEST(CliReferences, PassScheduleIsTheRenderersOwn) {
+  const auto path = references_dir() / "one_row.json";
+  std::ofstream(path) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
+    "render": {"width": 3, "height": 1}})";
+  const lucent::Scene scene = lucent::load_scene(path.string(), {});
+  lucent::reference::ReferenceSettings settings;
+  settings.integrator = lucent::reference::Integrator::Bssrdf;
+  settings.samples_per_pixel = 40;
+  std::vector<int> reported;
+  settings.progress = [&](double done) { reported.push_back(static_cast<int>(std::lround(done * 40.0))); };
+  const lucent::reference::ReferenceImage first = lucent::reference::render_reference(scene, settings);
+  EXPECT_EQ(reported, lucent::cli::reference_pass_ends(0, 40));
+  reported.clear();
+  settings.samples_per_pixel = 25;
+  settings.progress = [&](double done) { reported.push_back(static_cast<int>(std::lround(done * 25.0))); };
+  lucent::reference::render_reference(scene, settings, &first);
+  EXPECT_EQ(reported, lucent::cli::reference_pass_ends(40, 25));
 }
 
 // The time left comes from the seconds per sample of the completed passes after the first (whose time holds the

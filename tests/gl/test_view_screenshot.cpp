@@ -27,7 +27,7 @@ const std::string kFast =
 const std::string kScene = std::string(LUCENT_SCENES_DIR) + "/default.json";
 
 std::string xvfb(const std::string& arguments) {
-  return std::string(XVFB_RUN) + " -a -s \"-screen 0 640x480x24\" " + LUCENT_CLI + " " + arguments;
+  return std::string(XVFB_RUN) + " -a -s \"-screen 0 1024x768x24\" " + LUCENT_CLI + " " + arguments;
 }
 
 CliResult run_shell(const std::string& command) {
@@ -103,16 +103,19 @@ TEST_F(ViewScreenshot, ADifferentLightFailsTheTolerance) {
   EXPECT_GT(d.mean_abs, 10.0 * kMeanTolerance);
 }
 
-// The window shows the rendered view right of the panel, pixel for pixel (and the panel is drawn).
+// The window opens at the smallest integer scale of the view that gives the panel 480 rows (4 x 120) and shows the
+// rendered view right of the panel, filling the window, each rendered pixel a 4x4 block (and the panel is drawn).
 TEST_F(ViewScreenshot, TheWindowShowsTheViewBesideThePanel) {
   ASSERT_EQ(view_.exit_code, 0) << view_.output;
   ImageRGBA8 window = read_png(window_png_), view = read_png(view_png_);
-  ASSERT_EQ(window.width, kPanelWidth + kWidth);
-  ASSERT_GE(window.height, kHeight);
+  constexpr int kScale = 4;
+  ASSERT_EQ(window.width, kPanelWidth + kScale * kWidth);
+  ASSERT_EQ(window.height, kScale * kHeight);
   ImageRGBA8 region{kWidth, kHeight, std::vector<std::uint8_t>(static_cast<std::size_t>(kWidth) * kHeight * 4)};
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x)
-      for (int c = 0; c < 4; ++c) region.at(x, y)[c] = c == 3 ? 255 : window.at(kPanelWidth + x, y)[c];
+      for (int c = 0; c < 4; ++c)
+        region.at(x, y)[c] = c == 3 ? 255 : window.at(kPanelWidth + kScale * x + kScale - 1, kScale * y + kScale - 1)[c];
   ImageDifference d = compare(region, view);
   if (d.max_abs != 0) write_failure_images("view_window_region", region, view);
   EXPECT_EQ(d.max_abs, 0);
