@@ -31,7 +31,7 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
   // What is on screen and what is being computed: on a software rasterizer a frame takes seconds, and the window
   // is redrawn only between frames.
   ImGui::TextWrapped("%s", state.frame_status.c_str());
-  ImGui::Text("%dx%d pixels rendered, %s", state.view_width, state.view_height, state.frame_rate.c_str());
+  ImGui::TextWrapped("%dx%d pixels rendered, %s", state.view_width, state.view_height, state.frame_rate.c_str());
   if (ImGui::Button("restart")) session.restart();
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
