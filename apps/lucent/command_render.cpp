@@ -126,7 +126,6 @@ void run(const RenderOptions& o) {
   std::vector<OutputPath> outputs = {{output, "--output", {".png", ".exr"}},
                                      {o.exr, "--exr", {".exr"}},
                                      {o.timings_json, "--timings-json", {".json"}}};
-  if (!o.exr.empty() && same_file(o.exr, output)) throw Error(fmt::format("--exr {}: the same file as --output", o.exr));
   if (o.animate) {
     std::filesystem::path base = std::filesystem::path(png).replace_extension("");
     if (!o.exr.empty()) throw Error("--exr: not written with --animate (each frame is a PNG)");
