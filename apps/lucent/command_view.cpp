@@ -30,7 +30,9 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--window-height", options->window_height, "window height in pixels")->check(CLI::Range(100, 16384));
   cmd->footer(
       "\nControls: left drag orbit, right/middle or shift+left drag pan, wheel zoom, R reset camera, P screenshot,\n"
-      "Esc quit. The scene file is reloaded when it changes on disk; errors show in the window.");
+      "Esc quit. The scene file is reloaded when it changes on disk; errors show in the window.\n"
+      "The view is rendered at --width x --height and scaled to fit the window beside the panel (aspect kept);\n"
+      "the panel's first line says which frame is rendering and how long a frame takes.");
   cmd->callback([options] {
     if ((!options->screenshot.empty() || !options->screenshot_window.empty() || !options->save_scene.empty()) &&
         options->frames == 0)
