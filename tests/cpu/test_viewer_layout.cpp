@@ -87,6 +87,8 @@ TEST(ViewerLayout, TheStatusLineSaysWhichFrameIsRendering) {
   status.rendering = false;
   status.frames_accumulated = 64;
   EXPECT_EQ(frame_status_text(status), "idle: 64 frames accumulated");
+  status.frames_accumulated = 1;
+  EXPECT_EQ(frame_status_text(status), "idle: 1 frame accumulated");
 }
 
 // The albedo / mfp editor shows a material's values and turns edits back into coefficients: the mfp is

@@ -142,6 +142,36 @@ TEST_F(ViewScreenshot, TheSavedSceneRendersTheSameImage) {
   EXPECT_LE(d.percentile_99, kPercentile99Tolerance);
 }
 
+// A window of another shape (400x300, a 240-pixel panel asked): the panel takes at most half the window (200), the
+// 160x120 view is scaled by 1.25 into the 200x300 beside it and centred, background above and below; the view
+// is still rendered at 160x120 (the screenshot).
+TEST(ViewLayout, AViewInAWindowOfAnotherShapeIsScaledToFitAndCentred) {
+  const std::string view_png = output_path("view_fit_view.png"), window_png = output_path("view_fit_window.png");
+  CliResult view = run_shell(xvfb("view " + kScene + kFast + " --width 160 --height 120 --window-width 400 "
+                                  "--window-height 300 --panel-width 240 --frames 1 --screenshot " + view_png +
+                                  " --screenshot-window " + window_png));
+  ASSERT_EQ(view.exit_code, 0) << view.output;
+  const ImageRGBA8 window = read_png(window_png), rendered = read_png(view_png);
+  ASSERT_EQ(window.width, 400);
+  ASSERT_EQ(window.height, 300);
+  EXPECT_EQ(rendered.width, 160);
+  EXPECT_EQ(rendered.height, 120);
+  // The view spans rows 75..224 of columns 200..399: the rows just outside it are the dark background (15, 15, 18
+  // in 8 bits), every row inside it holds the image (the default scene has no pixel that dark).
+  auto row_is_background = [&](int y) {
+    for (int x = 200; x < 400; ++x)
+      if (window.at(x, y)[0] > 20 || window.at(x, y)[1] > 20 || window.at(x, y)[2] > 24) return false;
+    return true;
+  };
+  EXPECT_TRUE(row_is_background(0));
+  EXPECT_TRUE(row_is_background(73));
+  EXPECT_FALSE(row_is_background(76));
+  EXPECT_FALSE(row_is_background(150));
+  EXPECT_FALSE(row_is_background(223));
+  EXPECT_TRUE(row_is_background(226));
+  EXPECT_TRUE(row_is_background(299));
+}
+
 // A bad scene in --frames mode: exit 1 with the one line `lucent render` prints, no window left behind.
 TEST(ViewErrors, BadSceneExitsWithTheRenderCommandsMessage) {
   std::string path = output_path("view_bad_scene.json");

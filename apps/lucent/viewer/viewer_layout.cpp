@@ -48,7 +48,8 @@ std::string FrameClock::rate_text() const {
 }
 
 std::string frame_status_text(const FrameStatus& s) {
-  if (!s.rendering) return fmt::format("idle: {} frames accumulated", s.frames_accumulated);
+  if (!s.rendering)
+    return fmt::format("idle: {} frame{} accumulated", s.frames_accumulated, s.frames_accumulated == 1 ? "" : "s");
   const int frame = s.frames_accumulated + 1;
   if (s.seconds_per_frame <= 0.0)
     return fmt::format("rendering frame {} (the first frame also builds what the method precomputes)", frame);
