@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -11,12 +12,18 @@
 namespace lucent::viewer {
 namespace {
 
+// Text wrapped at the panel's visible right edge (the panel scrolls sideways, so its content may be wider).
+void wrapped_text(const std::string& text) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  ImGui::PushTextWrapPos(ImGui::GetScrollX() + ImGui::GetWindowWidth() - style.WindowPadding.x - style.ScrollbarSize);
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
+}
+
 void error_box(const std::string& error) {
   if (error.empty()) return;
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
-  ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextUnformatted(error.c_str());
-  ImGui::PopTextWrapPos();
+  wrapped_text(error);
   ImGui::PopStyleColor();
   ImGui::Separator();
 }
@@ -30,8 +37,8 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
   const FrameTimings& t = renderer->timings();
   // What is on screen and what is being computed: on a software rasterizer a frame takes seconds, and the window
   // is redrawn only between frames.
-  ImGui::TextWrapped("%s", state.frame_status.c_str());
-  ImGui::TextWrapped("%dx%d pixels rendered, %s", state.view_width, state.view_height, state.frame_rate.c_str());
+  wrapped_text(state.frame_status);
+  wrapped_text(fmt::format("{}x{} pixels rendered, {}", state.view_width, state.view_height, state.frame_rate));
   if (ImGui::Button("restart")) session.restart();
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
