@@ -120,7 +120,8 @@ void run(const RenderOptions& o) {
   const std::string output = o.output.empty() ? default_png_path(o.scene_path) : o.output;
   // -o's extension picks the format: .png tone-mapped, .exr linear radiance (--exr adds an EXR beside a PNG).
   const bool output_is_exr = lowercase_extension(output) == ".exr";
-  if (o.animate && output_is_exr) throw Error(fmt::format("--output {}: --animate writes PNG frames; give a .png", output));
+  if (o.animate && output_is_exr)
+    throw Error(fmt::format("--output {}: --animate writes PNG frames; give a .png", output));
   const std::string png = output_is_exr ? "" : output;
   // Outputs are checked before the first frame: never an input, a known format, a directory that takes files.
   std::vector<OutputPath> outputs = {{output, "--output", {".png", ".exr"}},

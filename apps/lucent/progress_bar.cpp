@@ -24,8 +24,8 @@ void ProgressBar::update(int done) {
   if (!enabled_) return;
   const double seconds = elapsed();
   std::string left = done > 0 ? format_seconds(seconds * (total_ - done) / done) + " left" : "time left not known yet";
-  draw(static_cast<double>(done) / total_, fmt::format("{}/{}{}{}  {} elapsed, {}", done, total_, unit_.empty() ? "" : " ",
-                                                      unit_, format_seconds(seconds), left));
+  const std::string counts = fmt::format("{}/{}{}{}", done, total_, unit_.empty() ? "" : " ", unit_);
+  draw(static_cast<double>(done) / total_, fmt::format("{}  {} elapsed, {}", counts, format_seconds(seconds), left));
 }
 
 void ProgressBar::update_fraction(double fraction) {

@@ -206,7 +206,8 @@ class ViewerApp {
     state_.view_width = view_.x, state_.view_height = view_.y;
     state_.frame_rate = clock_.rate_text();
     state_.frame_status = frame_status_text(frame_status(render_now));
-    PanelActions actions = draw_panel(session_, state_, static_cast<float>(panel_width_), static_cast<float>(framebuffer_.y));
+    PanelActions actions =
+        draw_panel(session_, state_, static_cast<float>(panel_width_), static_cast<float>(framebuffer_.y));
     present();
     imgui_->draw();
     actions.screenshot |= keys.screenshot;
@@ -251,7 +252,8 @@ class ViewerApp {
   // One renderer frame into the view's target.
   void render_scene() {
     if (!target_ || target_size_ != view_) target_ = std::make_unique<OffscreenFramebuffer>(view_.x, view_.y), target_size_ = view_, rendered_ = false;
-    if (Renderer* renderer = session_.renderer()) renderer->set_time(state_.time_seconds);  // no effect on static scenes
+    // No effect on static scenes.
+    if (Renderer* renderer = session_.renderer()) renderer->set_time(state_.time_seconds);
     session_.render({target_->id(), view_.x, view_.y});
     last_camera_ = session_.camera().camera();
     last_renderer_ = session_.renderer();
