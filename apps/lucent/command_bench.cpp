@@ -109,7 +109,7 @@ struct Bench {
     ProgressBar progress(fmt::format("  reference {} {} spp", integrator, spp), 1000);
     reference::ReferenceImage image =
         reference::cached_reference((out / "references").string(), scene_path, sets, integrator, spp,
-                                    [&](double done) { progress.update(static_cast<int>(done * 1000.0)); });
+                                    [&](double done) { progress.update_fraction(done); });
     progress.finish();
     return image;
   }

@@ -2,6 +2,7 @@
 // integration of the BSSRDF model), with a progress bar, the time left, a standard-error image, and resuming;
 // `lucent reference merge A.exr B.exr ... -o ref.exr`: batches rendered with distinct seeds, combined exactly.
 #include <algorithm>
+#include <csignal>
 #include <cstring>
 #include <limits>
 
@@ -17,6 +18,7 @@
 #include "lucent/scene.h"
 #include "params/argument_ranges.h"
 #include "progress_bar.h"
+#include "sample_progress.h"
 #include "reference/reference_files.h"
 #include "reference/reference_merge.h"
 #include "render/gpu_reference.h"
@@ -24,6 +26,20 @@
 
 namespace lucent::cli {
 namespace {
+
+// A shell without job control starts a background job (`lucent reference ... &` in a script) with SIGINT ignored,
+// and install_interruption_handlers() leaves an ignored signal ignored: `kill -INT` then did nothing and the
+// reference ran on. A reference stopped by SIGINT saves its samples and says how to resume, so it takes SIGINT
+// whatever it inherited (SIGHUP stays ignored under nohup).
+void take_sigint_even_if_ignored() {
+  struct sigaction old {};
+  if (::sigaction(SIGINT, nullptr, &old) != 0 || old.sa_handler != SIG_IGN) return;
+  struct sigaction action {};
+  action.sa_handler = SIG_DFL;
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGINT, &action, nullptr);
+  install_interruption_handlers();
+}
 
 struct ReferenceOptions {
   std::string scene_path;
@@ -105,10 +121,16 @@ void run(ReferenceOptions o) {
     previous = reference::load_reference(files);
     check_resumable(previous->metadata, o, scene, files.metadata);
   }
-  ProgressBar progress(fmt::format("{} {} spp", o.integrator, o.settings.samples_per_pixel), o.quiet ? 1 : 1000);
-  o.settings.progress = [&](double done) { progress.update(static_cast<int>(done * 1000.0)); };
+  // The bar shows samples per pixel in completed passes and a time left from their measured seconds per sample.
+  ProgressBar progress(o.integrator, o.quiet ? 1 : 1000);
+  SampleEta eta(previous ? previous->image.samples_per_pixel : 0, o.settings.samples_per_pixel);
+  o.settings.progress = [&](double done) {
+    eta.update(done, progress.elapsed());
+    progress.draw(done, eta.text(progress.elapsed()));
+  };
   // SIGINT or SIGTERM stops the render at its next chunk of rows; the completed passes are saved, then the command
   // ends with a line saying how many samples it saved.
+  take_sigint_even_if_ignored();
   DeferredInterruption interruption;
   o.settings.stop_requested = [&] { return interruption.received() != 0; };
   std::string gpu;

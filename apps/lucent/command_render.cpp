@@ -20,8 +20,8 @@ namespace {
 
 struct RenderOptions {
   std::string scene_path;
-  std::string png;
-  std::string exr;
+  std::string output;  // -o: PNG (tone-mapped) or EXR (linear radiance), by its extension
+  std::string exr;     // --exr: linear radiance besides the -o file
   std::string timings_json;
   std::optional<int> frames;
   std::optional<unsigned> seed;
@@ -71,7 +71,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
   OffscreenFramebuffer target(width, height);
   std::filesystem::path base = std::filesystem::path(png).replace_extension("");
-  ProgressBar progress("animating", o.quiet ? 1 : frames);
+  ProgressBar progress("animating", o.quiet ? 1 : frames, "frames");
   std::vector<FrameTimings> timings;
   for (int f = 0; f < frames; ++f) {
     renderer.set_time(f / static_cast<double>(scene.render.fps));
@@ -117,10 +117,16 @@ void run(const RenderOptions& o) {
   if (o.frames) overrides.push_back(fmt::format("render.frames={}", *o.frames));
   if (o.seed) overrides.push_back(fmt::format("render.seed={}", *o.seed));
   Scene scene = o.scene_path.empty() ? default_scene(overrides) : load_scene(o.scene_path, overrides);
-  std::string png = o.png.empty() ? default_png_path(o.scene_path) : o.png;
+  const std::string output = o.output.empty() ? default_png_path(o.scene_path) : o.output;
+  // -o's extension picks the format: .png tone-mapped, .exr linear radiance (--exr adds an EXR beside a PNG).
+  const bool output_is_exr = lowercase_extension(output) == ".exr";
+  if (o.animate && output_is_exr)
+    throw Error(fmt::format("--output {}: --animate writes PNG frames; give a .png", output));
+  const std::string png = output_is_exr ? "" : output;
   // Outputs are checked before the first frame: never an input, a known format, a directory that takes files.
-  std::vector<OutputPath> outputs = {
-      {png, "--output", {".png"}}, {o.exr, "--exr", {".exr"}}, {o.timings_json, "--timings-json", {".json"}}};
+  std::vector<OutputPath> outputs = {{output, "--output", {".png", ".exr"}},
+                                     {o.exr, "--exr", {".exr"}},
+                                     {o.timings_json, "--timings-json", {".json"}}};
   if (o.animate) {
     std::filesystem::path base = std::filesystem::path(png).replace_extension("");
     if (!o.exr.empty()) throw Error("--exr: not written with --animate (each frame is a PNG)");
@@ -139,7 +145,7 @@ void run(const RenderOptions& o) {
   Renderer renderer(scene, o.quiet ? RenderProgress{} : RenderProgress(StepProgress()));
   int width = scene.render.width, height = scene.render.height, frames = scene.render.frames;
   OffscreenFramebuffer target(width, height);
-  ProgressBar progress("rendering", o.quiet ? 1 : frames);
+  ProgressBar progress("rendering", o.quiet ? 1 : frames, "frames");
   std::vector<FrameTimings> timings;
   for (int f = 0; f < frames; ++f) {
     if (o.restart_every_frame) renderer.restart();
@@ -152,12 +158,13 @@ void run(const RenderOptions& o) {
 
   ImageRGBA32F radiance = renderer.read_radiance();
   warn_if_black(radiance);
-  write_png(png, renderer.read_display());
+  if (output_is_exr) write_exr(output, radiance);
+  else write_png(output, renderer.read_display());
   if (!o.exr.empty()) write_exr(o.exr, radiance);
   write_timings_json(o.timings_json, timings);
   if (!o.quiet) {
     fmt::print("{}: {}x{}, {} frame(s) accumulated -> {}{}\n", scene.source, width, height,
-               renderer.accumulated_frames(), png, o.exr.empty() ? "" : " and " + o.exr);
+               renderer.accumulated_frames(), output, o.exr.empty() ? "" : " and " + o.exr);
     print_timings(timings, renderer.device());
   }
 }
@@ -175,8 +182,10 @@ void add_render_command(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "render a scene headless to PNG (and EXR)");
   cmd->add_option("scene", options->scene_path, "scene file (JSON); the built-in default scene when omitted");
-  cmd->add_option("-o,--output", options->png, "tone-mapped PNG (default: out/<scene>.png)");
-  cmd->add_option("--exr", options->exr, "also write linear radiance as EXR");
+  cmd->add_option("-o,--output", options->output,
+                  "image to write, its format from the extension: .png tone-mapped (ACES, sRGB), .exr linear radiance "
+                  "(default: out/<scene>.png)");
+  cmd->add_option("--exr", options->exr, "also write linear radiance as EXR (beside a PNG --output)");
   cmd->add_option("--timings-json", options->timings_json,
                   "write every frame's GPU pass times and the method's statistics as JSON");
   cmd->add_option("--frames", options->frames, "frames to accumulate (render.frames)")->check(whole_number_in(1, 1e6));

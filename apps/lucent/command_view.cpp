@@ -21,10 +21,18 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--screenshot-window", options->screenshot_window, "with --frames: the whole window, panel included (.png)");
   cmd->add_option("--save-scene", options->save_scene,
                   "with --frames: save the scene as the panel's \"save scene as\" does (lucent render of it reproduces the view)");
-  cmd->add_option("--panel-width", options->panel_width, "panel width in pixels")->check(CLI::Range(200, 2000));
+  cmd->add_option("--panel-width", options->panel_width, "panel width in pixels (at most half the window)")
+      ->check(CLI::Range(160, 2000));
+  cmd->add_option("--window-width", options->window_width,
+                  "window width in pixels (default: the view at an integer scale beside the panel; the view is "
+                  "scaled to fit, its rendered size stays --width x --height)")
+      ->check(CLI::Range(100, 16384));
+  cmd->add_option("--window-height", options->window_height, "window height in pixels")->check(CLI::Range(100, 16384));
   cmd->footer(
       "\nControls: left drag orbit, right/middle or shift+left drag pan, wheel zoom, R reset camera, P screenshot,\n"
-      "Esc quit. The scene file is reloaded when it changes on disk; errors show in the window.");
+      "Esc quit. The scene file is reloaded when it changes on disk; errors show in the window.\n"
+      "The view is rendered at --width x --height and scaled to fit the window beside the panel (aspect kept);\n"
+      "the panel's first line says which frame is rendering and how long a frame takes.");
   cmd->callback([options] {
     if ((!options->screenshot.empty() || !options->screenshot_window.empty() || !options->save_scene.empty()) &&
         options->frames == 0)

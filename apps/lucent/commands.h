@@ -1,10 +1,16 @@
 // commands.h: the subcommands of the `lucent` tool.
 #pragma once
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 #include "cache/precompute_cache.h"
 
 namespace lucent::cli {
+
+// "lucent 0.1.0 (git v0.1-12-gabc1234)": project()'s version and the source tree's `git describe` when built from
+// a checkout (both recorded when CMake configured the build).
+std::string version_text();
 
 void add_render_command(CLI::App& app);
 void add_bssrdf_command(CLI::App& app);

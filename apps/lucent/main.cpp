@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   lucent::install_interruption_handlers();
   CLI::App app{"lucent: real-time translucent materials with physically based subsurface scattering"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", lucent::cli::version_text(), "print lucent's version and exit");
   lucent::cli::add_render_command(app);
   lucent::cli::add_bssrdf_command(app);
   lucent::cli::add_materials_command(app);

@@ -18,7 +18,7 @@ void StepProgress::operator()(std::string_view step, double fraction) {
   if (!bar_ && done < kTicks && std::chrono::duration<double>(now - start_).count() >= show_after_s_)
     bar_.emplace(step_, kTicks);
   if (!bar_) return;
-  bar_->update(done);
+  bar_->update_fraction(static_cast<double>(done) / kTicks);
   if (done == kTicks) {
     bar_->finish();
     bar_.reset();

@@ -2,6 +2,7 @@
 #include "image/image_metrics.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -58,7 +59,10 @@ ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const Image
   e.mean_error = sum_err / (3.0 * static_cast<double>(n));
   e.mean_error_se = std::sqrt(sum_var) / (3.0 * static_cast<double>(n));
   e.reference_noise_rms = std::sqrt(sum_var / (3.0 * static_cast<double>(n)));
-  e.psnr_db = mse_all > 0.0 ? 10.0 * std::log10(std::max(peak, 1e-12) * std::max(peak, 1e-12) / mse_all) : 1e9;
+  // Identical images: no error, an infinite PSNR. A black reference with a non-black image has no peak.
+  e.psnr_db = mse_all == 0.0 ? std::numeric_limits<double>::infinity()
+              : peak > 0.0   ? 10.0 * std::log10(peak * peak / mse_all)
+                             : std::numeric_limits<double>::quiet_NaN();
   return e;
 }
 
@@ -87,9 +91,32 @@ void check_displayable(const ImageRGBA32F& image, const std::string& name) {
 }
 
 ImageError display_error(const ImageRGBA32F& a, const ImageRGBA32F& b, float exposure) {
-  ImageError e = image_error(tonemapped(a, exposure), tonemapped(b, exposure));
-  e.psnr_db = e.rmse_rgb > 0.0 ? 10.0 * std::log10(3.0 / (e.rmse_rgb * e.rmse_rgb)) : 1e9;  // peak 1 per channel
+  return display_values_error(tonemapped(a, exposure), tonemapped(b, exposure));
+}
+
+ImageError display_values_error(const ImageRGBA32F& a, const ImageRGBA32F& b) {
+  ImageError e = image_error(a, b);
+  // Peak 1 per channel.
+  e.psnr_db = e.rmse_rgb > 0.0 ? 10.0 * std::log10(3.0 / (e.rmse_rgb * e.rmse_rgb))
+                               : std::numeric_limits<double>::infinity();
   return e;
+}
+
+std::string psnr_text(double psnr_db) {
+  if (std::isnan(psnr_db)) return "undefined (black reference)";
+  if (std::isinf(psnr_db)) return "inf dB";
+  return fmt::format("{:.2f} dB", psnr_db);
+}
+
+ImageRGBA32F from_srgb8(const ImageRGBA8& image, bool linear) {
+  ImageRGBA32F out{image.width, image.height, std::vector<float>(image.pixels.size())};
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const float code = static_cast<float>(image.pixels[i]) / 255.0f;
+    const bool colour = i % 4 != 3;
+    out.pixels[i] = linear && colour ? (code <= 0.04045f ? code / 12.92f : std::pow((code + 0.055f) / 1.055f, 2.4f))
+                                     : code;
+  }
+  return out;
 }
 
 ImageRGBA8 to_display(const ImageRGBA32F& image, float exposure) {

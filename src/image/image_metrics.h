@@ -14,7 +14,9 @@ struct ImageError {
   double relative_mse = 0.0;       // mean of (a - b)^2 / (b^2 + 1e-2) over pixels and channels
   double mean_error = 0.0;         // mean of (a - b) over pixels and channels
   double mean_error_se = 0.0;      // its standard error from the reference's per-pixel errors (0 if none)
-  double psnr_db = 0.0;            // 10 log10(peak^2 / MSE), peak = max of the reference (1 for display values)
+  // 10 log10(peak^2 / MSE), peak = max of the reference (1 for display values); +inf for identical images, NaN
+  // when the reference is black and the image is not (no peak to measure against).
+  double psnr_db = 0.0;
   double reference_noise_rms = 0.0;  // RMS of the reference's per-pixel standard error (0 if none)
 };
 
@@ -36,6 +38,13 @@ ImageError image_error(const ImageRGBA32F& a, const ImageRGBA32F& b, const Image
 // The same on tone-mapped values in [0, 1] (exposure in stops, ACES, sRGB); values too large for the tone curve's
 // float arithmetic (beyond 1e6 after exposure) display as white.
 ImageError display_error(const ImageRGBA32F& a, const ImageRGBA32F& b, float exposure);
+// The same on display values already in [0, 1] (an 8-bit image's codes / 255).
+ImageError display_values_error(const ImageRGBA32F& a, const ImageRGBA32F& b);
+// "24.31 dB", "inf dB" (identical), "undefined (black reference)".
+std::string psnr_text(double psnr_db);
+// An 8-bit sRGB image as floats: `linear` decodes the sRGB curve (IEC 61966-2-1) to display light in [0, 1];
+// otherwise the codes / 255, the values a display shows. Alpha / 255 either way.
+ImageRGBA32F from_srgb8(const ImageRGBA8& image, bool linear);
 ImageRGBA32F tonemapped(const ImageRGBA32F& image, float exposure);  // display values in [0, 1]
 // Throws lucent::Error naming `name`, the first NaN's pixel and band: a NaN has no colour to display (the tone
 // curve would turn it black without a word). +inf displays as white.

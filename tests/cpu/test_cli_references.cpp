@@ -6,15 +6,25 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <regex>
+#include <sstream>
 #include <string>
+#include <vector>
+#include <csignal>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "reference/reference_cache.h"
+#include "reference/reference_renderer.h"
+#include "lucent/scene.h"
 #include "../cli_runner.h"
 #include "lucent/image.h"
+#include "progress_bar.h"
+#include "sample_progress.h"
 #include <nlohmann/json.hpp>
 
 namespace {
@@ -232,3 +242,182 @@ TEST(CliReferences, BenchChecksEveryVariantsSceneFirst) {
 }
 
 }  // namespace
+
+namespace cli_progress {
+
+// A reference's passes: each at most an eighth of the samples before it, at least one, ending at exactly `wanted`.
+TEST(CliReferences, PassScheduleGrowsByAnEighth) {
+  EXPECT_EQ(lucent::cli::reference_pass_ends(0, 4), (std::vector<int>{1, 2, 3, 4}));
+  EXPECT_EQ(lucent::cli::reference_pass_ends(0, 40),
+            (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24, 27, 30, 33, 37,
+                              40}));
+  EXPECT_EQ(lucent::cli::reference_pass_ends(80, 25), (std::vector<int>{10, 21, 25}));
+}
+
+// The same schedule as the renderer's: an image one row tall reports its progress once a pass, at the pass's end.
+TEST(CliReferences, PassScheduleIsTheRenderersOwn) {
+  const auto path = references_dir() / "one_row.json";
+  std::ofstream(path) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
+    "render": {"width": 3, "height": 1}})";
+  const lucent::Scene scene = lucent::load_scene(path.string(), {});
+  lucent::reference::ReferenceSettings settings;
+  settings.integrator = lucent::reference::Integrator::Bssrdf;
+  settings.samples_per_pixel = 40;
+  std::vector<int> reported;
+  settings.progress = [&](double done) { reported.push_back(static_cast<int>(std::lround(done * 40.0))); };
+  const lucent::reference::ReferenceImage first = lucent::reference::render_reference(scene, settings);
+  EXPECT_EQ(reported, lucent::cli::reference_pass_ends(0, 40));
+  reported.clear();
+  settings.samples_per_pixel = 25;
+  settings.progress = [&](double done) { reported.push_back(static_cast<int>(std::lround(done * 25.0))); };
+  lucent::reference::render_reference(scene, settings, &first);
+  EXPECT_EQ(reported, lucent::cli::reference_pass_ends(40, 25));
+}
+
+// The time left comes from the seconds per sample of the completed passes after the first (whose time holds the
+// setup), not from the fraction of rows done: a run of 5 s setup and 2 s per sample per pixel.
+TEST(CliReferences, TimeLeftFollowsMeasuredSecondsPerSample) {
+  lucent::cli::SampleEta eta(0, 40);
+  auto at = [](int samples) { return 5.0 + 2.0 * samples; };  // the second the pass ending at `samples` ends
+  EXPECT_FALSE(eta.seconds_left(3.0).has_value());
+  eta.update(0.6 / 40.0, 4.0);  // 60% of the first pass's rows: no sample done yet
+  EXPECT_EQ(eta.samples_done(), 0);
+  EXPECT_FALSE(eta.seconds_left(4.0).has_value());
+  EXPECT_NE(eta.text(4.0).find("0/40 spp  4.0 s elapsed, first pass 60% done"), std::string::npos) << eta.text(4.0);
+  eta.update(1.0 / 40.0, at(1));
+  EXPECT_EQ(eta.samples_done(), 1);
+  EXPECT_DOUBLE_EQ(*eta.seconds_left(at(1)), 39.0 * 7.0);  // the first pass's 7 s, setup included: errs long
+  eta.update(2.0 / 40.0, at(2));
+  EXPECT_DOUBLE_EQ(*eta.seconds_left(at(2)), 38.0 * 2.0);
+  for (int end : {3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24}) eta.update(end / 40.0, at(end));
+  EXPECT_EQ(eta.samples_done(), 24);
+  EXPECT_DOUBLE_EQ(*eta.seconds_left(at(24)), 16.0 * 2.0);
+  // Half-way through the pass 24 -> 27 (its rows reported): still 24 samples done, 3 s of the 32 spent.
+  eta.update((24.0 + 1.5) / 40.0, at(24) + 3.0);
+  EXPECT_EQ(eta.samples_done(), 24);
+  EXPECT_DOUBLE_EQ(*eta.seconds_left(at(24) + 3.0), 29.0);
+  EXPECT_NE(eta.text(at(24) + 3.0).find("24/40 spp  56.0 s elapsed, 29.0 s left"), std::string::npos);
+  eta.update(1.0, at(40));
+  EXPECT_DOUBLE_EQ(*eta.seconds_left(at(40)), 0.0);
+}
+
+TEST(CliReferences, DurationsReadAsSecondsMinutesHours) {
+  EXPECT_EQ(lucent::cli::format_seconds(7.25), "7.2 s");
+  EXPECT_EQ(lucent::cli::format_seconds(245.0), "4 min 05 s");
+  EXPECT_EQ(lucent::cli::format_seconds(7620.0), "2 h 07 min");
+}
+
+}  // namespace cli_progress
+
+TEST(CliReferences, VersionNamesTheProjectVersion) {
+  Result version = run("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_TRUE(std::regex_match(version.output, std::regex("lucent [0-9]+\\.[0-9]+\\.[0-9]+( \\(git [^ ]+\\))?\n")))
+      << version.output;
+  EXPECT_EQ(version.output.rfind("lucent " LUCENT_PROJECT_VERSION, 0), 0u) << version.output;
+}
+
+// Identical images have no error: PSNR inf (was 1000000000.00 dB); a black reference has no peak: undefined; every
+// other metric 0 and finite. JSON, which has no infinity, says so in "psnr".
+TEST(CliReferences, CompareOfIdenticalAndBlackImagesPrintsInfAndUndefined) {
+  auto dir = references_dir();
+  const std::string grey = (dir / "grey.exr").string(), black = (dir / "black.exr").string();
+  lucent::write_exr(grey, {2, 2, std::vector<float>(16, 0.25f)});
+  lucent::write_exr(black, {2, 2, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}});
+  for (const std::string& image : {grey, black}) {
+    Result same = run("compare " + image + " " + image);
+    ASSERT_EQ(same.exit_code, 0) << same.output;
+    EXPECT_EQ(same.output.find("nan"), std::string::npos) << same.output;
+    EXPECT_EQ(same.output.find("e+"), std::string::npos) << same.output;
+    std::size_t rows = 0;
+    for (std::size_t at = same.output.find("PSNR inf dB"); at != std::string::npos;
+         at = same.output.find("PSNR inf dB", at + 1))
+      ++rows;
+    EXPECT_EQ(rows, 2u) << same.output;
+    auto j = nlohmann::json::parse(run("compare " + image + " " + image + " --json").output);
+    EXPECT_TRUE(j["linear"]["psnr_db"].is_null());
+    EXPECT_EQ(j["linear"]["psnr"], "inf dB");
+    EXPECT_EQ(j["display"]["relative_mse"].get<double>(), 0.0);
+  }
+  Result against_black = run("compare " + grey + " " + black);
+  ASSERT_EQ(against_black.exit_code, 0) << against_black.output;
+  EXPECT_NE(against_black.output.find("PSNR undefined (black reference)"), std::string::npos) << against_black.output;
+  EXPECT_EQ(against_black.output.find("nan"), std::string::npos) << against_black.output;
+}
+
+// A PNG is decoded from sRGB: code 188 is display light 0.50289 (IEC 61966-2-1), compared with 0.5 in an EXR; its
+// display values are the codes / 255. The output says that a PNG's numbers are not radiance.
+TEST(CliReferences, CompareReadsPngAsDecodedSrgb) {
+  auto dir = references_dir();
+  const std::string png = (dir / "code188.png").string(), exr = (dir / "half.exr").string();
+  lucent::write_png(png, {1, 1, {188, 188, 188, 255}});
+  lucent::write_exr(exr, {1, 1, {0.5f, 0.5f, 0.5f, 1.0f}});
+  Result result = run("compare " + png + " " + exr + " --json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  auto j = nlohmann::json::parse(result.output);
+  EXPECT_NEAR(j["linear"]["mean_error"].get<double>(), 0.502886 - 0.5, 1e-5);
+  EXPECT_NE(j["note"].get<std::string>().find("not radiance"), std::string::npos);
+  Result text = run("compare " + png + " " + png);
+  EXPECT_NE(text.output.find("PSNR inf dB"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("not radiance"), std::string::npos) << text.output;
+  Result other = run("compare " + png + " " + (dir / "x.tif").string());
+  EXPECT_NE(other.exit_code, 0);
+  EXPECT_EQ(other.output, "lucent: " + (dir / "x.tif").string() + ": compare reads .exr and .png images\n");
+}
+
+// SIGINT to a running reference saves the samples of its completed passes as a resumable set, and a run with
+// --resume adds to them. The reference is started as a script's background job would be, SIGINT ignored: it takes
+// SIGINT all the same (`kill -INT` did nothing before).
+TEST(CliReferences, SigintSavesAResumableReference) {
+  auto dir = references_dir() / "sigint";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string scene = (dir / "sphere.json").string(), exr = (dir / "ref.exr").string();
+  const std::string log = (dir / "log.txt").string();
+  std::ofstream(scene) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
+    "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
+    "render": {"width": 12, "height": 8}})";
+  const std::string command = fmt::format("trap '' INT; exec {} reference {} --spp 1000000000 -o {} 2> {}",
+                                          LUCENT_CLI, scene, exr, log);
+  std::vector<std::string> args = {"/bin/sh", "-c", command};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+  // Wait for the progress line to show a completed pass (at most two minutes: a hung build fails, not hangs).
+  auto spp_done = [&] {
+    std::stringstream text;
+    text << std::ifstream(log).rdbuf();
+    std::smatch m;
+    const std::string s = text.str();
+    return std::regex_search(s, m, std::regex("([1-9][0-9]*)/1000000000 spp"));
+  };
+  for (int tries = 0; tries < 1200 && !spp_done(); ++tries) ::usleep(100000);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  for (int tries = 0; tries < 1200 && ::waitpid(pid, &status, WNOHANG) == 0; ++tries) ::usleep(100000);
+  if (::waitpid(pid, &status, WNOHANG) == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  std::stringstream output;
+  output << std::ifstream(log).rdbuf();
+  ASSERT_TRUE(WIFEXITED(status)) << output.str();
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT) << output.str();
+  std::smatch m;
+  const std::string text = output.str();
+  ASSERT_TRUE(std::regex_search(text, m, std::regex("lucent: interrupted by SIGINT: saved ([0-9]+) of the 1000000000 "
+                                                    "samples per pixel asked")))
+      << text;
+  const int saved = std::stoi(m[1].str());
+  EXPECT_GE(saved, 1);
+  auto meta = nlohmann::json::parse(std::ifstream(dir / "ref.meta.json"));
+  EXPECT_EQ(meta["samples_per_pixel"].get<int>(), saved);
+  EXPECT_TRUE(std::filesystem::exists(dir / "ref.stderr.exr"));
+  Result resumed = run("reference " + scene + " --spp 2 -q --resume -o " + exr);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  meta = nlohmann::json::parse(std::ifstream(dir / "ref.meta.json"));
+  EXPECT_EQ(meta["samples_per_pixel"].get<int>(), saved + 2);
+}

@@ -185,7 +185,7 @@ TEST(OutputSafetyCli, OutputsThatAreInputsAreRefusedAndLeftAlone) {
 
   const std::string jpg = (dir / "out.jpg").string();
   auto jpeg = run_cli("render " + scene + " -o " + jpg);
-  EXPECT_EQ(jpeg.output, "lucent: --output " + jpg + ": '.jpg' is not a format this command writes; use .png\n");
+  EXPECT_EQ(jpeg.output, "lucent: --output " + jpg + ": '.jpg' is not a format this command writes; use .png or .exr\n");
   EXPECT_FALSE(fs::exists(jpg));
 
   const std::string exr = (dir / "a.exr").string();

@@ -330,6 +330,33 @@ TEST(Cli, RenderWritesNonBlackImage) {
   EXPECT_GT(sum / (48.0 * 32.0), 20.0);  // mean red above 20/255: lit objects, not black
 }
 
+// -o's extension picks the format: .exr writes the linear radiance (what --exr writes beside a PNG), .png the
+// tone-mapped image; any other extension is one line naming the option, before anything renders.
+TEST(Cli, RenderOutputFormatFollowsTheExtension) {
+  const std::string exr = lucent::test::output_path("cli_output.exr"), png = lucent::test::output_path("cli_output.png");
+  const std::string beside = lucent::test::output_path("cli_output_beside.exr");
+  Result as_exr = run(std::string("render ") + kSmall + " --frames 1 -q -o " + exr);
+  ASSERT_EQ(as_exr.exit_code, 0) << as_exr.output;
+  Result as_png = run(std::string("render ") + kSmall + " --frames 1 -q -o " + png + " --exr " + beside);
+  ASSERT_EQ(as_png.exit_code, 0) << as_png.output;
+  const lucent::ImageRGBA32F radiance = lucent::read_exr(exr), other = lucent::read_exr(beside);
+  ASSERT_EQ(radiance.width, 48);
+  ASSERT_EQ(radiance.height, 32);
+  ASSERT_EQ(radiance.pixels.size(), other.pixels.size());
+  double peak = 0.0, largest_difference = 0.0;
+  for (std::size_t i = 0; i < radiance.pixels.size(); ++i) {
+    peak = std::max(peak, static_cast<double>(radiance.pixels[i]));
+    largest_difference = std::max(largest_difference, std::abs(static_cast<double>(radiance.pixels[i]) - other.pixels[i]));
+  }
+  EXPECT_GT(peak, 0.0);
+  EXPECT_LE(largest_difference, 1e-3 * peak);
+  EXPECT_EQ(lucent::read_png(png).width, 48);
+  const std::string tif = lucent::test::output_path("cli_output.tif");
+  Result bad = run(std::string("render ") + kSmall + " --frames 1 -q -o " + tif);
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_EQ(bad.output, "lucent: --output " + tif + ": '.tif' is not a format this command writes; use .png or .exr\n");
+}
+
 // --timings-json: one entry per frame rendered, in order, with the passes the method declares (and the
 // renderer's own) and its statistics.
 TEST(Cli, RenderTimingsJsonHasEveryFrameWithDeclaredPassesAndStatistics) {

@@ -27,7 +27,7 @@ const std::string kFast =
 const std::string kScene = std::string(LUCENT_SCENES_DIR) + "/default.json";
 
 std::string xvfb(const std::string& arguments) {
-  return std::string(XVFB_RUN) + " -a -s \"-screen 0 640x480x24\" " + LUCENT_CLI + " " + arguments;
+  return std::string(XVFB_RUN) + " -a -s \"-screen 0 1024x768x24\" " + LUCENT_CLI + " " + arguments;
 }
 
 CliResult run_shell(const std::string& command) {
@@ -103,16 +103,19 @@ TEST_F(ViewScreenshot, ADifferentLightFailsTheTolerance) {
   EXPECT_GT(d.mean_abs, 10.0 * kMeanTolerance);
 }
 
-// The window shows the rendered view right of the panel, pixel for pixel (and the panel is drawn).
+// The window opens at the smallest integer scale of the view that gives the panel 480 rows (4 x 120) and shows the
+// rendered view right of the panel, filling the window, each rendered pixel a 4x4 block (and the panel is drawn).
 TEST_F(ViewScreenshot, TheWindowShowsTheViewBesideThePanel) {
   ASSERT_EQ(view_.exit_code, 0) << view_.output;
   ImageRGBA8 window = read_png(window_png_), view = read_png(view_png_);
-  ASSERT_EQ(window.width, kPanelWidth + kWidth);
-  ASSERT_GE(window.height, kHeight);
+  constexpr int kScale = 4;
+  ASSERT_EQ(window.width, kPanelWidth + kScale * kWidth);
+  ASSERT_EQ(window.height, kScale * kHeight);
   ImageRGBA8 region{kWidth, kHeight, std::vector<std::uint8_t>(static_cast<std::size_t>(kWidth) * kHeight * 4)};
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x)
-      for (int c = 0; c < 4; ++c) region.at(x, y)[c] = c == 3 ? 255 : window.at(kPanelWidth + x, y)[c];
+      for (int c = 0; c < 4; ++c)
+        region.at(x, y)[c] = c == 3 ? 255 : window.at(kPanelWidth + kScale * x + kScale - 1, kScale * y + kScale - 1)[c];
   ImageDifference d = compare(region, view);
   if (d.max_abs != 0) write_failure_images("view_window_region", region, view);
   EXPECT_EQ(d.max_abs, 0);
@@ -137,6 +140,36 @@ TEST_F(ViewScreenshot, TheSavedSceneRendersTheSameImage) {
   if (!within_tolerance(d)) write_failure_images("view_saved_scene", again, view);
   EXPECT_LE(d.mean_abs, kMeanTolerance);
   EXPECT_LE(d.percentile_99, kPercentile99Tolerance);
+}
+
+// A window of another shape (400x300, a 240-pixel panel asked): the panel takes at most half the window (200), the
+// 160x120 view is scaled by 1.25 into the 200x300 beside it and centred, background above and below; the view
+// is still rendered at 160x120 (the screenshot).
+TEST(ViewLayout, AViewInAWindowOfAnotherShapeIsScaledToFitAndCentred) {
+  const std::string view_png = output_path("view_fit_view.png"), window_png = output_path("view_fit_window.png");
+  CliResult view = run_shell(xvfb("view " + kScene + kFast + " --width 160 --height 120 --window-width 400 "
+                                  "--window-height 300 --panel-width 240 --frames 1 --screenshot " + view_png +
+                                  " --screenshot-window " + window_png));
+  ASSERT_EQ(view.exit_code, 0) << view.output;
+  const ImageRGBA8 window = read_png(window_png), rendered = read_png(view_png);
+  ASSERT_EQ(window.width, 400);
+  ASSERT_EQ(window.height, 300);
+  EXPECT_EQ(rendered.width, 160);
+  EXPECT_EQ(rendered.height, 120);
+  // The view spans rows 75..224 of columns 200..399: the rows just outside it are the dark background (15, 15, 18
+  // in 8 bits), every row inside it holds the image (the default scene has no pixel that dark).
+  auto row_is_background = [&](int y) {
+    for (int x = 200; x < 400; ++x)
+      if (window.at(x, y)[0] > 20 || window.at(x, y)[1] > 20 || window.at(x, y)[2] > 24) return false;
+    return true;
+  };
+  EXPECT_TRUE(row_is_background(0));
+  EXPECT_TRUE(row_is_background(73));
+  EXPECT_FALSE(row_is_background(76));
+  EXPECT_FALSE(row_is_background(150));
+  EXPECT_FALSE(row_is_background(223));
+  EXPECT_TRUE(row_is_background(226));
+  EXPECT_TRUE(row_is_background(299));
 }
 
 // A bad scene in --frames mode: exit 1 with the one line `lucent render` prints, no window left behind.

@@ -2,6 +2,9 @@
 #include "viewer/scene_sections.h"
 
 #include <algorithm>
+#include <map>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 #include <imgui.h>
@@ -9,6 +12,7 @@
 #include "lucent/material.h"
 #include "methods/method_info.h"
 #include "viewer/direction_widget.h"
+#include "viewer/material_artist.h"
 #include "viewer/param_widgets.h"
 
 namespace lucent::viewer {
@@ -53,6 +57,29 @@ bool point_light(PointLight& light, const Camera& view) {
   return changed;
 }
 
+// Surface albedo and mean free path per band, as scene files and `lucent materials invert` give them: dragging
+// either re-derives sigma_a and sigma_s by the model's inversion (g and eta as they are). A value the model cannot
+// reach leaves the coefficients and shows why, until the next edit.
+bool artist_editor(Material& m) {
+  static std::map<ImGuiID, std::string> errors;  // by widget, the last refusal
+  const ImGuiID id = ImGui::GetID("artist");
+  const std::optional<ArtistParameters> artist = artist_parameters_of(m);
+  if (!artist) {
+    ImGui::TextDisabled("albedo, mfp: need sigma_a > 0 in every band");
+    return false;
+  }
+  ArtistParameters edited = *artist;
+  bool changed = ImGui::DragFloat3("albedo (surface)", &edited.albedo.x, 0.002f, 0.001f, 0.999f, "%.3f");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the flat, thick slab's total diffuse reflectance per band under this model (docs/materials.md)");
+  changed |= ImGui::DragFloat3("mfp [mm]", &edited.mfp_mm.x, 0.01f, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("mean free path 1 / (sigma_a + sigma_s) per band [mm]");
+  if (changed) errors[id] = apply_artist_parameters(m, edited);
+  if (const auto it = errors.find(id); it != errors.end() && !it->second.empty())
+    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "%s", it->second.c_str());
+  return changed && errors[id].empty();
+}
+
 bool material_editor(Material& m) {
   bool changed = false;
   if (ImGui::BeginCombo("preset", m.name.c_str())) {
@@ -88,6 +115,7 @@ bool material_editor(Material& m) {
     m.sigma_s = glm::max(m.sigma_s, glm::vec3(0.0f));
     m.g = glm::clamp(m.g, glm::vec3(-0.99f), glm::vec3(0.99f));
   }
+  if (!textured) coefficients |= artist_editor(m);
   if (coefficients) m.name = "custom";
   changed |= coefficients;
   changed |= scene_float("objects[].material", "eta", m.eta, 0.002f);

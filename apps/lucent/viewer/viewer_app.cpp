@@ -17,6 +17,7 @@
 
 #include "lucent/lucent.h"
 #include "lucent/scene_writer.h"
+#include "viewer/viewer_layout.h"
 #include "viewer/viewer_panel.h"
 #include "viewer/viewer_session.h"
 
@@ -24,6 +25,12 @@ namespace lucent::viewer {
 namespace {
 
 constexpr int kMinWindowHeight = 480;  // [pixels] room for the panel
+
+// Key presses from GLFW's key callback, taken once a frame (ImGui's callbacks, installed after it, chain to it).
+KeyQueue* g_key_queue = nullptr;
+void on_key(GLFWwindow*, int key, int, int action, int) {
+  if (g_key_queue) g_key_queue->push(key, action == GLFW_PRESS);
+}
 
 // The screenshot of the view: PNG tone-mapped, EXR linear radiance; never over one of the scene's files.
 OutputPath view_output(const std::string& path) { return {path, "screenshot", {".png", ".exr"}}; }
@@ -95,16 +102,11 @@ class CameraInput {
       else camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
     }
     if (over_view && io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
-    if (!io.WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_R, false)) camera.reset();
   }
 
  private:
   int drag_button_ = -1;
 };
-
-bool same_camera(const Camera& a, const Camera& b) {
-  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
-}
 
 // The view's size before the window exists: the options, else the scene's render size. A scene that does not
 // load is an error with `frames` (like `lucent render`), else the window opens and shows the message.
@@ -127,9 +129,15 @@ class ViewerApp {
   explicit ViewerApp(const ViewerOptions& o) : options_(o), session_(o.scene_path, o.sets) {
     view_ = initial_view_size(o);
     std::string title = "lucent view: " + (o.scene_path.empty() ? std::string("built-in default scene") : o.scene_path);
-    window_ = create_window_context(o.panel_width + view_.x, std::max(view_.y, kMinWindowHeight), title);
+    glm::ivec2 window = initial_window_size(view_, o.panel_width, kMinWindowHeight);
+    if (o.window_width) window.x = *o.window_width;
+    if (o.window_height) window.y = *o.window_height;
+    window_ = create_window_context(window.x, window.y, title);
     glfwSwapInterval(o.frames > 0 ? 0 : 1);
     glfwGetFramebufferSize(window_->window(), &framebuffer_.x, &framebuffer_.y);
+    panel_width_ = panel_width_for_window(framebuffer_.x, o.panel_width);
+    g_key_queue = &keys_;
+    glfwSetKeyCallback(window_->window(), on_key);  // before ImGui, which chains to it
     imgui_ = std::make_unique<ImGuiLayer>(window_->window());
     state_.screenshot_path = o.screenshot.empty() ? state_.screenshot_path : o.screenshot;
     session_.load(/*strict=*/o.frames > 0);
@@ -140,75 +148,132 @@ class ViewerApp {
                     scene_input_files(session_.renderer()->scene()));
   }
 
+  // Each pass of the loop shows the last finished frame with the panel, then submits the next frame: while a slow
+  // frame renders (seconds on llvmpipe) the window shows what is being rendered, and the count of frames matches
+  // the image on screen.
+  ~ViewerApp() { g_key_queue = nullptr; }
+
   void run() {
     auto last = std::chrono::steady_clock::now();
+    bool submitted = false;  // a frame was submitted in the previous pass
     for (int frame = 0; !glfwWindowShouldClose(window_->window()); ++frame) {
       if (options_.frames > 0 && frame == options_.frames) break;
       glfwPollEvents();
       if (options_.frames == 0) session_.reload_if_changed();
       follow_window_size();
-      imgui_->begin_frame();
-      input_.update(session_.camera(), static_cast<float>(options_.panel_width), static_cast<float>(view_.y));
-      if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
-        glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
-      bool screenshot_key = !ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_P, false);
-      state_.view_width = view_.x, state_.view_height = view_.y;
-      PanelActions actions = draw_panel(session_, state_, static_cast<float>(options_.panel_width),
-                                        static_cast<float>(framebuffer_.y));
-      render_scene();
-      present();
-      imgui_->draw();
-      actions.screenshot |= screenshot_key;
+      const bool render_now = needs_frame();
+      const PanelActions actions = draw_window(render_now);
       handle(actions);
-      if (options_.frames > 0 && frame + 1 == options_.frames && !options_.screenshot_window.empty())
-        write_window(options_.screenshot_window, framebuffer_.x, framebuffer_.y);
-      window_->swap_buffers();
-      auto now = std::chrono::steady_clock::now();
-      double seconds = std::chrono::duration<double>(now - last).count();
+      window_->swap_buffers();  // waits for the frame submitted in the previous pass
+      const auto now = std::chrono::steady_clock::now();
+      const double seconds = std::chrono::duration<double>(now - last).count();
       last = now;
-      if (seconds > 0.0) state_.frames_per_second = 0.9 * state_.frames_per_second + 0.1 / seconds;
+      if (submitted) clock_.frame_done(seconds);
       if (state_.playing) state_.time_seconds += static_cast<float>(seconds);
+      if (render_now) render_scene();
+      submitted = render_now && session_.renderer();
     }
-    if (options_.frames > 0) finish_batch();
+    if (options_.frames > 0) {
+      // The last frame on screen, then the window's screenshot.
+      glfwPollEvents();
+      handle(draw_window(false));
+      if (!options_.screenshot_window.empty()) write_window(options_.screenshot_window, framebuffer_.x, framebuffer_.y);
+      window_->swap_buffers();
+      finish_batch();
+    }
   }
 
  private:
-  // A window resized by the user: the view takes all of it right of the panel.
+  // A window resized by the user: the panel is sized from it, the view scaled into the rest (viewer_layout.h).
   void follow_window_size() {
     glm::ivec2 size;
     glfwGetFramebufferSize(window_->window(), &size.x, &size.y);
     if (size == framebuffer_ || size.x <= 0 || size.y <= 0) return;
     framebuffer_ = size;
-    view_ = glm::max(glm::ivec2(size.x - options_.panel_width, size.y), glm::ivec2(1));
+    panel_width_ = panel_width_for_window(size.x, options_.panel_width);
   }
 
-  // One renderer frame, unless it has converged (`stop after frames`) and the camera has not moved.
+  PixelRect view_rect() const {
+    return fit_view(view_, {panel_width_, 0, framebuffer_.x - panel_width_, framebuffer_.y});
+  }
+
+  // The panel (with what the next frame is) and the last finished frame, ready to swap.
+  PanelActions draw_window(bool render_now) {
+    imgui_->begin_frame();
+    const PixelRect rect = view_rect();
+    input_.update(session_.camera(), static_cast<float>(panel_width_), static_cast<float>(std::max(rect.height, 1)));
+    PanelActions keys = handle_keys();
+    state_.view_width = view_.x, state_.view_height = view_.y;
+    state_.frame_rate = clock_.rate_text();
+    state_.frame_status = frame_status_text(frame_status(render_now));
+    PanelActions actions =
+        draw_panel(session_, state_, static_cast<float>(panel_width_), static_cast<float>(framebuffer_.y));
+    present();
+    imgui_->draw();
+    actions.screenshot |= keys.screenshot;
+    return actions;
+  }
+
+  // The keys pressed since the last frame, however short the taps (GLFW callbacks, queued); none while a text field
+  // has the keyboard.
+  PanelActions handle_keys() {
+    PanelActions actions;
+    for (int key : keys_.take_presses()) {
+      if (ImGui::GetIO().WantCaptureKeyboard) continue;
+      if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
+      if (key == GLFW_KEY_R) session_.camera().reset();
+      if (key == GLFW_KEY_P) actions.screenshot = true;
+    }
+    return actions;
+  }
+
+  FrameStatus frame_status(bool render_now) {
+    FrameStatus status;
+    Renderer* renderer = session_.renderer();
+    status.frames_accumulated = rendered_ && renderer ? renderer->accumulated_frames() : 0;
+    status.rendering = render_now && renderer;
+    status.seconds_per_frame = clock_.seconds_per_frame();
+    if (renderer)
+      for (const PassTiming& pass : renderer->timings().passes)
+        if (pass.ms > status.slowest_pass_ms) status.slowest_pass = pass.name, status.slowest_pass_ms = pass.ms;
+    return status;
+  }
+
+  // A frame is rendered unless the image has converged (`stop after frames`) and nothing changed.
+  bool needs_frame() {
+    Renderer* renderer = session_.renderer();
+    if (!renderer || !rendered_ || renderer != last_renderer_ || session_.pending()) return true;
+    const bool converged = state_.stop_after_frames > 0 && renderer->accumulated_frames() >= state_.stop_after_frames;
+    const bool camera_moved = !same_camera(session_.camera().camera(), last_camera_);
+    const bool time_changed = renderer->time() != static_cast<double>(state_.time_seconds);
+    return !converged || camera_moved || time_changed;
+  }
+
+  // One renderer frame into the view's target.
   void render_scene() {
     if (!target_ || target_size_ != view_) target_ = std::make_unique<OffscreenFramebuffer>(view_.x, view_.y), target_size_ = view_, rendered_ = false;
-    Renderer* renderer = session_.renderer();
-    bool converged = renderer && state_.stop_after_frames > 0 && renderer->accumulated_frames() >= state_.stop_after_frames;
-    bool camera_moved = !same_camera(session_.camera().camera(), last_camera_);
-    const bool time_changed = renderer && renderer->time() != static_cast<double>(state_.time_seconds);
-    if (converged && !camera_moved && !time_changed && rendered_ && renderer == last_renderer_ && !session_.pending())
-      return;
-    if (renderer) renderer->set_time(state_.time_seconds);  // no effect on static scenes
+    // No effect on static scenes.
+    if (Renderer* renderer = session_.renderer()) renderer->set_time(state_.time_seconds);
     session_.render({target_->id(), view_.x, view_.y});
     last_camera_ = session_.camera().camera();
     last_renderer_ = session_.renderer();
     rendered_ = session_.renderer() != nullptr;
   }
 
-  // The view right of the panel, top-aligned; the rest dark.
+  // The view scaled to fit right of the panel, centred (whole pixels at an integer scale); the rest dark.
   void present() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, framebuffer_.x, framebuffer_.y);
     glDisable(GL_SCISSOR_TEST);
     glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-    if (!rendered_) return;
-    int x0 = options_.panel_width, y0 = framebuffer_.y - view_.y;
-    glBlitNamedFramebuffer(target_->id(), 0, 0, 0, view_.x, view_.y, x0, y0, x0 + view_.x, y0 + view_.y,
-                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    if (!rendered_ || !target_) return;
+    const PixelRect r = view_rect();
+    if (r.width <= 0 || r.height <= 0) return;
+    const bool whole = r.width % view_.x == 0 && r.height % view_.y == 0;
+    const int y0 = framebuffer_.y - (r.y + r.height);  // GL rows from the bottom
+    glBlitNamedFramebuffer(target_->id(), 0, 0, 0, view_.x, view_.y, r.x, y0, r.x + r.width, y0 + r.height,
+                           GL_COLOR_BUFFER_BIT, whole ? GL_NEAREST : GL_LINEAR);
   }
 
   void handle(const PanelActions& actions) {
@@ -250,6 +315,9 @@ class ViewerApp {
   glm::ivec2 view_{1}, target_size_{0}, framebuffer_{0};
   PanelState state_;
   CameraInput input_;
+  KeyQueue keys_;
+  FrameClock clock_;
+  int panel_width_ = 0;
   Camera last_camera_;
   const Renderer* last_renderer_ = nullptr;
   bool rendered_ = false;

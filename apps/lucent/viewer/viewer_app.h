@@ -15,7 +15,8 @@ struct ViewerOptions {
   std::string screenshot;             // with frames: the rendered view only (.png tone-mapped, .exr radiance)
   std::string screenshot_window;      // with frames: the whole window, panel included (.png)
   std::string save_scene;             // with frames: "save scene as" after the last frame
-  int panel_width = 380;              // [pixels]
+  int panel_width = 380;              // [pixels] at most half the window
+  std::optional<int> window_width, window_height;  // [pixels] default: the view at an integer scale beside the panel
 };
 
 // Throws lucent::Error when no window can be opened, and with `frames` when the scene does not load or render.

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -11,12 +12,18 @@
 namespace lucent::viewer {
 namespace {
 
+// Text wrapped at the panel's visible right edge (the panel scrolls sideways, so its content may be wider).
+void wrapped_text(const std::string& text) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  ImGui::PushTextWrapPos(ImGui::GetScrollX() + ImGui::GetWindowWidth() - style.WindowPadding.x - style.ScrollbarSize);
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
+}
+
 void error_box(const std::string& error) {
   if (error.empty()) return;
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
-  ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextUnformatted(error.c_str());
-  ImGui::PopTextWrapPos();
+  wrapped_text(error);
   ImGui::PopStyleColor();
   ImGui::Separator();
 }
@@ -28,11 +35,14 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
     return;
   }
   const FrameTimings& t = renderer->timings();
-  ImGui::Text("%d frames accumulated, %dx%d", renderer->accumulated_frames(), state.view_width, state.view_height);
+  // What is on screen and what is being computed: on a software rasterizer a frame takes seconds, and the window
+  // is redrawn only between frames.
+  wrapped_text(state.frame_status);
+  wrapped_text(fmt::format("{}x{} pixels rendered, {}", state.view_width, state.view_height, state.frame_rate));
   if (ImGui::Button("restart")) session.restart();
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
-  ImGui::DragInt("stop after frames (0: never)", &state.stop_after_frames, 1.0f, 0, 1000000);
+  ImGui::DragInt("stop after (0: never)", &state.stop_after_frames, 1.0f, 0, 1000000, "%d frames");
   bool animated = false;
   for (const SceneObject& object : renderer->scene().objects) animated = animated || object.animated();
   if (animated) {
@@ -42,8 +52,11 @@ void convergence_and_timings(ViewerSession& session, PanelState& state) {
     ImGui::SetNextItemWidth(120.0f);
     if (ImGui::DragFloat("time [s]", &state.time_seconds, 0.02f, 0.0f, 3600.0f, "%.2f")) state.playing = false;
   }
-  ImGui::Text("%.1f frames/s, GPU %.2f ms/frame, %.1f MiB", state.frames_per_second, t.total_ms,
-              static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0));
+  if (t.total_ms > 0.0)
+    ImGui::Text("GPU %.2f ms/frame (frame %llu), %.1f MiB", t.total_ms, static_cast<unsigned long long>(t.frame),
+                static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0));
+  else
+    ImGui::TextDisabled("GPU timings: after the first frames (read a few frames late)");
   // Passes and statistics as the method declares them, from the newest frame the GPU has reported (a few frames
   // behind: reading them never stalls the viewer).
   if (ImGui::TreeNode("GPU passes [ms]")) {
@@ -104,7 +117,10 @@ PanelActions files_section(ViewerSession& session, PanelState& state) {
 PanelActions draw_panel(ViewerSession& session, PanelState& state, float width, float height) {
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(width, height));
-  ImGui::Begin("lucent", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  // The panel is the window's height and scrolls (vertically, and sideways for a long label in a narrow panel).
+  ImGui::Begin("lucent", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_HorizontalScrollbar);
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.48f);  // the rest for labels with units
   ImGui::TextDisabled("%s", session.scene_path().empty() ? "<built-in default scene>" : session.scene_path().c_str());
   error_box(session.error());

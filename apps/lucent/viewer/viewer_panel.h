@@ -13,7 +13,8 @@ struct PanelState {
   std::string scene_save_path = "out/view.json";
   int stop_after_frames = 0;                     // 0: keep accumulating
   std::string status;                            // result of the last file action
-  double frames_per_second = 0.0;                // of the window loop, smoothed
+  std::string frame_rate;                        // frames rendered per second, or seconds per frame (FrameClock)
+  std::string frame_status;                      // "rendering frame 3 (...)" or "idle: ..." (frame_status_text)
   int view_width = 0, view_height = 0;           // pixels rendered
   bool playing = false;                          // animated scenes: time advances with the wall clock
   float time_seconds = 0.0f;                     // animation time shown (Renderer::set_time)

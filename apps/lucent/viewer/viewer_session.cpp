@@ -19,11 +19,11 @@ ParamValues method_defaults(const std::string& method) {
   throw Error(fmt::format("unknown method '{}'", method));
 }
 
+}  // namespace
+
 bool same_camera(const Camera& a, const Camera& b) {
   return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
 }
-
-}  // namespace
 
 ViewerSession::ViewerSession(std::string scene_path, std::vector<std::string> overrides)
     : scene_path_(std::move(scene_path)), overrides_(std::move(overrides)), watcher_(scene_path_) {}

@@ -15,6 +15,9 @@
 
 namespace lucent::viewer {
 
+// The same view: eye, target, up and field of view equal.
+bool same_camera(const Camera& a, const Camera& b);
+
 class ViewerSession {
  public:
   // `scene_path` "" = the built-in default scene; `overrides` as `lucent render --set`.
