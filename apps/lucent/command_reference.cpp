@@ -125,9 +125,10 @@ void run(ReferenceOptions o) {
   ProgressBar progress(o.integrator, o.quiet ? 1 : 1000);
   SampleEta eta(previous ? previous->image.samples_per_pixel : 0, o.settings.samples_per_pixel);
   o.settings.progress = [&](double done) {
-    eta.update(done, progress.elapsed());
+    eta.update(done);
     progress.draw(done, eta.text(progress.elapsed()));
   };
+  o.settings.pass_done = [&](int samples_done) { eta.pass_completed(samples_done, progress.elapsed()); };
   // SIGINT or SIGTERM stops the render at its next chunk of rows; the completed passes are saved, then the command
   // ends with a line saying how many samples it saved.
   take_sigint_even_if_ignored();

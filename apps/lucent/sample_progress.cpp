@@ -6,29 +6,19 @@
 #include <fmt/format.h>
 
 #include "progress_bar.h"
+#include "reference/reference_renderer.h"
 
 namespace lucent::cli {
 
-std::vector<int> reference_pass_ends(int first_sample, int wanted) {
-  std::vector<int> ends;
-  for (int done = 0; done < wanted;) {
-    done += std::min(wanted - done, std::max(1, (first_sample + done) / 8));
-    ends.push_back(done);
-  }
-  return ends;
-}
-
 SampleEta::SampleEta(int first_sample, int wanted)
-    : pass_ends_(reference_pass_ends(first_sample, wanted)), wanted_(wanted) {}
+    : first_pass_(std::max(1, reference::reference_pass_size(first_sample, wanted))), wanted_(wanted) {}
 
-void SampleEta::update(double fraction, double seconds) {
-  fraction_ = std::clamp(fraction, 0.0, 1.0);
-  // The latest pass end the run has reached (its report after the pass's last row is exactly end / wanted).
-  const double samples = fraction_ * wanted_ + 1e-6;
-  int done = done_;
-  for (int end : pass_ends_)
-    if (end <= samples) done = std::max(done, end);
-  if (done == done_) return;
+void SampleEta::update(double fraction) { fraction_ = std::clamp(fraction, 0.0, 1.0); }
+
+void SampleEta::pass_completed(int samples_done, double seconds) {
+  const int done = std::clamp(samples_done, 0, wanted_);
+  fraction_ = std::max(fraction_, static_cast<double>(done) / std::max(1, wanted_));
+  if (done <= done_) return;
   if (done_ == 0) {
     first_end_seconds_ = seconds;
     first_end_samples_ = done;
@@ -49,8 +39,7 @@ std::optional<double> SampleEta::seconds_left(double seconds) const {
 std::string SampleEta::text(double seconds) const {
   std::string counts = fmt::format("{}/{} spp  {} elapsed", done_, wanted_, format_seconds(seconds));
   if (const std::optional<double> left = seconds_left(seconds)) return counts + ", " + format_seconds(*left) + " left";
-  const int first_pass = pass_ends_.empty() ? 1 : pass_ends_.front();
-  return counts + fmt::format(", first pass {:.0f}% done", 100.0 * std::min(1.0, fraction_ * wanted_ / first_pass));
+  return counts + fmt::format(", first pass {:.0f}% done", 100.0 * std::min(1.0, fraction_ * wanted_ / first_pass_));
 }
 
 }  // namespace lucent::cli

@@ -146,9 +146,7 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
   constexpr double kChunkSeconds = 0.02;
   int batch = 1;
   while (done < wanted) {
-    // A pass is at most an eighth of the samples done before it: few passes, and a stop loses at most an eighth of
-    // the work.
-    const int pass = std::min(wanted - done, std::max(1, (first_sample + done) / 8));
+    const int pass = reference_pass_size(first_sample + done, wanted - done);
     const int pass_first = first_sample + done, pass_end = pass_first + pass;
     const PixelSums before = sums;  // restored when the pass is stopped part-way
     bool complete = true;
@@ -184,6 +182,7 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
     }
     done += pass;
     jump_bank.release_samples_before(pass_end);
+    if (settings.pass_done) settings.pass_done(done);
   }
   const int total_samples = first_sample + done;
 

@@ -1,6 +1,7 @@
 // reference_renderer.h: renders a scene with one of the CPU references, progressively, deterministically from
 // (seed, pixel, sample), producing the mean image and the per-pixel standard error.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -43,6 +44,9 @@ struct ReferenceSettings {
   // few rows times a few samples, sized to take about 20 ms each whatever the sample count: a stop is seen within
   // a chunk's time, and progress arrives as often.
   std::function<void(double done_fraction)> progress;
+  // Called after each completed pass with the samples per pixel of this run in completed passes (what a stop would
+  // keep), on the thread that called render_reference.
+  std::function<void(int samples_done)> pass_done;
   // True stops the render, which returns the samples of the passes it completed (ReferenceImage::samples_per_pixel
   // tells how many; a pass is a few samples over every pixel, so the image stays a uniform number of samples per
   // pixel).
@@ -62,6 +66,13 @@ struct ReferenceImage {
 // samples are rendered in passes over the whole image, each pass at most an eighth of the samples done before it
 // (at least one): a stop (settings.stop_requested) keeps every completed pass. Stopped before the first pass ended,
 // the result has the previous samples (none without `previous`: samples_per_pixel 0 and black images).
+// The samples per pixel of the pass that follows `samples_before` samples (all runs' samples so far) when `remaining`
+// are still wanted: an eighth of those before it, at least one, at most `remaining`. Few passes, and a stop loses at
+// most an eighth of the work.
+inline int reference_pass_size(int samples_before, int remaining) {
+  return std::min(remaining, std::max(1, samples_before / 8));
+}
+
 ReferenceImage render_reference(const Scene& scene, const ReferenceSettings& settings,
                                 const ReferenceImage* previous = nullptr);
 

@@ -245,17 +245,9 @@ TEST(CliReferences, BenchChecksEveryVariantsSceneFirst) {
 
 namespace cli_progress {
 
-// A reference's passes: each at most an eighth of the samples before it, at least one, ending at exactly `wanted`.
-TEST(CliReferences, PassScheduleGrowsByAnEighth) {
-  EXPECT_EQ(lucent::cli::reference_pass_ends(0, 4), (std::vector<int>{1, 2, 3, 4}));
-  EXPECT_EQ(lucent::cli::reference_pass_ends(0, 40),
-            (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24, 27, 30, 33, 37,
-                              40}));
-  EXPECT_EQ(lucent::cli::reference_pass_ends(80, 25), (std::vector<int>{10, 21, 25}));
-}
-
-// The same schedule as the renderer's: an image one row tall reports its progress once a pass, at the pass's end.
-TEST(CliReferences, PassScheduleIsTheRenderersOwn) {
+// A reference's passes: each at most an eighth of the samples before it, at least one, ending at exactly `wanted`,
+// as the renderer reports them (pass_done) on an image one row tall and when adding to an earlier run.
+TEST(CliReferences, PassesGrowByAnEighthAsTheRendererReportsThem) {
   const auto path = references_dir() / "one_row.json";
   std::ofstream(path) << R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]},
     "lights": [{"direction": [0, 0, -1]}], "objects": [{"shape": "sphere", "material": "Skin1"}],
@@ -265,14 +257,17 @@ TEST(CliReferences, PassScheduleIsTheRenderersOwn) {
   settings.integrator = lucent::reference::Integrator::Bssrdf;
   settings.samples_per_pixel = 40;
   std::vector<int> reported;
-  settings.progress = [&](double done) { reported.push_back(static_cast<int>(std::lround(done * 40.0))); };
+  settings.pass_done = [&](int done) { reported.push_back(done); };
   const lucent::reference::ReferenceImage first = lucent::reference::render_reference(scene, settings);
-  EXPECT_EQ(reported, lucent::cli::reference_pass_ends(0, 40));
+  EXPECT_EQ(reported, (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24, 27, 30,
+                                        33, 37, 40}));
   reported.clear();
   settings.samples_per_pixel = 25;
-  settings.progress = [&](double done) { reported.push_back(static_cast<int>(std::lround(done * 25.0))); };
   lucent::reference::render_reference(scene, settings, &first);
-  EXPECT_EQ(reported, lucent::cli::reference_pass_ends(40, 25));
+  EXPECT_EQ(reported, (std::vector<int>{5, 10, 16, 23, 25}));  // passes of 40/8, 45/8, 50/8, 56/8, then the rest
+  EXPECT_EQ(lucent::reference::reference_pass_size(80, 25), 10);
+  EXPECT_EQ(lucent::reference::reference_pass_size(0, 4), 1);
+  EXPECT_EQ(lucent::reference::reference_pass_size(800, 3), 3);
 }
 
 // The time left comes from the seconds per sample of the completed passes after the first (whose time holds the
@@ -281,24 +276,24 @@ TEST(CliReferences, TimeLeftFollowsMeasuredSecondsPerSample) {
   lucent::cli::SampleEta eta(0, 40);
   auto at = [](int samples) { return 5.0 + 2.0 * samples; };  // the second the pass ending at `samples` ends
   EXPECT_FALSE(eta.seconds_left(3.0).has_value());
-  eta.update(0.6 / 40.0, 4.0);  // 60% of the first pass's rows: no sample done yet
+  eta.update(0.6 / 40.0);  // 60% of the first pass's rows: no sample done yet
   EXPECT_EQ(eta.samples_done(), 0);
   EXPECT_FALSE(eta.seconds_left(4.0).has_value());
   EXPECT_NE(eta.text(4.0).find("0/40 spp  4.0 s elapsed, first pass 60% done"), std::string::npos) << eta.text(4.0);
-  eta.update(1.0 / 40.0, at(1));
+  eta.pass_completed(1, at(1));
   EXPECT_EQ(eta.samples_done(), 1);
   EXPECT_DOUBLE_EQ(*eta.seconds_left(at(1)), 39.0 * 7.0);  // the first pass's 7 s, setup included: errs long
-  eta.update(2.0 / 40.0, at(2));
+  eta.pass_completed(2, at(2));
   EXPECT_DOUBLE_EQ(*eta.seconds_left(at(2)), 38.0 * 2.0);
-  for (int end : {3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24}) eta.update(end / 40.0, at(end));
+  for (int end : {3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 20, 22, 24}) eta.pass_completed(end, at(end));
   EXPECT_EQ(eta.samples_done(), 24);
   EXPECT_DOUBLE_EQ(*eta.seconds_left(at(24)), 16.0 * 2.0);
   // Half-way through the pass 24 -> 27 (its rows reported): still 24 samples done, 3 s of the 32 spent.
-  eta.update((24.0 + 1.5) / 40.0, at(24) + 3.0);
+  eta.update((24.0 + 1.5) / 40.0);
   EXPECT_EQ(eta.samples_done(), 24);
   EXPECT_DOUBLE_EQ(*eta.seconds_left(at(24) + 3.0), 29.0);
   EXPECT_NE(eta.text(at(24) + 3.0).find("24/40 spp  56.0 s elapsed, 29.0 s left"), std::string::npos);
-  eta.update(1.0, at(40));
+  eta.pass_completed(40, at(40));
   EXPECT_DOUBLE_EQ(*eta.seconds_left(at(40)), 0.0);
 }
 
