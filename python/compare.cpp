@@ -39,7 +39,7 @@ void bind_compare(py::module_& m) {
         py::arg("exposure") = 0.0,
         "Error of image a against reference b (arrays (height, width, 3)) as `lucent compare --json` reports it: "
         "{\"linear\": {...}, \"display\": {...}} with rmse (per channel), rmse_rgb, relative_mse, mean_error, "
-        "mean_error_se, psnr_db, reference_noise_rms; standard_error is the reference's (as from "
+        "mean_error_se, psnr_db (None when infinite or undefined; psnr says which), reference_noise_rms; standard_error is the reference's (as from "
         "lucent.reference), exposure [stops] the tone mapping of the display comparison.");
 }
 

@@ -49,3 +49,16 @@ def test_size_mismatch_message():
         lucent.compare(np.zeros((2, 3, 3)), np.zeros((2, 2, 3)))
     with pytest.raises(lucent.Error, match=r"^a: expected an array of shape \(height, width, 3\) or \(height, width, 4\), got \(2, 3\)$"):
         lucent.compare(np.zeros((2, 3)), np.zeros((2, 2, 3)))
+
+
+def test_identical_and_black_references_have_no_finite_psnr():
+    b = np.full((4, 5, 3), 0.5, dtype=np.float32)
+    linear = lucent.compare(b, b)["linear"]
+    assert linear["psnr_db"] is None and linear["psnr"] == "inf dB"
+    assert linear["rmse"] == [0.0, 0.0, 0.0]
+    black = np.zeros_like(b)
+    linear = lucent.compare(b, black)["linear"]
+    assert linear["psnr_db"] is None and linear["psnr"].startswith("undefined")
+    a = b + np.float32(0.25)
+    linear = lucent.compare(a, b)["linear"]
+    assert linear["psnr_db"] == pytest.approx(float(linear["psnr"].split()[0]), abs=0.01)
