@@ -312,10 +312,8 @@ void write_gltf(const std::string& path, const TriangleMesh& mesh, const json& m
   if (!material.is_null()) {
     gltf["materials"] = json::array({material});
     gltf["meshes"][0]["primitives"][0]["material"] = 0;
-    json used = json::array();
-    for (const char* ext : {"KHR_materials_volume", "KHR_materials_ior"})
-      if (material.contains("extensions") && material["extensions"].contains(ext)) used.push_back(ext);
-    if (!used.empty()) gltf["extensionsUsed"] = used;
+    if (const std::vector<std::string> used = gltf_material_extensions(material); !used.empty())
+      gltf["extensionsUsed"] = used;
   }
   write_file(path, gltf.dump() + "\n");
 }
