@@ -4,6 +4,7 @@
 // translucent, its albedo map the texture's texels through A = B c^(t / d) (docs/materials.md), checked per texel
 // against the image decoded on its own and the model's forward flat total; the coefficients from the volume.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "../test_paths.h"
 #include "../test_support.h"
 #include "lucent/scene.h"
+#include "lucent/scene_writer.h"
 #include "lucent/warning.h"
 #include "materials/artist_parameters.h"
 #include "materials/material_maps.h"
@@ -89,6 +91,28 @@ TEST(GltfBlenderAsset, MeanFreePathLargerThanTheObjectIsWarnedAbout) {
   const SceneObject object = blender_object(1.0f, warnings);
   ASSERT_EQ(warnings.size(), 2u);
   EXPECT_EQ(warnings[1], mean_free_path_warning(object, "0.038 mm", 1.0f));
+}
+
+// "save scene as" keeps an object whose albedo map is its glTF's texture as "from_mesh" of that file: the scene
+// reads back with the same maps.
+TEST(GltfBlenderAsset, SavedSceneTakesTheGltfMaterialAgain) {
+  std::vector<std::string> warnings;
+  const ScopedWarningHandler handler([&](const std::string& m) { warnings.push_back(m); });
+  Scene scene = parse_scene(nlohmann::json{{"scale_mm", 1000},
+                                           {"lights", nlohmann::json::array({{{"direction", {0.0, -1.0, 0.0}}}})},
+                                           {"objects", nlohmann::json::array({{{"mesh", blender_asset()},
+                                                                               {"material", "from_mesh"},
+                                                                               {"translate", {0.0, 0.1, 0.0}}}})}}
+                                .dump(),
+                            "s.json", ".");
+  test::TempFile saved(".json");
+  save_scene(scene, saved.path());
+  const Scene again = load_scene(saved.path());
+  ASSERT_TRUE(again.objects[0].material && again.objects[0].material->maps);
+  EXPECT_EQ(again.objects[0].material->maps->alpha, scene.objects[0].material->maps->alpha);
+  EXPECT_EQ(again.objects[0].material->sigma_a, scene.objects[0].material->sigma_a);
+  EXPECT_EQ(again.objects[0].world_from_object, scene.objects[0].world_from_object);
+  std::filesystem::remove_all(std::filesystem::path(saved.path()).replace_extension(".meshes"));
 }
 
 }  // namespace
