@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "../cli_runner.h"
 #include "../test_paths.h"
 #include "../test_support.h"
 #include "lucent/scene.h"
@@ -143,6 +144,22 @@ TEST(GltfSceneExport, RefusesToOverwriteItsInputs) {
   EXPECT_NE(test::error_message([&] { save_scene_gltf(scene, "/proc/lucent_no/such.gltf"); }).find("/proc/lucent_no"),
             std::string::npos);
   EXPECT_NE(test::error_message([&] { save_scene_gltf(scene, "out.obj"); }).find(".obj"), std::string::npos);
+}
+
+// `lucent export`: the scene file as one .glb that tinygltf reads, with the scene's object names; another output
+// type is one line and a non-zero exit.
+TEST(GltfSceneExport, ExportCommandWritesTheFile) {
+  test::TempFile glb(".glb");
+  const test::CliResult ok = test::run_cli("export " + std::string(LUCENT_SCENES_DIR) + "/default.json " + glb.path());
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_EQ(ok.output, "wrote " + glb.path() + "\n");
+  const GltfFile file = read_gltf_file(glb.path());
+  EXPECT_EQ(named_node(file.model, "torus").name, "torus");
+  EXPECT_EQ(file.model.lights.size(), 1u);
+  const test::CliResult bad = test::run_cli("export " + std::string(LUCENT_SCENES_DIR) + "/default.json out.obj");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.output, "lucent: export: out.obj: the output is .gltf or .glb (one glTF file) or .json (a scene file "
+                        "and its meshes)\n");
 }
 
 }  // namespace
