@@ -127,6 +127,9 @@ void read_extensions(const json& ext, const JsonLocation& ext_at, GltfMaterial& 
     m.has_multiscatter_color = vs.contains(key);
     m.multiscatter_color = read_colour(vs, key, 3, glm::vec3(0.0f), vs_at);
     m.scatter_anisotropy = static_cast<float>(read_number(vs, "scatterAnisotropy", 0.0, -1.0, 1.0, vs_at));
+    if (std::abs(m.scatter_anisotropy) >= 1.0f)
+      fail(vs_at.child("scatterAnisotropy"), fmt::format("{} is out of range; lucent's phase functions take (-1, 1)",
+                                                         m.scatter_anisotropy));
     note_textures(vs, {"multiscatterColorTexture"}, "KHR_materials_volume_scatter", m);
   }
 }
@@ -294,6 +297,16 @@ glm::dvec3 log_attenuation(const GltfMaterial& m, double d_mm) {
   return sigma;
 }
 
+// Mean free paths [mm] derived from the attenuation, refused at attenuationDistance beyond what a float carries.
+glm::dvec3 checked_mfp(const GltfMaterial& m, glm::dvec3 mfp) {
+  for (int b = 0; b < 3; ++b)
+    if (!(mfp[b] > 1e-30 && mfp[b] < 1e30))
+      fail(extension_at(m, "KHR_materials_volume").child("attenuationDistance"),
+           fmt::format("{:g} m gives the mean free path {:g} mm in band {}; lucent's range is (1e-30, 1e30) mm",
+                       m.attenuation_distance_m, mfp[b], b));
+  return mfp;
+}
+
 json array(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
 json array(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 
@@ -315,6 +328,7 @@ json scattering_medium(const GltfMaterial& m, GltfLucentMaterial& out) {
   if (m.has_base_color_factor || m.base_color_texture)
     out.ignored.push_back("base colour (with KHR_materials_volume_scatter it tints glTF's boundary; lucent's is a clear "
                           "dielectric and the medium's colour is multiscatterColorFactor's)");
+  checked_mfp(m, 1.0 / sigma_t);
   return {{"sigma_a", array(sigma_t * (1.0 - alpha))}, {"sigma_s", array(sigma_t * alpha)},
           {"g", m.scatter_anisotropy}, {"eta", m.ior}};
 }
@@ -352,11 +366,11 @@ json absorbing_medium(const GltfMaterial& m, const json& extras, GltfLucentMater
   if (extras.contains("mfp_mm")) return j;
   const double d_mm = attenuation_distance_mm(m);
   if (!m.has_attenuation_color) {
-    j["mfp_mm"] = json::array({d_mm, d_mm, d_mm});
+    j["mfp_mm"] = array(checked_mfp(m, glm::dvec3(d_mm)));
     return j;
   }
   const glm::dvec3 sigma_a = log_attenuation(m, d_mm);
-  j["mfp_mm"] = array((1.0 - alpha) / sigma_a);
+  j["mfp_mm"] = array(checked_mfp(m, (1.0 - alpha) / sigma_a));
   return j;
 }
 

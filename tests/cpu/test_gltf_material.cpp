@@ -268,6 +268,18 @@ TEST(GltfMaterial, BadFilesGiveOneLineAtAKeyOfTheFile) {
                                    "range; allowed range (0, inf) m",
                                    d));
   }
+  // Too long for a float: 1e35 m of attenuation is a mean free path beyond 1e30 mm.
+  volume = kArtistMaterial;
+  volume["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 1e35;
+  EXPECT_EQ(with_material(p, volume),
+            prefix + ": /materials/0/extensions/KHR_materials_volume/attenuationD...: 1e+35 m gives the mean free "
+                     "path 4.46133e+35 mm in band 0; lucent's range is (1e-30, 1e30) mm");
+  json anisotropy = kArtistMaterial;
+  anisotropy["extensions"]["KHR_materials_volume_scatter"] = {{"multiscatterColorFactor", {0.5, 0.5, 0.5}},
+                                                              {"scatterAnisotropy", 1}};
+  EXPECT_EQ(with_material(p, anisotropy),
+            prefix + ": /materials/0/extensions/KHR_materials_volume_scatter/scat...: 1 is out of range; lucent's "
+                     "phase functions take (-1, 1)");
   json ior = kArtistMaterial;
   ior["extensions"]["KHR_materials_ior"]["ior"] = 5;
   EXPECT_EQ(with_material(p, ior),
