@@ -191,12 +191,45 @@ void read_base_color(const tinygltf::Material& material, GltfMaterial& m) {
   m.base_color = glm::vec3(static_cast<float>(factor[0]), static_cast<float>(factor[1]), static_cast<float>(factor[2]));
 }
 
+// The cube root of |det| of a node's local transform: its scale, for thickness (rotations do not change lengths).
+double node_scale(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    const std::vector<double>& a = node.matrix;  // column-major
+    const double det = a[0] * (a[5] * a[10] - a[9] * a[6]) - a[4] * (a[1] * a[10] - a[9] * a[2]) +
+                       a[8] * (a[1] * a[6] - a[5] * a[2]);
+    return std::cbrt(std::abs(det));
+  }
+  return node.scale.size() == 3 ? std::cbrt(std::abs(node.scale[0] * node.scale[1] * node.scale[2])) : 1.0;
+}
+
+// The world scale of the first node that instances a mesh using material `index` (1 where none does).
+double mesh_to_world(const tinygltf::Model& model, int index) {
+  std::vector<int> parent(model.nodes.size(), -1);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    for (int child : model.nodes[n].children)
+      if (child >= 0 && static_cast<std::size_t>(child) < parent.size()) parent[static_cast<std::size_t>(child)] = static_cast<int>(n);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    const int mesh = model.nodes[n].mesh;
+    if (mesh < 0 || static_cast<std::size_t>(mesh) >= model.meshes.size()) continue;
+    const auto& primitives = model.meshes[static_cast<std::size_t>(mesh)].primitives;
+    if (std::none_of(primitives.begin(), primitives.end(), [&](const tinygltf::Primitive& p) { return p.material == index; }))
+      continue;
+    double scale = 1.0;
+    int node = static_cast<int>(n);
+    for (std::size_t steps = 0; node >= 0 && steps <= model.nodes.size(); ++steps, node = parent[static_cast<std::size_t>(node)])
+      scale *= node_scale(model.nodes[static_cast<std::size_t>(node)]);
+    return std::isfinite(scale) && scale > 0.0 ? scale : 1.0;
+  }
+  return 1.0;
+}
+
 GltfMaterial read_material(const GltfFile& file, int index) {
   const tinygltf::Material& material = file.model.materials[static_cast<std::size_t>(index)];
   GltfMaterial m;
   m.path = file.path;
   m.index = index;
   m.name = material.name;
+  m.mesh_to_world = mesh_to_world(file.model, index);
   read_base_color(material, m);
   note_core_fields(material, m);
   const JsonLocation at = material_at(m);
@@ -239,7 +272,7 @@ CurveParameters curve_parameters(const GltfMaterial& m) {
 // infinite distance).
 glm::vec3 volume_transmittance(const GltfMaterial& m) {
   if (!m.has_volume || !(m.thickness_factor > 0.0f) || !std::isfinite(m.attenuation_distance_m)) return glm::vec3(1.0f);
-  const double x = m.thickness_factor / m.attenuation_distance_m;
+  const double x = m.thickness_factor * m.mesh_to_world / m.attenuation_distance_m;  // both in world units
   glm::vec3 t;
   for (int b = 0; b < 3; ++b) t[b] = static_cast<float>(std::pow(static_cast<double>(m.attenuation_color[b]), x));
   return t;

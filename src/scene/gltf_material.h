@@ -39,6 +39,8 @@ struct GltfMaterial {
   float transmission_factor = 0.0f;
   bool has_volume = false;                     // KHR_materials_volume
   float thickness_factor = 0.0f;               // [mesh units]
+  double mesh_to_world = 1.0;                  // the scale of the first node that instances the mesh (the cube
+                                               // root of its world matrix's determinant): thickness in world units
   double attenuation_distance_m = HUGE_VAL;    // [m]
   bool has_attenuation_color = false;
   glm::vec3 attenuation_color{1.0f};

@@ -130,6 +130,14 @@ TEST(GltfMaterial, HueFollowsTheAttenuationColourWhenItIsTheOnlyColour) {
     EXPECT_LT(1.0f / m.sigma_t()[b], 2.0f) << b;  // mm: no longer 190, 39, 17
   }
   EXPECT_FLOAT_EQ(m.eta, 1.5f);  // glTF's default ior
+
+  // thicknessFactor is in the mesh's space, attenuationDistance in the world's: under a node scaled by 0.5 the
+  // thickness is d / 2, T = c^0.5.
+  json scaled = triangle_gltf(glass);
+  scaled["nodes"][0]["matrix"] = {0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1};
+  write_text(file.path(), scaled.dump());
+  const glm::dvec3 half = model_total_reflectance(*from_mesh(file.path(), &warnings, 1000.0f).material, 0.0).total;
+  for (int b = 0; b < 3; ++b) EXPECT_NEAR(half[b], std::sqrt(c[b]), 1e-3) << b;
 }
 
 // KHR_materials_volume_scatter gives the medium whole: sigma_t = -ln(c) / d, alpha from the multi-scatter colour by
