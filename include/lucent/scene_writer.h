@@ -47,8 +47,9 @@ std::string scene_gltf(const Scene& scene, const std::string& path);
 // numbers to within an ulp, and its binary PLY reader asserts on triangle lists (assimp 5.2).
 // `material`: a glTF material object (src/scene/gltf_material.h) that the mesh's primitive uses, or null for none.
 void write_gltf(const std::string& path, const TriangleMesh& mesh, const nlohmann::json& material = nullptr);
-// The glTF material of an object (docs/materials.md): a translucent material with KHR_materials_volume,
-// KHR_materials_ior and its exact coefficients in extras.lucent, or the opaque albedo as the base colour.
+// The glTF material of an object (docs/materials.md, "Export"): a translucent material with
+// KHR_materials_transmission, _volume, _volume_scatter, _ior and its exact coefficients in extras.lucent, or the
+// opaque albedo as the base colour.
 nlohmann::json object_gltf_material(const SceneObject& object);
 
 // translate, rotate_deg (x, then y, then z, as the loader applies them) and scale of a transform the loader can
