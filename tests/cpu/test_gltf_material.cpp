@@ -18,6 +18,8 @@
 #include "lucent/scene.h"
 #include "lucent/scene_writer.h"
 #include "lucent/warning.h"
+#include "lucent/image.h"
+#include "materials/artist_parameters.h"
 #include "materials/model_total_reflectance.h"
 #include "scene/gltf_material.h"
 
@@ -193,6 +195,47 @@ TEST(GltfMaterial, IgnoredFieldsAreNamedInOneLine) {
                                        "0.4 (the boundary is smooth; the methods' specular roughness is a method "
                                        "parameter), emissiveFactor, alphaMode BLEND, doubleSided (objects are closed "
                                        "volumes), KHR_materials_specular");
+}
+
+std::string base64_text(const std::string& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t n = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) n |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 2]);
+    out += kDigits[(n >> 18) & 63];
+    out += kDigits[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
+  }
+  return out;
+}
+
+// A textured material with diffuse transmission and no baseColorFactor (glTF's white) loads: its albedo map is
+// A = (1 - f) B + f D T per texel, f = 0.5, D = 1, T = c^(t / d) = 0.5 (c = 0.5, t = d), B the texel (sRGB 8-bit
+// values 128, 200, 64, 255 decoded: 0.2158605, 0.5775804, 0.0512695, 1).
+TEST(GltfMaterial, TexturedDiffuseTransmissionWithoutBaseColorFactor) {
+  ImageRGBA8 image;
+  image.width = 2, image.height = 2;
+  image.pixels = {128, 128, 128, 255, 200, 200, 200, 255, 64, 64, 64, 255, 255, 255, 255, 255};
+  json material = json::parse(R"({"extensions": {
+    "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.5},
+    "KHR_materials_volume": {"thicknessFactor": 0.01, "attenuationDistance": 0.01, "attenuationColor": [0.5, 0.5, 0.5]}},
+    "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})");
+  json doc = triangle_gltf(material);
+  doc["textures"] = json::array({{{"source", 0}}});
+  doc["images"] = json::array({{{"uri", "data:image/png;base64," + base64_text(encode_png(image))}}});
+  test::TempFile file(".gltf");
+  write_text(file.path(), doc.dump());
+  const Material m = *from_mesh(file.path()).material;
+  ASSERT_TRUE(m.textured());
+  const double texel[4] = {0.0512695, 1.0, 0.2158605, 0.5775804};  // rows from the bottom: the file's last row first
+  for (int i = 0; i < 4; ++i) {
+    const double albedo = 0.5 * texel[i] + 0.25;
+    const double total = flat_total_of_albedo(m.model, m.maps->alpha[static_cast<std::size_t>(i)].x, m.g.x, m.eta);
+    EXPECT_NEAR(total, std::min(albedo, 0.998), 1e-3) << i;
+  }
 }
 
 Material artist_material(float g) {
