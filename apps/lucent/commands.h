@@ -23,6 +23,7 @@ void add_tonemap_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_envmap_command(CLI::App& app);
 void add_view_command(CLI::App& app);
+void add_export_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
 void add_atlas_command(CLI::App& app);
 void add_tissue_maps_command(CLI::App& app);

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   lucent::cli::add_bench_command(app);
   lucent::cli::add_envmap_command(app);
   lucent::cli::add_view_command(app);
+  lucent::cli::add_export_command(app);
   lucent::cli::add_methods_command(app);
   lucent::cli::add_atlas_command(app);
   lucent::cli::add_tissue_maps_command(app);

@@ -30,6 +30,9 @@ void write_png(const std::string& path, const ImageRGBA8& image);
 void write_exr(const std::string& path, const ImageRGBA32F& image);  // RGBA, 32-bit float channels
 ImageRGBA8 read_png(const std::string& path);
 ImageRGBA32F read_exr(const std::string& path);
+// A PNG or JPEG image held in memory (a glTF's embedded image), decoded to RGBA8 with the same size checks as
+// read_png. `what` names it in messages: "<what>: cannot read PNG: ...".
+ImageRGBA8 decode_image(const std::string& bytes, const std::string& what);
 // Radiance RGBE (.hdr) through stb: RGB with shared 8-bit exponent (about 1% precision, non-negative values);
 // alpha is dropped on write and reads as 1.
 void write_hdr(const std::string& path, const ImageRGBA32F& image);

@@ -31,14 +31,25 @@ nlohmann::json scene_to_json(const Scene& scene);
 // The environment map is referenced relative to the new file. Throws lucent::Error naming the file it cannot write.
 void save_scene(const Scene& scene, const std::string& path);
 
+// The whole scene as one glTF 2.0 file for other tools (Blender, glTF viewers; docs/materials.md, "Whole-scene
+// export"): every object a named node and mesh under a node scaling scene units to metres (scale_mm / 1000), its
+// material as gltf_material_json writes it (KHR_materials_transmission, _volume, _volume_scatter, _ior, the exact
+// coefficients in extras.lucent), the camera a perspective camera node, the lights KHR_lights_punctual (lux and
+// candela at 683 lm/W). A .glb `path` gets the binary container, a .gltf one its buffer embedded (base64). Animated
+// objects are written as they are at time 0. Throws lucent::Error naming the file it cannot write.
+void save_scene_gltf(const Scene& scene, const std::string& path);
+// The bytes save_scene_gltf writes (`path` chooses the container and names the scene).
+std::string scene_gltf(const Scene& scene, const std::string& path);
+
 // A triangle mesh as glTF 2.0 with its buffer embedded (base64): load_mesh reads back the same float positions
 // and normals, bit for bit (assimp may merge identical vertices), and the texture coordinates as TEXCOORD_0
 // (stored as (u, 1 - v), glTF's origin being the image's top left: within an ulp of 1 after reading back). Text formats would not: assimp parses decimal
 // numbers to within an ulp, and its binary PLY reader asserts on triangle lists (assimp 5.2).
 // `material`: a glTF material object (src/scene/gltf_material.h) that the mesh's primitive uses, or null for none.
 void write_gltf(const std::string& path, const TriangleMesh& mesh, const nlohmann::json& material = nullptr);
-// The glTF material of an object (docs/materials.md): a translucent material with KHR_materials_volume,
-// KHR_materials_ior and its exact coefficients in extras.lucent, or the opaque albedo as the base colour.
+// The glTF material of an object (docs/materials.md, "Export"): a translucent material with
+// KHR_materials_transmission, _volume, _volume_scatter, _ior and its exact coefficients in extras.lucent, or the
+// opaque albedo as the base colour.
 nlohmann::json object_gltf_material(const SceneObject& object);
 
 // translate, rotate_deg (x, then y, then z, as the loader applies them) and scale of a transform the loader can

@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -44,6 +46,7 @@
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
 #define STBI_ONLY_HDR
+#define STBI_ONLY_JPEG
 #include <stb/stb_image.h>
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -165,7 +168,7 @@ std::int64_t big_endian_32(const unsigned char* bytes) {
 // (stb_image grows its IDAT buffer from the declared length before reading it, so a 300-byte file declaring a 1 GiB
 // chunk would allocate 2 GiB) and the first IDAT must hold data (stb_image copies zero bytes to a null pointer,
 // undefined behaviour).
-std::string png_chunk_problem(std::ifstream& file, std::int64_t file_size) {
+std::string png_chunk_problem(std::istream& file, std::int64_t file_size) {
   unsigned char chunk[8];
   bool seen_idat = false;
   for (std::int64_t offset = 8; file.seekg(offset) && file.read(reinterpret_cast<char*>(chunk), 8);) {
@@ -186,10 +189,8 @@ std::string png_chunk_problem(std::ifstream& file, std::int64_t file_size) {
 // "" when the file starts with the PNG signature, its IHDR chunk declares an image within kMaxImagePixels and its
 // chunks are sound (png_chunk_problem); else the problem. Checked before stb_image, which would also decode
 // other formats.
-std::string png_header_problem(const std::string& path) {
+std::string png_stream_problem(std::istream& file) {
   static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return std::strerror(errno);
   unsigned char start[26] = {};
   file.read(reinterpret_cast<char*>(start), sizeof start);
   if (file.gcount() < 8 || std::memcmp(start, kSignature, 8) != 0) return "not a PNG file";
@@ -207,6 +208,26 @@ std::string png_header_problem(const std::string& path) {
   if (std::string problem = pixel_data_problem(width, height, height * row_bytes, file_size); !problem.empty())
     return problem;
   return png_chunk_problem(file, file_size);
+}
+
+std::string png_header_problem(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return std::strerror(errno);
+  return png_stream_problem(file);
+}
+
+// The decoded pixels as RGBA8, or the problem stb_image reports.
+ImageRGBA8 decoded_rgba8(std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data, int width, int height,
+                         const std::string& what, const char* format) {
+  if (!data) {
+    const char* reason = stbi_failure_reason();
+    throw Error(fmt::format("{}: cannot read {}: {}", what, format, reason ? reason : "corrupt or unsupported image data"));
+  }
+  ImageRGBA8 image;
+  image.width = width;
+  image.height = height;
+  image.pixels.assign(data.get(), data.get() + value_count(width, height));
+  return image;
 }
 
 }  // namespace
@@ -286,6 +307,32 @@ ImageRGBA8 read_png(const std::string& path) {
   image.height = height;
   image.pixels.assign(data.get(), data.get() + value_count(width, height));
   return image;
+}
+
+ImageRGBA8 decode_image(const std::string& bytes, const std::string& what) {
+  static constexpr unsigned char kJpegStart[3] = {0xff, 0xd8, 0xff};
+  const bool jpeg = bytes.size() >= 3 && std::memcmp(bytes.data(), kJpegStart, 3) == 0;
+  const char* format = jpeg ? "JPEG" : "PNG";
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw Error(fmt::format("{}: cannot read {}: {} bytes, more than stb_image reads", what, format, bytes.size()));
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
+  if (jpeg) {  // the size a JPEG declares, checked before its pixels are allocated
+    int width = 0, height = 0, channels = 0;
+    if (stbi_info_from_memory(data, size, &width, &height, &channels) != 0)
+      for (const std::string& problem :
+           {image_size_problem(width, height),
+            pixel_data_problem(width, height, std::int64_t{width} * height * 3, static_cast<std::int64_t>(size))})
+        if (!problem.empty()) throw Error(fmt::format("{}: cannot read JPEG: {}", what, problem));
+  } else {
+    std::istringstream stream(bytes);
+    if (const std::string problem = png_stream_problem(stream); !problem.empty())
+      throw Error(fmt::format("{}: cannot read PNG: {}", what, problem == "not a PNG file" ? "not a PNG or JPEG image" : problem));
+  }
+  int width = 0, height = 0, channels_in_file = 0;
+  std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> pixels(
+      stbi_load_from_memory(data, size, &width, &height, &channels_in_file, kChannels), &stbi_image_free);
+  return decoded_rgba8(std::move(pixels), width, height, what, format);
 }
 
 ImageRGBA32F read_exr(const std::string& path) {

@@ -2,56 +2,30 @@
 #include "scene/gltf_material.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <set>
-#include <system_error>
 
 #include <fmt/format.h>
 
+#include "io/printable_text.h"
 #include "lucent/error.h"
-#include "io/input_file.h"
 #include "materials/artist_parameters.h"
 #include "materials/model_total_reflectance.h"
 #include "params/param_json.h"
+#include "scene/gltf_reader.h"
 
 namespace lucent {
 namespace {
 
 using nlohmann::json;
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;      // "glTF"
-constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
 constexpr double kMetresToMm = 1000.0;
-
-std::uint32_t read_u32(const std::string& bytes, std::size_t offset) {
-  std::uint32_t v = 0;
-  std::memcpy(&v, bytes.data() + offset, sizeof v);  // glTF is little-endian, as lucent's targets
-  return v;
-}
-
-// The JSON chunk of a binary glTF: 12-byte header (magic, version 2, length), then chunks (length, type, data).
-// Reads the header and the chunk only, never the binary buffer behind it.
-std::string glb_json_chunk(std::ifstream& file, std::uintmax_t file_size, const std::string& path) {
-  std::string header(20, '\0');
-  file.read(header.data(), 20);
-  if (!file || read_u32(header, 0) != kGlbMagic) throw Error(path + ": not a binary glTF (no 'glTF' header)");
-  if (read_u32(header, 4) != 2)
-    throw Error(fmt::format("{}: binary glTF version {}; lucent reads version 2", path, read_u32(header, 4)));
-  const std::uint64_t chunk_length = read_u32(header, 12);
-  if (read_u32(header, 16) != kGlbJsonChunk) throw Error(path + ": binary glTF: the first chunk is not JSON");
-  if (20 + chunk_length > file_size)
-    throw Error(fmt::format("{}: binary glTF: JSON chunk of {} bytes runs past the end of the file", path, chunk_length));
-  std::string chunk(chunk_length, '\0');
-  file.read(chunk.data(), static_cast<std::streamsize>(chunk_length));
-  if (!file) throw Error(path + ": binary glTF: cannot read the JSON chunk");
-  return chunk;
-}
+constexpr int kRepeat = 10497, kNearest = 9728, kNearestMipmapNearest = 9984, kNearestMipmapLinear = 9986;
+// The extensions the mapping reads; any other material extension is named in the warning.
+const std::set<std::string> kReadExtensions = {"KHR_materials_volume", "KHR_materials_ior",
+                                               "KHR_materials_diffuse_transmission", "KHR_materials_transmission",
+                                               "KHR_materials_volume_scatter"};
 
 // A number at `key` of `object` in [lo, hi], or `fallback` where absent.
 double read_number(const json& object, const char* key, double fallback, double lo, double hi,
@@ -87,28 +61,24 @@ const json& member_object(const json& object, const char* key, const JsonLocatio
   return object[key];
 }
 
+std::string location(const GltfMaterial& m) { return fmt::format("/materials/{}", m.index); }
+JsonLocation material_at(const GltfMaterial& m) { return {m.path, location(m)}; }
+JsonLocation extension_at(const GltfMaterial& m, const char* name) {
+  return material_at(m).child("extensions").child(name);
+}
+
 // The material indices the mesh primitives name (-1: a primitive without one).
-std::set<std::int64_t> used_materials(const json& doc, const JsonLocation& root) {
-  std::set<std::int64_t> used;
-  if (!doc.contains("meshes") || !doc["meshes"].is_array()) fail(root.child("meshes"), "expected an array of meshes");
-  for (std::size_t m = 0; m < doc["meshes"].size(); ++m) {
-    const json& mesh = doc["meshes"][m];
-    const JsonLocation at = root.child("meshes").child(m);
-    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
-      fail(at, "expected an object with an array of primitives");
-    for (std::size_t p = 0; p < mesh["primitives"].size(); ++p) {
-      const json& primitive = mesh["primitives"][p];
-      if (!primitive.is_object()) fail(at.child("primitives").child(p), "expected an object");
-      if (!primitive.contains("material")) {
-        used.insert(-1);
-        continue;
-      }
-      if (!primitive["material"].is_number_integer())
-        fail(at.child("primitives").child(p).child("material"), "expected a material index");
-      used.insert(primitive["material"].get<std::int64_t>());
-    }
-  }
+std::set<int> used_materials(const tinygltf::Model& model) {
+  std::set<int> used;
+  for (const tinygltf::Mesh& mesh : model.meshes)
+    for (const tinygltf::Primitive& primitive : mesh.primitives) used.insert(primitive.material);
   return used;
+}
+
+// Textures inside an extension that lucent reads, named when present.
+void note_textures(const json& ext, std::initializer_list<const char*> keys, const char* name, GltfMaterial& m) {
+  for (const char* key : keys)
+    if (ext.contains(key)) m.ignored.push_back(fmt::format("{}.{}", name, key));
 }
 
 void read_volume(const json& ext, const JsonLocation& where, GltfMaterial& m) {
@@ -121,146 +91,427 @@ void read_volume(const json& ext, const JsonLocation& where, GltfMaterial& m) {
          fmt::format("{:g} is out of range; allowed range (0, inf) m", m.attenuation_distance_m));
   m.has_attenuation_color = ext.contains("attenuationColor");
   m.attenuation_color = read_colour(ext, "attenuationColor", 3, glm::vec3(1.0f), where);
+  note_textures(ext, {"thicknessTexture"}, "KHR_materials_volume", m);
 }
 
-GltfMaterial read_material_object(const json& object, int index, const JsonLocation& where) {
-  if (!object.is_object()) fail(where, "expected a material object");
-  GltfMaterial m;
-  m.index = index;
-  m.name = object.contains("name") && object["name"].is_string() ? object["name"].get<std::string>() : "";
-  m.base_color = read_colour(member_object(object, "pbrMetallicRoughness", where), "baseColorFactor", 4,
-                             glm::vec3(1.0f), where.child("pbrMetallicRoughness"));
-  const json& ext = member_object(object, "extensions", where);
-  const JsonLocation ext_at = where.child("extensions");
+void read_extensions(const json& ext, const JsonLocation& ext_at, GltfMaterial& m) {
+  for (const auto& [name, value] : ext.items())
+    if (!kReadExtensions.count(name)) m.ignored.push_back(printable_text(name));
   if (ext.contains("KHR_materials_volume"))
     read_volume(member_object(ext, "KHR_materials_volume", ext_at), ext_at.child("KHR_materials_volume"), m);
   if (ext.contains("KHR_materials_ior"))
     m.ior = static_cast<float>(read_number(member_object(ext, "KHR_materials_ior", ext_at), "ior", 1.5, 1.0, 3.0,
                                            ext_at.child("KHR_materials_ior")));
+  if (ext.contains("KHR_materials_transmission")) {
+    const json& t = member_object(ext, "KHR_materials_transmission", ext_at);
+    m.has_transmission = true;
+    m.transmission_factor = static_cast<float>(
+        read_number(t, "transmissionFactor", 0.0, 0.0, 1.0, ext_at.child("KHR_materials_transmission")));
+    note_textures(t, {"transmissionTexture"}, "KHR_materials_transmission", m);
+  }
   if (ext.contains("KHR_materials_diffuse_transmission")) {
     const json& dt = member_object(ext, "KHR_materials_diffuse_transmission", ext_at);
     const JsonLocation dt_at = ext_at.child("KHR_materials_diffuse_transmission");
     m.has_diffuse_transmission = true;
     m.diffuse_transmission_factor = static_cast<float>(read_number(dt, "diffuseTransmissionFactor", 0.0, 0.0, 1.0, dt_at));
+    m.has_diffuse_transmission_color = dt.contains("diffuseTransmissionColorFactor");
     m.diffuse_transmission_color = read_colour(dt, "diffuseTransmissionColorFactor", 3, glm::vec3(1.0f), dt_at);
+    note_textures(dt, {"diffuseTransmissionTexture", "diffuseTransmissionColorTexture"},
+                  "KHR_materials_diffuse_transmission", m);
   }
-  const json& extras = member_object(object, "extras", where);
-  if (extras.contains("lucent")) m.lucent = member_object(extras, "lucent", where.child("extras"));
+  if (ext.contains("KHR_materials_volume_scatter")) {
+    const json& vs = member_object(ext, "KHR_materials_volume_scatter", ext_at);
+    const JsonLocation vs_at = ext_at.child("KHR_materials_volume_scatter");
+    m.has_volume_scatter = true;
+    const char* key = vs.contains("multiscatterColorFactor") ? "multiscatterColorFactor" : "multiscatterColor";
+    m.has_multiscatter_color = vs.contains(key);
+    m.multiscatter_color = read_colour(vs, key, 3, glm::vec3(0.0f), vs_at);
+    m.scatter_anisotropy = static_cast<float>(read_number(vs, "scatterAnisotropy", 0.0, -1.0, 1.0, vs_at));
+    if (std::abs(m.scatter_anisotropy) >= 1.0f)
+      fail(vs_at.child("scatterAnisotropy"), fmt::format("{} is out of range; lucent's phase functions take (-1, 1)",
+                                                         m.scatter_anisotropy));
+    note_textures(vs, {"multiscatterColorTexture"}, "KHR_materials_volume_scatter", m);
+  }
+}
+
+// The sampler's settings lucent's maps do not have (they repeat and filter bilinearly), named.
+void note_sampler(const tinygltf::Model& model, int texture, GltfMaterial& m) {
+  const int s = model.textures[static_cast<std::size_t>(texture)].sampler;
+  if (s < 0 || static_cast<std::size_t>(s) >= model.samplers.size()) return;
+  const tinygltf::Sampler& sampler = model.samplers[static_cast<std::size_t>(s)];
+  auto wrap = [](int mode) { return mode == 33071 ? "CLAMP_TO_EDGE" : mode == 33648 ? "MIRRORED_REPEAT" : "?"; };
+  if (sampler.wrapS != kRepeat) m.ignored.push_back(fmt::format("/samplers/{}/wrapS {} (maps repeat)", s, wrap(sampler.wrapS)));
+  if (sampler.wrapT != kRepeat) m.ignored.push_back(fmt::format("/samplers/{}/wrapT {} (maps repeat)", s, wrap(sampler.wrapT)));
+  if (sampler.magFilter == kNearest) m.ignored.push_back(fmt::format("/samplers/{}/magFilter NEAREST (maps are bilinear)", s));
+  if (sampler.minFilter == kNearest || sampler.minFilter == kNearestMipmapNearest ||
+      sampler.minFilter == kNearestMipmapLinear)
+    m.ignored.push_back(fmt::format("/samplers/{}/minFilter {} (maps are bilinear)", s, sampler.minFilter));
+}
+
+void read_base_color_texture(const GltfFile& file, const tinygltf::TextureInfo& info, GltfMaterial& m) {
+  const JsonLocation at = material_at(m).child("pbrMetallicRoughness").child("baseColorTexture");
+  if (info.texCoord != 0)
+    fail(at.child("texCoord"), fmt::format("{}: lucent reads the texture coordinates of set 0 (TEXCOORD_0)", info.texCoord));
+  m.base_color_texture = read_gltf_texture(file, info.index, at, fmt::format("{}#{}/pbrMetallicRoughness/baseColorTexture",
+                                                                           m.path, location(m)));
+  note_sampler(file.model, info.index, m);
+  const json extensions = gltf_json(info.extensions_json_string, at.child("extensions"));
+  for (auto it = extensions.begin(); it != extensions.end(); ++it)
+    m.ignored.push_back("baseColorTexture." + printable_text(it.key()));
+}
+
+// The core fields lucent does not use, named when the file sets them to something lucent does not reproduce.
+void note_core_fields(const tinygltf::Material& material, GltfMaterial& m) {
+  const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
+  if (material.values.count("metallicFactor") && pbr.metallicFactor != 0.0)
+    m.ignored.push_back(fmt::format("metallicFactor {:g}", pbr.metallicFactor));
+  if (material.values.count("roughnessFactor") && pbr.roughnessFactor != 0.0)
+    m.ignored.push_back(fmt::format("roughnessFactor {:g} (the boundary is smooth; the methods' specular roughness is "
+                                    "a method parameter)", pbr.roughnessFactor));
+  if (material.values.count("metallicRoughnessTexture")) m.ignored.push_back("metallicRoughnessTexture");
+  if (pbr.baseColorFactor.size() == 4 && pbr.baseColorFactor[3] != 1.0)
+    m.ignored.push_back(fmt::format("baseColorFactor alpha {:g}", pbr.baseColorFactor[3]));
+  for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture", "alphaCutoff"})
+    if (material.additionalValues.count(key)) m.ignored.push_back(key);
+  if (std::any_of(material.emissiveFactor.begin(), material.emissiveFactor.end(), [](double e) { return e != 0.0; }))
+    m.ignored.push_back("emissiveFactor");
+  if (material.alphaMode != "OPAQUE") m.ignored.push_back("alphaMode " + printable_text(material.alphaMode));
+  if (material.doubleSided) m.ignored.push_back("doubleSided (objects are closed volumes)");
+}
+
+void read_base_color(const tinygltf::Material& material, GltfMaterial& m) {
+  const JsonLocation pbr_at = material_at(m).child("pbrMetallicRoughness");
+  const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
+  m.has_base_color_factor = material.values.count("baseColorFactor") > 0;
+  if (!m.has_base_color_factor) return;  // glTF's default [1, 1, 1, 1]
+  if (factor.size() != 4) fail(pbr_at.child("baseColorFactor"), "expected 4 numbers in [0, 1]");
+  for (std::size_t i = 0; i < 4; ++i)
+    if (!(factor[i] >= 0.0 && factor[i] <= 1.0))
+      fail(pbr_at.child("baseColorFactor").child(i), fmt::format("{:g} is not a number in [0, 1]", factor[i]));
+  m.base_color = glm::vec3(static_cast<float>(factor[0]), static_cast<float>(factor[1]), static_cast<float>(factor[2]));
+}
+
+// The cube root of |det| of a node's local transform: its scale, for thickness (rotations do not change lengths).
+double node_scale(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    const std::vector<double>& a = node.matrix;  // column-major
+    const double det = a[0] * (a[5] * a[10] - a[9] * a[6]) - a[4] * (a[1] * a[10] - a[9] * a[2]) +
+                       a[8] * (a[1] * a[6] - a[5] * a[2]);
+    return std::cbrt(std::abs(det));
+  }
+  return node.scale.size() == 3 ? std::cbrt(std::abs(node.scale[0] * node.scale[1] * node.scale[2])) : 1.0;
+}
+
+// The world scale of the first node that instances a mesh using material `index` (1 where none does).
+double mesh_to_world(const tinygltf::Model& model, int index) {
+  std::vector<int> parent(model.nodes.size(), -1);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    for (int child : model.nodes[n].children)
+      if (child >= 0 && static_cast<std::size_t>(child) < parent.size()) parent[static_cast<std::size_t>(child)] = static_cast<int>(n);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    const int mesh = model.nodes[n].mesh;
+    if (mesh < 0 || static_cast<std::size_t>(mesh) >= model.meshes.size()) continue;
+    const auto& primitives = model.meshes[static_cast<std::size_t>(mesh)].primitives;
+    if (std::none_of(primitives.begin(), primitives.end(), [&](const tinygltf::Primitive& p) { return p.material == index; }))
+      continue;
+    double scale = 1.0;
+    int node = static_cast<int>(n);
+    for (std::size_t steps = 0; node >= 0 && steps <= model.nodes.size(); ++steps, node = parent[static_cast<std::size_t>(node)])
+      scale *= node_scale(model.nodes[static_cast<std::size_t>(node)]);
+    return std::isfinite(scale) && scale > 0.0 ? scale : 1.0;
+  }
+  return 1.0;
+}
+
+GltfMaterial read_material(const GltfFile& file, int index) {
+  const tinygltf::Material& material = file.model.materials[static_cast<std::size_t>(index)];
+  GltfMaterial m;
+  m.path = file.path;
+  m.index = index;
+  m.name = material.name;
+  m.mesh_to_world = mesh_to_world(file.model, index);
+  read_base_color(material, m);
+  note_core_fields(material, m);
+  const JsonLocation at = material_at(m);
+  read_extensions(gltf_json(material.extensions_json_string, at.child("extensions")), at.child("extensions"), m);
+  const json extras = gltf_json(material.extras_json_string, at.child("extras"));
+  if (extras.contains("lucent")) m.lucent = member_object(extras, "lucent", at.child("extras"));
+  if (material.pbrMetallicRoughness.baseColorTexture.index >= 0)
+    read_base_color_texture(file, material.pbrMetallicRoughness.baseColorTexture, m);
   return m;
 }
 
-// Per band: mfp = d / -ln(c) (Beer's law: white light turns c after d), d [m] -> mm.
-json mean_free_path_mm(const GltfMaterial& m, const JsonLocation& where) {
-  const JsonLocation volume = where.child("extensions").child("KHR_materials_volume");
-  if (!m.has_volume || !std::isfinite(m.attenuation_distance_m))
-    fail(volume.child("attenuationDistance"),
-         "missing; a translucent material needs a mean free path (or extras.lucent.mfp_mm)");
-  const double d_mm = m.attenuation_distance_m * kMetresToMm;
-  if (!m.has_attenuation_color) return json::array({d_mm, d_mm, d_mm});
-  json mfp = json::array();
+// ---- the mapping ----
+
+// The medium's colour parameters per band as lucent needs them: the model, g and eta the surface albedo is inverted
+// with (extras.lucent's where it names them).
+struct CurveParameters {
+  BssrdfModel model = kDefaultBssrdfModel;
+  glm::vec3 g{0.0f};
+  float eta = 1.5f;
+};
+
+CurveParameters curve_parameters(const GltfMaterial& m) {
+  CurveParameters p;
+  p.eta = m.ior;
+  p.g = glm::vec3(m.scatter_anisotropy);
+  const json& x = m.lucent;
+  if (!x.is_object()) return p;
+  if (x.contains("model") && x["model"].is_string())
+    if (auto model = parse_bssrdf_model(x["model"].get<std::string>())) p.model = *model;
+  if (x.contains("eta") && x["eta"].is_number()) p.eta = std::clamp(x["eta"].get<float>(), 1.0f, 3.0f);
+  if (x.contains("g") && x["g"].is_number()) p.g = glm::vec3(x["g"].get<float>());
+  if (x.contains("g") && x["g"].is_array() && x["g"].size() == 3)
+    for (int b = 0; b < 3; ++b)
+      if (x["g"][static_cast<std::size_t>(b)].is_number()) p.g[b] = x["g"][static_cast<std::size_t>(b)].get<float>();
+  for (int b = 0; b < 3; ++b) p.g[b] = std::clamp(p.g[b], -0.99f, 0.99f);  // out of range: read_material says so
+  return p;
+}
+
+// T = c^(t / d): what is left of white light after crossing the thickness (1 without a volume, thin-walled, or an
+// infinite distance).
+glm::vec3 volume_transmittance(const GltfMaterial& m) {
+  if (!m.has_volume || !(m.thickness_factor > 0.0f) || !std::isfinite(m.attenuation_distance_m)) return glm::vec3(1.0f);
+  const double x = m.thickness_factor * m.mesh_to_world / m.attenuation_distance_m;  // both in world units
+  glm::vec3 t;
+  for (int b = 0; b < 3; ++b) t[b] = static_cast<float>(std::pow(static_cast<double>(m.attenuation_color[b]), x));
+  return t;
+}
+
+// A = (1 - s) ((1 - f) B + f D T) + s B T = a B + b, per band: a and b.
+void albedo_affine(const GltfMaterial& m, glm::vec3& a, glm::vec3& b) {
+  const glm::vec3 T = volume_transmittance(m);
+  const float s = m.transmission_factor, f = m.diffuse_transmission_factor;
+  a = (1.0f - s) * (1.0f - f) + s * T;
+  b = (1.0f - s) * f * m.diffuse_transmission_color * T;
+}
+
+// The key whose value makes band `band` of the surface albedo 0.
+JsonLocation zero_albedo_key(const GltfMaterial& m, int band) {
+  const auto b = static_cast<std::size_t>(band);
+  if (m.has_base_color_factor && m.base_color[band] == 0.0f)
+    return material_at(m).child("pbrMetallicRoughness").child("baseColorFactor").child(b);
+  if (m.base_color_texture) return material_at(m).child("pbrMetallicRoughness").child("baseColorTexture");
+  if (m.has_diffuse_transmission_color && m.diffuse_transmission_color[band] == 0.0f)
+    return extension_at(m, "KHR_materials_diffuse_transmission").child("diffuseTransmissionColorFactor").child(b);
+  return material_at(m);
+}
+
+// The extension that makes a material without a volume translucent, for messages.
+JsonLocation translucency_key(const GltfMaterial& m) {
+  if (m.has_diffuse_transmission && m.diffuse_transmission_factor > 0.0f)
+    return extension_at(m, "KHR_materials_diffuse_transmission");
+  if (m.has_transmission && m.transmission_factor > 0.0f) return extension_at(m, "KHR_materials_transmission");
+  return extension_at(m, "KHR_materials_volume_scatter");
+}
+
+// The distance d [mm], or an error at a key that exists when the file gives none.
+double attenuation_distance_mm(const GltfMaterial& m) {
+  if (!m.has_volume)
+    fail(translucency_key(m), "thin-walled (no KHR_materials_volume): lucent renders a medium and needs its "
+                              "attenuationDistance, or extras.lucent.mfp_mm");
+  if (!std::isfinite(m.attenuation_distance_m))
+    fail(extension_at(m, "KHR_materials_volume"),
+         "no attenuationDistance (glTF's default: infinite, a clear medium); lucent's medium needs one, or "
+         "extras.lucent.mfp_mm");
+  return m.attenuation_distance_m * kMetresToMm;
+}
+
+// sigma_t or sigma_a per band from c and d: -ln(c) / d [mm^-1]; c = 1 in a band is refused at its key.
+glm::dvec3 log_attenuation(const GltfMaterial& m, double d_mm) {
+  glm::dvec3 sigma;
   for (int b = 0; b < 3; ++b) {
     const double c = m.attenuation_color[b];
     if (!(c > 0.0 && c < 1.0))
-      fail(volume.child("attenuationColor").child(static_cast<std::size_t>(b)),
+      fail(extension_at(m, "KHR_materials_volume").child("attenuationColor").child(static_cast<std::size_t>(b)),
            fmt::format("{} is out of range; allowed range (0, 1) (1 is no extinction: no mean free path)", c));
-    mfp.push_back(d_mm / -std::log(c));
+    sigma[b] = -std::log(c) / d_mm;
   }
+  return sigma;
+}
+
+// Mean free paths [mm] derived from the attenuation, refused at attenuationDistance beyond what a float carries.
+glm::dvec3 checked_mfp(const GltfMaterial& m, glm::dvec3 mfp) {
+  for (int b = 0; b < 3; ++b)
+    if (!(mfp[b] > 1e-30 && mfp[b] < 1e30))
+      fail(extension_at(m, "KHR_materials_volume").child("attenuationDistance"),
+           fmt::format("{:g} m gives the mean free path {:g} mm in band {}; lucent's range is (1e-30, 1e30) mm",
+                       m.attenuation_distance_m, mfp[b], b));
   return mfp;
 }
 
-json surface_albedo(const GltfMaterial& m, const JsonLocation& where) {
-  for (int b = 0; b < 3; ++b)
-    if (!(m.base_color[b] > 0.0f && m.base_color[b] < 1.0f))
-      fail(where.child("pbrMetallicRoughness").child("baseColorFactor").child(static_cast<std::size_t>(b)),
-           fmt::format("{} is out of range for a translucent material's surface albedo; allowed range (0, 1)",
-                       m.base_color[b]));
-  return json::array({m.base_color.x, m.base_color.y, m.base_color.z});
-}
-
+json array(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
 json array(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 
-}  // namespace
-
-json read_gltf_json(const std::string& path) {
-  require_regular_file(path);
-  std::ifstream file(path, std::ios::binary);
-  std::error_code ec;
-  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
-  if (!file || ec) throw Error(path + ": cannot open glTF file");
-  std::string magic(4, '\0');
-  file.read(magic.data(), 4);
-  file.clear();
-  file.seekg(0);
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  const bool binary = extension == ".glb" || read_u32(magic, 0) == kGlbMagic;
-  const std::string text = binary ? glb_json_chunk(file, file_size, path)
-                                  : std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  const json doc = parse_json(text, {path, ""});
-  require_object(doc, {path, ""});
-  return doc;
+// KHR_materials_volume_scatter: the medium whole.
+json scattering_medium(const GltfMaterial& m, GltfLucentMaterial& out) {
+  const double d_mm = attenuation_distance_mm(m);
+  const glm::dvec3 sigma_t = m.has_attenuation_color ? log_attenuation(m, d_mm) : glm::dvec3(1.0 / d_mm);
+  glm::dvec3 alpha;
+  const JsonLocation vs = extension_at(m, "KHR_materials_volume_scatter");
+  for (int b = 0; b < 3; ++b) {
+    alpha[b] = single_scatter_albedo(m.multiscatter_color[b]);
+    if (!(m.multiscatter_color[b] > 0.0f && alpha[b] < 1.0))
+      fail(m.has_multiscatter_color ? vs.child("multiscatterColorFactor").child(static_cast<std::size_t>(b)) : vs,
+           fmt::format("multi-scatter albedo {} gives the single-scatter albedo {:.6g}; lucent's media scatter and "
+                       "absorb (allowed range (0, 1) exclusive){}",
+                       m.multiscatter_color[b], alpha[b],
+                       m.has_multiscatter_color ? "" : " (absent: glTF's default [0, 0, 0] scatters nothing)"));
+  }
+  if (m.has_base_color_factor || m.base_color_texture)
+    out.ignored.push_back("base colour (with KHR_materials_volume_scatter it tints glTF's boundary; lucent's is a clear "
+                          "dielectric and the medium's colour is multiscatterColorFactor's)");
+  checked_mfp(m, 1.0 / sigma_t);
+  return {{"sigma_a", array(sigma_t * (1.0 - alpha))}, {"sigma_s", array(sigma_t * alpha)},
+          {"g", m.scatter_anisotropy}, {"eta", m.ior}};
 }
 
-GltfMaterial read_gltf_material(const std::string& path) {
-  const json doc = read_gltf_json(path);
-  const JsonLocation root{path, ""};
-  const std::set<std::int64_t> used = used_materials(doc, root);
-  if (used.empty()) fail(root.child("meshes"), "no primitives, so no material");
-  if (used.size() > 1) {
-    std::string list;
-    for (std::int64_t i : used) list += (list.empty() ? "" : ", ") + (i < 0 ? std::string("none") : std::to_string(i));
-    fail(root.child("meshes"), fmt::format("the primitives use {} materials ({}); an object takes one", used.size(), list));
-  }
-  const std::int64_t index = *used.begin();
-  if (index < 0) fail(root.child("meshes"), "the primitives name no material");
-  const json materials = doc.value("materials", json::array());
-  if (!materials.is_array() || index >= static_cast<std::int64_t>(materials.size()))
-    fail(root.child("materials"), fmt::format("no material {} (the primitives name it)", index));
-  return read_material_object(materials[static_cast<std::size_t>(index)], static_cast<int>(index),
-                              root.child("materials").child(static_cast<std::size_t>(index)));
+// The surface albedo A per texel (the texture's texels x factor, through A = a B + b) and its mean.
+glm::vec3 surface_albedo(const GltfMaterial& m, GltfLucentMaterial& out) {
+  glm::vec3 a, b;
+  albedo_affine(m, a, b);
+  if (!m.base_color_texture) return a * m.base_color + b;
+  MapImage map = *m.base_color_texture;
+  for (glm::vec3& texel : map.texels) texel = a * (m.base_color * texel) + b;
+  const glm::vec3 mean = map_mean(map);
+  out.albedo_map = std::move(map);
+  return mean;
 }
 
-json lucent_material_json(const GltfMaterial& m, const std::string& path) {
-  const bool translucent = m.has_volume || (m.has_diffuse_transmission && m.diffuse_transmission_factor > 0.0f) ||
-                           !m.lucent.is_null();
-  if (!translucent) return nullptr;
-  const JsonLocation where{path, fmt::format("/materials/{}", m.index)};
-  const json extras = m.lucent.is_null() ? json::object() : m.lucent;
-  const bool coefficients = extras.contains("preset") || extras.contains("sigma_a") || extras.contains("sigma_s") ||
-                            extras.contains("sigma_s_prime");
-  json j = {{"eta", m.ior}};
-  if (!coefficients) {
-    if (!extras.contains("albedo")) j["albedo"] = surface_albedo(m, where);
-    if (!extras.contains("mfp_mm")) j["mfp_mm"] = mean_free_path_mm(m, where);
+// Volume without scattering given: sigma_a from the attenuation, the scattering that gives the surface albedo.
+json absorbing_medium(const GltfMaterial& m, const json& extras, GltfLucentMaterial& out) {
+  const glm::vec3 albedo = surface_albedo(m, out);
+  const CurveParameters p = curve_parameters(m);
+  glm::vec3 reachable;
+  glm::dvec3 alpha;
+  for (int b = 0; b < 3; ++b) {
+    if (!(albedo[b] > 0.0f)) fail(zero_albedo_key(m, b), "makes the surface albedo 0; lucent's media reflect light");
+    const AlbedoCurve curve(inversion_curve_model(p.model), p.g[b], p.eta);
+    reachable[b] = static_cast<float>(curve.reachable(albedo[b]));
+    alpha[b] = curve.alpha(reachable[b]);
   }
-  j.update(extras);
+  if (reachable != albedo && !out.albedo_map)
+    out.clamped.push_back(fmt::format("surface albedo ({:.4g}, {:.4g}, {:.4g}) clamped to ({:.4g}, {:.4g}, {:.4g}), "
+                                      "the {} model's range at eta {:.3g}",
+                                      albedo.x, albedo.y, albedo.z, reachable.x, reachable.y, reachable.z,
+                                      to_string(p.model), p.eta));
+  json j = {{"albedo", array(reachable)}, {"eta", m.ior}};
+  if (extras.contains("mfp_mm")) return j;
+  const double d_mm = attenuation_distance_mm(m);
+  if (!m.has_attenuation_color) {
+    j["mfp_mm"] = array(checked_mfp(m, glm::dvec3(d_mm)));
+    return j;
+  }
+  const glm::dvec3 sigma_a = log_attenuation(m, d_mm);
+  j["mfp_mm"] = array(checked_mfp(m, (1.0 - alpha) / sigma_a));
   return j;
 }
 
-json gltf_material_json(const Material& material, float thickness) {
+}  // namespace
+
+double single_scatter_albedo(double multiscatter) {
+  const double r = multiscatter;
+  const double s = 4.09712 + 4.20863 * r - std::sqrt(9.59217 + 41.6808 * r + 17.7126 * r * r);
+  return 1.0 - s * s;
+}
+
+double multiscatter_albedo(double single_scatter) {
+  double lo = 0.0, hi = 1.0;  // single_scatter_albedo rises on [0, 1]
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (single_scatter_albedo(mid) < single_scatter ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+GltfMaterial read_gltf_material(const std::string& path) {
+  const GltfFile file = read_gltf_file(path);
+  const JsonLocation root{path, ""};
+  const std::set<int> used = used_materials(file.model);
+  if (used.empty()) fail(root.child("meshes"), "no primitives, so no material");
+  if (used.size() > 1) {
+    std::string list;
+    for (int i : used) list += (list.empty() ? "" : ", ") + (i < 0 ? std::string("none") : std::to_string(i));
+    fail(root.child("meshes"), fmt::format("the primitives use {} materials ({}); an object takes one", used.size(), list));
+  }
+  const int index = *used.begin();
+  if (index < 0) fail(root.child("meshes"), "the primitives name no material");
+  if (static_cast<std::size_t>(index) >= file.model.materials.size())
+    fail(root.child("materials"), fmt::format("no material {} (the primitives name it)", index));
+  return read_material(file, index);
+}
+
+GltfLucentMaterial lucent_material(const GltfMaterial& m) {
+  GltfLucentMaterial out;
+  out.ignored = m.ignored;
+  const bool translucent = m.has_volume || m.diffuse_transmission_factor > 0.0f || m.transmission_factor > 0.0f ||
+                           m.has_volume_scatter || !m.lucent.is_null();
+  if (!translucent) {
+    out.opaque_albedo = m.base_color * (m.base_color_texture ? map_mean(*m.base_color_texture) : glm::vec3(1.0f));
+    if (m.base_color_texture)
+      out.ignored.push_back("baseColorTexture (an opaque object has one albedo: the texture's mean times the factor)");
+    return out;
+  }
+  const json extras = m.lucent.is_null() ? json::object() : m.lucent;
+  const bool coefficients = extras.contains("preset") || extras.contains("sigma_a") || extras.contains("sigma_s") ||
+                            extras.contains("sigma_s_prime");
+  if (coefficients) {
+    out.material = {{"eta", m.ior}};
+    if (m.base_color_texture) out.ignored.push_back("baseColorTexture (extras.lucent gives the coefficients)");
+  } else if (m.has_volume_scatter) {
+    out.material = scattering_medium(m, out);
+  } else {
+    out.material = absorbing_medium(m, extras, out);
+  }
+  out.material.update(extras);
+  return out;
+}
+
+std::string ignored_fields_warning(const GltfMaterial& m, const std::vector<std::string>& ignored) {
+  if (ignored.empty()) return "";
+  std::string list;
+  for (const std::string& field : ignored) list += (list.empty() ? "" : ", ") + field;
+  return fmt::format("{}: /materials/{}{}: lucent does not use {}", m.path, m.index,
+                     m.name.empty() ? "" : fmt::format(" ('{}')", text_excerpt(m.name)), list);
+}
+
+json gltf_material_json(const Material& material, float thickness, float roughness) {
   Material curve = material;
   curve.model = inversion_curve_model(material.model);
   const glm::dvec3 total = model_total_reflectance(curve, 0.0).total;
   const glm::vec3 sigma_t = material.sigma_t();
   const double d_mm = 1.0 / std::min({sigma_t.x, sigma_t.y, sigma_t.z});
-  json colour = json::array();
-  for (int b = 0; b < 3; ++b) colour.push_back(std::exp(-sigma_t[b] * d_mm));
-  json base = json::array();
-  for (int b = 0; b < 3; ++b) base.push_back(std::min(total[b], 1.0));  // glTF colours are in [0, 1]
+  json colour = json::array(), base = json::array(), multiscatter = json::array();
+  for (int b = 0; b < 3; ++b) {
+    colour.push_back(std::exp(-static_cast<double>(sigma_t[b]) * d_mm));
+    base.push_back(std::min(total[b], 1.0));  // glTF colours are in [0, 1]
+    multiscatter.push_back(multiscatter_albedo(static_cast<double>(material.sigma_s[b]) / sigma_t[b]));
+  }
   base.push_back(1.0);
+  const double g = (material.g.x + material.g.y + material.g.z) / 3.0;  // glTF has one phase function
   json lucent = {{"sigma_a", array(material.sigma_a)}, {"sigma_s", array(material.sigma_s)}, {"g", array(material.g)},
                  {"eta", material.eta}, {"model", std::string(to_string(material.model))}};
   return {{"name", material.name},
-          {"pbrMetallicRoughness", {{"baseColorFactor", base}, {"metallicFactor", 0.0}}},
+          {"pbrMetallicRoughness", {{"baseColorFactor", base}, {"metallicFactor", 0.0}, {"roughnessFactor", roughness}}},
           {"extensions",
-           {{"KHR_materials_volume",
+           {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+            {"KHR_materials_volume",
              {{"thicknessFactor", thickness}, {"attenuationDistance", d_mm / kMetresToMm}, {"attenuationColor", colour}}},
+            {"KHR_materials_volume_scatter", {{"multiscatterColorFactor", multiscatter}, {"scatterAnisotropy", g}}},
             {"KHR_materials_ior", {{"ior", material.eta}}}}},
           {"extras", {{"lucent", lucent}}}};
 }
 
-json gltf_opaque_material_json(glm::vec3 albedo) {
-  return {{"pbrMetallicRoughness", {{"baseColorFactor", {albedo.x, albedo.y, albedo.z, 1.0f}}, {"metallicFactor", 0.0}}}};
+json gltf_opaque_material_json(glm::vec3 albedo, float roughness) {
+  return {{"pbrMetallicRoughness", {{"baseColorFactor", {albedo.x, albedo.y, albedo.z, 1.0f}}, {"metallicFactor", 0.0},
+                                    {"roughnessFactor", roughness}}}};
+}
+
+std::vector<std::string> gltf_material_extensions(const json& material) {
+  std::vector<std::string> used;
+  if (material.contains("extensions"))
+    for (const auto& [name, value] : material["extensions"].items()) used.push_back(name);
+  return used;
 }
 
 }  // namespace lucent

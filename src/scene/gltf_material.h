@@ -1,36 +1,46 @@
-// gltf_material.h: glTF 2.0 materials to lucent materials and back (the mapping is docs/materials.md).
+// gltf_material.h: glTF 2.0 materials to lucent materials and back. The mapping and its reasons are in
+// docs/materials.md ("glTF 2.0 materials"); the file is read through tinygltf (scene/gltf_reader.h).
 //
-// Read from the file's JSON (a .gltf, or the JSON chunk of a .glb) with lucent's JSON reader, not through assimp:
-// Debian 12's assimp 5.2 does not expose KHR_materials_volume or KHR_materials_diffuse_transmission.
-//
-//   glTF                                              lucent
-//   pbrMetallicRoughness.baseColorFactor (rgb)        surface albedo (the model's flat total reflectance)
-//   KHR_materials_volume.attenuationColor c,          sigma_t = -ln(c) / d per band: mean free path
-//     attenuationDistance d [m]                         mfp_mm = 1000 d / -ln(c) (c absent: mfp_mm = 1000 d)
-//   KHR_materials_volume.thicknessFactor              read, not used: lucent's thickness is the mesh's
-//   KHR_materials_ior.ior                             eta (relative to air, n = 1)
-//   KHR_materials_diffuse_transmission                marks the material translucent (factor > 0)
-//   extras.lucent                                     a scene-file material object: its keys win (g, model,
-//                                                     coefficients, a preset, ...)
-// A material with none of volume, diffuse transmission or extras.lucent is opaque: the object's albedo is the
-// base colour.
+// Import, per band, with B = baseColorFactor x baseColorTexture (sRGB decoded), s = transmissionFactor,
+// f = diffuseTransmissionFactor, D = diffuseTransmissionColorFactor, KHR_materials_volume's thickness t,
+// attenuation distance d [m] and colour c:
+//   with KHR_materials_volume_scatter (the medium given whole):
+//     sigma_t = -ln(c) / d (1 / d without c), alpha = Kulla-Conty's single-scatter albedo of multiscatterColorFactor,
+//     g = scatterAnisotropy: sigma_s = alpha sigma_t, sigma_a = (1 - alpha) sigma_t;
+//   otherwise (scattering not given by glTF, absorption by the volume):
+//     surface albedo A = (1 - s) ((1 - f) B + f D T) + s B T with T = c^(t / d), the colour glTF's lobes give light
+//     that crosses the object's thickness; sigma_a = -ln(c) / d exactly as KHR_materials_volume defines it, and the
+//     scattering that makes the model's flat total A: mfp = (1 - alpha(A)) / sigma_a (mfp = d without c).
+//   KHR_materials_ior.ior -> eta; extras.lucent: scene-file material keys that win (the exact coefficients).
+// A material with none of volume, transmission, diffuse transmission or extras.lucent is opaque.
 #pragma once
+#include <cmath>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 #include "lucent/material.h"
+#include "materials/material_maps.h"
 
 namespace lucent {
 
 // What the file says, as glTF defines it (defaults filled in).
 struct GltfMaterial {
+  std::string path;                            // the glTF file
   int index = -1;                              // in the file's "materials"
   std::string name;
-  glm::vec3 base_color{1.0f};                  // baseColorFactor rgb (linear), alpha dropped
+  glm::vec3 base_color{1.0f};                  // baseColorFactor rgb (linear)
+  bool has_base_color_factor = false;
+  std::optional<MapImage> base_color_texture;  // decoded, linear, rows from v = 0 up
+  bool has_transmission = false;               // KHR_materials_transmission
+  float transmission_factor = 0.0f;
   bool has_volume = false;                     // KHR_materials_volume
   float thickness_factor = 0.0f;               // [mesh units]
+  double mesh_to_world = 1.0;                  // the scale of the first node that instances the mesh (the cube
+                                               // root of its world matrix's determinant): thickness in world units
   double attenuation_distance_m = HUGE_VAL;    // [m]
   bool has_attenuation_color = false;
   glm::vec3 attenuation_color{1.0f};
@@ -38,27 +48,49 @@ struct GltfMaterial {
   bool has_diffuse_transmission = false;       // KHR_materials_diffuse_transmission
   float diffuse_transmission_factor = 0.0f;
   glm::vec3 diffuse_transmission_color{1.0f};
+  bool has_diffuse_transmission_color = false;
+  bool has_volume_scatter = false;             // KHR_materials_volume_scatter (draft)
+  bool has_multiscatter_color = false;
+  glm::vec3 multiscatter_color{0.0f};          // multiscatterColorFactor (earlier drafts: multiscatterColor)
+  float scatter_anisotropy = 0.0f;
   nlohmann::json lucent;                       // extras.lucent, or null
+  std::vector<std::string> ignored;            // fields in the file that lucent does not use, for the warning
 };
 
-// The JSON of a .gltf, or of a .glb's JSON chunk. Throws lucent::Error("<path>: ...") for a missing file, a
-// malformed .glb container or malformed JSON.
-nlohmann::json read_gltf_json(const std::string& path);
-
-// The one material the file's mesh primitives use, read and range-checked. Throws lucent::Error naming the file
-// and the JSON pointer of a bad value, or when the primitives use no material or more than one.
+// The one material the file's mesh primitives use, read and range-checked, its base colour texture decoded.
+// Throws lucent::Error naming the file and the JSON pointer of a bad value, or when the primitives use no material
+// or more than one.
 GltfMaterial read_gltf_material(const std::string& path);
 
-// The scene-file material object (the keys scene_loader reads: albedo and mfp_mm, eta, then extras.lucent's keys)
-// for a translucent glTF material, or null for an opaque one. Throws lucent::Error("<path>: <pointer>: ...") when a
-// translucent material lacks what lucent needs (a base colour in (0, 1), an attenuation distance).
-nlohmann::json lucent_material_json(const GltfMaterial& material, const std::string& path);
+// A glTF material as lucent takes it.
+struct GltfLucentMaterial {
+  nlohmann::json material;                // a scene-file material object, or null for an opaque object
+  glm::vec3 opaque_albedo{0.8f};          // the object's albedo when opaque
+  std::optional<MapImage> albedo_map;     // the surface albedo A per texel (translucent, textured)
+  std::vector<std::string> ignored;       // the material's ignored fields, with the mapping's own
+  std::vector<std::string> clamped;       // surface albedos moved into the model's range, for a warning
+};
+// Throws lucent::Error("<path>: <pointer>: ...") at a key of the file when a translucent material lacks what lucent
+// needs or a value leaves the ranges lucent's media take.
+GltfLucentMaterial lucent_material(const GltfMaterial& material);
 
-// A glTF material for a lucent material: base colour = the flat total (the inversion curve's), KHR_materials_volume
-// with the largest mean free path as attenuationDistance, KHR_materials_ior, and the exact coefficients in
-// extras.lucent. `thickness` [mesh units] becomes thicknessFactor (viewers that approximate volumes use it).
-nlohmann::json gltf_material_json(const Material& material, float thickness);
+// "<path>: /materials/<i> ('<name>'): lucent ignores ..." (one line), or "" when nothing is ignored.
+std::string ignored_fields_warning(const GltfMaterial& material, const std::vector<std::string>& ignored);
+
+// Kulla and Conty (2017), as KHR_materials_volume_scatter defines it: the single-scatter albedo of a medium whose
+// multi-scatter albedo is `multiscatter` (both in [0, 1]), and its inverse (bisection).
+double single_scatter_albedo(double multiscatter);
+double multiscatter_albedo(double single_scatter);
+
+// The glTF material lucent writes for a lucent material (docs/materials.md, "Export"): base colour = the flat total
+// (the inversion curve's), KHR_materials_transmission 1 (lucent's boundary is a smooth dielectric that refracts),
+// KHR_materials_volume (attenuation = extinction: colour exp(-sigma_t d) at the largest mean free path d),
+// KHR_materials_volume_scatter (multi-scatter albedo of alpha, g's mean), KHR_materials_ior, roughness
+// `roughness`, and the exact coefficients in extras.lucent. `thickness` [mesh units] becomes thicknessFactor.
+nlohmann::json gltf_material_json(const Material& material, float thickness, float roughness = 0.05f);
 // An opaque object's glTF material: its albedo as the base colour.
-nlohmann::json gltf_opaque_material_json(glm::vec3 albedo);
+nlohmann::json gltf_opaque_material_json(glm::vec3 albedo, float roughness = 0.05f);
+// The extensions a material object written above uses, for the file's extensionsUsed.
+std::vector<std::string> gltf_material_extensions(const nlohmann::json& material);
 
 }  // namespace lucent

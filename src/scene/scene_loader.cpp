@@ -467,28 +467,65 @@ glm::mat4 read_transform(const ParamValues& v) {
   return glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
 }
 
-// "material": "from_mesh": the material of the object's glTF mesh (scene/gltf_material.h); an opaque glTF material
-// makes the object opaque with the base colour as its albedo.
-constexpr const char* kFromMesh = "from_mesh";
+// A glTF base colour texture as the material's albedo map (the surface albedo per texel, docs/materials.md), as
+// read_material makes an albedo_map's: the material's coefficients are those of the texels' mean.
+void attach_albedo_map(Material& m, const MapImage& albedo, const JsonLocation& where) {
+  if (m.field.heterogeneous())
+    fail(where.child("field"), "not with a base colour texture: a material is textured or has a 3D field, not both");
+  if (m.model == BssrdfModel::Tabulated) fail(where.child("model"), tabulated_maps_problem("albedo_map"));
+  std::shared_ptr<MaterialMaps> maps = make_material_maps(m, &albedo, nullptr, where.str());
+  maps->made_with_sigma_a = m.sigma_a, maps->made_with_sigma_s = m.sigma_s;
+  m.maps = std::move(maps);
+}
 
+// "material": "from_mesh": the material of the object's glTF mesh (scene/gltf_material.h); an opaque glTF material
+// makes the object opaque with its base colour. One warning line names the fields lucent does not use.
+constexpr const char* kFromMesh = "from_mesh";
 void read_mesh_material(SceneObject& object, const JsonLocation& where) {
   const std::filesystem::path mesh = object.mesh_file;
   std::string extension = mesh.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension != ".gltf" && extension != ".glb")
     fail(where.child("material"), "\"from_mesh\" needs a glTF mesh (.gltf or .glb)");
+  GltfLucentMaterial mapped;
   try {
     const GltfMaterial gltf = read_gltf_material(object.mesh_file);
-    const json material = lucent_material_json(gltf, object.mesh_file);
-    if (material.is_null()) {
-      object.albedo = gltf.base_color;
+    mapped = lucent_material(gltf);
+    if (const std::string fields = ignored_fields_warning(gltf, mapped.ignored); !fields.empty()) warn(fields);
+    for (const std::string& clamped : mapped.clamped)
+      warn(fmt::format("{}: /materials/{}: {}", object.mesh_file, gltf.index, clamped));
+    if (mapped.material.is_null()) {
+      object.albedo = mapped.opaque_albedo;
       return;
     }
     const JsonLocation at{object.mesh_file, fmt::format("/materials/{}", gltf.index)};
-    object.material = read_material(material, at, mesh.parent_path().string());
-    if (!gltf.name.empty() && !material.contains("preset")) object.material->name = gltf.name;
+    object.material = read_material(mapped.material, at, mesh.parent_path().string());
+    if (!gltf.name.empty() && !mapped.material.contains("preset")) object.material->name = gltf.name;
   } catch (const Error& e) {
     fail(where.child("material"), e.what());
+  }
+  if (mapped.albedo_map) attach_albedo_map(*object.material, *mapped.albedo_map, where.child("material"));
+}
+
+// The largest of the mean free paths [mm] of objects that took their glTF material, against the object's smallest
+// world extent [mm]: at a quarter of it or more, light crosses the object in a few steps and the diffusion models'
+// semi-infinite medium is a poor stand-in (the image shows the light that leaves the far side missing).
+constexpr float kComparableMeanFreePath = 0.25f;  // mfp / smallest extent
+void warn_about_gltf_mean_free_paths(const json& objects, const Scene& scene) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    if (!objects[i].is_object() || objects[i].value("material", json()) != kFromMesh || !object.material) continue;
+    glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
+    for (const glm::vec3& p : transformed(object.mesh, object.world_from_object).positions)
+      lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const glm::vec3 size = hi - lo;
+    const float extent_mm = std::min({size.x, size.y, size.z}) * scene.scale_mm;
+    const glm::vec3 mfp = 1.0f / object.material->sigma_t();
+    if (std::max({mfp.x, mfp.y, mfp.z}) < kComparableMeanFreePath * extent_mm) continue;
+    warn(fmt::format("{}: /objects/{}: the mean free path ({:.3g}, {:.3g}, {:.3g}) mm of {}'s material is comparable to "
+                     "or larger than the object, {:.3g} mm across at its thinnest (scale_mm {:g}): light crosses it in "
+                     "a few scattering steps, which the diffusion models do not see (volpath does)",
+                     scene.source, i, mfp.x, mfp.y, mfp.z, object.mesh_file, extent_mm, scene.scale_mm));
   }
 }
 
@@ -680,6 +717,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   if (!objects.is_array() || objects.empty()) fail(root.child("objects"), "expected a non-empty array of objects");
   for (std::size_t i = 0; i < objects.size(); ++i)
     scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir));
+  warn_about_gltf_mean_free_paths(objects, scene);
   read_method(doc.value("method", json::object()), root.child("method"), scene);
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
   warn_if_unlit(scene);

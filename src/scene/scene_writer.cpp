@@ -115,6 +115,14 @@ json deformation_json(const Deformation& d) {
   return {{"type", type}, {"amplitude", d.amplitude}, {"period_s", d.period_s}, {"start_s", d.start_s}};
 }
 
+// An object whose albedo map is its glTF mesh's base colour texture ("material": "from_mesh"; the map's file is
+// "<mesh file>#<pointer>", scene/gltf_material.cpp). A textured material cannot be edited (check_material_maps), so
+// the glTF material is still the object's.
+bool takes_gltf_texture(const SceneObject& object) {
+  if (!object.material || !object.material->maps || object.mesh_file.empty()) return false;
+  return object.material->maps->albedo_file.rfind(object.mesh_file + "#", 0) == 0;
+}
+
 json object_json(const SceneObject& object, std::size_t index, const std::vector<std::string>& mesh_files) {
   json j = {{"name", object.name}};
   if (object.blob_resolution > 0) {
@@ -132,6 +140,10 @@ json object_json(const SceneObject& object, std::size_t index, const std::vector
   }
   if (object.material) j["material"] = material_json(*object.material);
   else j["albedo"] = vec(object.albedo);
+  if (takes_gltf_texture(object)) {  // the texture lives in the glTF: the object takes the file's material again
+    j["mesh"] = std::filesystem::absolute(object.mesh_file).string();
+    j["material"] = "from_mesh";
+  }
   return j;
 }
 
@@ -312,10 +324,8 @@ void write_gltf(const std::string& path, const TriangleMesh& mesh, const json& m
   if (!material.is_null()) {
     gltf["materials"] = json::array({material});
     gltf["meshes"][0]["primitives"][0]["material"] = 0;
-    json used = json::array();
-    for (const char* ext : {"KHR_materials_volume", "KHR_materials_ior"})
-      if (material.contains("extensions") && material["extensions"].contains(ext)) used.push_back(ext);
-    if (!used.empty()) gltf["extensionsUsed"] = used;
+    if (const std::vector<std::string> used = gltf_material_extensions(material); !used.empty())
+      gltf["extensionsUsed"] = used;
   }
   write_file(path, gltf.dump() + "\n");
 }

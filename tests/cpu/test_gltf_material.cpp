@@ -1,10 +1,13 @@
 // test_gltf_material.cpp: glTF 2.0 materials to lucent materials and back (scene/gltf_material.h,
 // docs/materials.md): the mapping's values against the formulas worked by hand, objects that take their glTF
 // mesh's material ("material": "from_mesh"), the export -> import round trip (exact through extras.lucent, and
-// within the inversion's tolerance through the standard extensions alone), and one line for each bad file.
+// within the inversion's tolerance through the standard extensions alone), the one warning line of ignored fields,
+// and one error line at a key of the file for each bad one.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -14,6 +17,9 @@
 #include "lucent/error.h"
 #include "lucent/scene.h"
 #include "lucent/scene_writer.h"
+#include "lucent/warning.h"
+#include "lucent/image.h"
+#include "materials/artist_parameters.h"
 #include "materials/model_total_reflectance.h"
 #include "scene/gltf_material.h"
 
@@ -27,6 +33,7 @@ json triangle_gltf(const json& material) {
   TriangleMesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  mesh.uvs = {{0, 0}, {1, 0}, {0, 1}};
   mesh.indices = {0, 1, 2};
   test::TempFile file(".scratch.gltf");
   write_gltf(file.path(), mesh, material);
@@ -38,10 +45,15 @@ void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
+json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
 // The material of the test assets: base colour, volume, ior, diffuse transmission and a lucent extra.
 const json kArtistMaterial = json::parse(R"({
   "name": "wax",
-  "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.5, 0.3, 1.0]},
+  "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.5, 0.3, 1.0], "metallicFactor": 0},
   "extensions": {
     "KHR_materials_volume": {"thicknessFactor": 0.02, "attenuationDistance": 0.004, "attenuationColor": [0.9, 0.5, 0.2]},
     "KHR_materials_ior": {"ior": 1.4},
@@ -50,7 +62,20 @@ const json kArtistMaterial = json::parse(R"({
   "extras": {"lucent": {"g": 0.5, "model": "standard"}}
 })");
 
-TEST(GltfMaterial, ImportMapping) {
+const json kLight = json::array({json{{"direction", {0.0, -1.0, 0.0}}}});
+
+// The scene's first object, its mesh `path` taking the glTF material; `warnings` receives the warnings.
+SceneObject from_mesh(const std::string& path, std::vector<std::string>* warnings = nullptr, float scale_mm = 1.0f) {
+  const json scene = {{"lights", kLight}, {"scale_mm", scale_mm},
+                      {"objects", json::array({json{{"mesh", path}, {"material", "from_mesh"}}})}};
+  std::vector<std::string> seen;
+  const ScopedWarningHandler handler([&](const std::string& m) { seen.push_back(m); });
+  SceneObject object = parse_scene(scene.dump(), "s.json", ".").objects[0];
+  if (warnings) *warnings = seen;
+  return object;
+}
+
+TEST(GltfMaterial, ImportReadsTheFile) {
   test::TempFile file(".gltf");
   write_text(file.path(), triangle_gltf(kArtistMaterial).dump());
   const GltfMaterial m = read_gltf_material(file.path());
@@ -65,58 +90,156 @@ TEST(GltfMaterial, ImportMapping) {
   EXPECT_TRUE(m.has_diffuse_transmission);
   EXPECT_FLOAT_EQ(m.diffuse_transmission_factor, 0.25f);
   EXPECT_EQ(m.diffuse_transmission_color, glm::vec3(1.0f, 0.9f, 0.8f));
-
-  // mfp = d / -ln(c), d = 0.004 m = 4 mm: 37.9649, 5.77078, 2.48534 mm.
-  const json lucent = lucent_material_json(m, file.path());
-  const double mfp[3] = {37.96488, 5.770780, 2.485340};
-  const double albedo[3] = {0.8, 0.5, 0.3};
-  for (int b = 0; b < 3; ++b) {
-    EXPECT_NEAR(lucent["mfp_mm"][b].get<double>(), mfp[b], 1e-5 * mfp[b]) << b;
-    EXPECT_NEAR(lucent["albedo"][b].get<double>(), albedo[b], 1e-7) << b;
-  }
-  EXPECT_FLOAT_EQ(lucent["eta"].get<float>(), 1.4f);
-  EXPECT_EQ(lucent["g"], 0.5);
-  EXPECT_EQ(lucent["model"], "standard");
-
-  // Without attenuationColor the distance is the mean free path in every band (the spec's "average distance
-  // that light travels in the medium before interacting").
-  GltfMaterial grey = m;
-  grey.has_attenuation_color = false;
-  EXPECT_EQ(lucent_material_json(grey, file.path())["mfp_mm"], json::array({4.0, 4.0, 4.0}));
-  // No volume, no diffuse transmission, no lucent extra: opaque.
-  GltfMaterial opaque;
-  opaque.base_color = {0.2f, 0.3f, 0.4f};
-  EXPECT_TRUE(lucent_material_json(opaque, file.path()).is_null());
+  EXPECT_TRUE(m.ignored.empty());
 }
 
-// An object that takes its glTF mesh's material: the inversion of the mapped values; the glTF name.
-TEST(GltfMaterial, ObjectTakesTheMeshMaterial) {
-  test::TempFile mesh(".gltf");
-  write_text(mesh.path(), triangle_gltf(kArtistMaterial).dump());
-  const json scene = {{"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
-                      {"objects", json::array({json{{"mesh", mesh.path()}, {"material", "from_mesh"}}})}};
-  const Scene s = parse_scene(scene.dump(), "s.json", ".");
-  const Material& m = *s.objects[0].material;
+// KHR_materials_volume is absorption (sigma_a = -ln(c) / d, the spec's sigma_t with sigma_s = 0); the surface
+// albedo is what glTF's lobes give: A = (1 - f) B + f D c^(t / d) with t / d = 0.02 / 0.004 = 5:
+// A = 0.75 (0.8, 0.5, 0.3) + 0.25 (1, 0.9, 0.8) (0.59049, 0.03125, 0.00032) = (0.7476225, 0.38203125, 0.225064).
+TEST(GltfMaterial, VolumeIsAbsorptionAndTheLobesGiveTheSurfaceAlbedo) {
+  test::TempFile file(".gltf");
+  write_text(file.path(), triangle_gltf(kArtistMaterial).dump());
+  const Material m = *from_mesh(file.path()).material;
   EXPECT_EQ(m.name, "wax");
   EXPECT_EQ(m.model, BssrdfModel::StandardDipole);
   EXPECT_EQ(m.g, glm::vec3(0.5f));
   EXPECT_FLOAT_EQ(m.eta, 1.4f);
+  const double albedo[3] = {0.7476225, 0.38203125, 0.225064};
+  const double sigma_a[3] = {0.0263401289, 0.1732867951, 0.4023594781};  // -ln(c) / 4 mm
   const glm::dvec3 total = model_total_reflectance(m, 0.0).total;
-  const double albedo[3] = {0.8, 0.5, 0.3}, mfp[3] = {37.96488, 5.770780, 2.485340};
   for (int b = 0; b < 3; ++b) {
     EXPECT_NEAR(total[b], albedo[b], 1e-3) << b;
-    EXPECT_NEAR(1.0 / m.sigma_t()[b], mfp[b], 1e-5 * mfp[b]) << b;
+    EXPECT_NEAR(m.sigma_a[b], sigma_a[b], 2e-3 * sigma_a[b]) << b;
   }
-  // An opaque glTF material: the object is opaque with the base colour.
-  json opaque = triangle_gltf({{"pbrMetallicRoughness", {{"baseColorFactor", {0.25, 0.5, 0.75, 1.0}}}}});
-  write_text(mesh.path(), opaque.dump());
-  const Scene o = parse_scene(scene.dump(), "s.json", ".");
-  EXPECT_FALSE(o.objects[0].material.has_value());
-  EXPECT_EQ(o.objects[0].albedo, glm::vec3(0.25f, 0.5f, 0.75f));
+}
+
+// A glass-style volume whose only colour is the attenuation colour (0.9, 0.6, 0.3 at 2 cm, transmission 1, no base
+// colour: glTF's default white): the object's colour follows c, T = c^(t / d) = c at t = d. Reading c as
+// extinction with a white albedo (mean free paths 190, 39, 17 mm) made red the band that leaks out of the object.
+TEST(GltfMaterial, HueFollowsTheAttenuationColourWhenItIsTheOnlyColour) {
+  const json glass = json::parse(R"({"extensions": {
+    "KHR_materials_transmission": {"transmissionFactor": 1},
+    "KHR_materials_volume": {"thicknessFactor": 0.02, "attenuationDistance": 0.02, "attenuationColor": [0.9, 0.6, 0.3]}}})");
+  test::TempFile file(".gltf");
+  write_text(file.path(), triangle_gltf(glass).dump());
+  std::vector<std::string> warnings;
+  const Material m = *from_mesh(file.path(), &warnings, 1000.0f).material;
+  const glm::dvec3 total = model_total_reflectance(m, 0.0).total;
+  const double c[3] = {0.9, 0.6, 0.3};
+  for (int b = 0; b < 3; ++b) {
+    EXPECT_NEAR(total[b], c[b], 1e-3) << b;
+    EXPECT_NEAR(m.sigma_a[b], -std::log(c[b]) / 20.0, 2e-3 * -std::log(c[b]) / 20.0) << b;
+    EXPECT_LT(1.0f / m.sigma_t()[b], 2.0f) << b;  // mm: no longer 190, 39, 17
+  }
+  EXPECT_FLOAT_EQ(m.eta, 1.5f);  // glTF's default ior
+
+  // thicknessFactor is in the mesh's space, attenuationDistance in the world's: under a node scaled by 0.5 the
+  // thickness is d / 2, T = c^0.5.
+  json scaled = triangle_gltf(glass);
+  scaled["nodes"][0]["matrix"] = {0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1};
+  write_text(file.path(), scaled.dump());
+  const glm::dvec3 half = model_total_reflectance(*from_mesh(file.path(), &warnings, 1000.0f).material, 0.0).total;
+  for (int b = 0; b < 3; ++b) EXPECT_NEAR(half[b], std::sqrt(c[b]), 1e-3) << b;
+}
+
+// KHR_materials_volume_scatter gives the medium whole: sigma_t = -ln(c) / d, alpha from the multi-scatter colour by
+// Kulla and Conty's formula (0.5 -> 0.9117089, 0.8 -> 0.9905888, worked by hand), g = scatterAnisotropy.
+TEST(GltfMaterial, VolumeScatterGivesTheMediumWhole) {
+  EXPECT_NEAR(single_scatter_albedo(0.5), 0.911708855, 1e-8);
+  EXPECT_NEAR(single_scatter_albedo(0.8), 0.990588780, 1e-8);
+  EXPECT_NEAR(multiscatter_albedo(0.911708855), 0.5, 1e-8);
+  json scatter = json::parse(R"({"extensions": {
+    "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 1},
+    "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 0.01, "attenuationColor": [0.9, 0.8, 0.7]},
+    "KHR_materials_volume_scatter": {"multiscatterColorFactor": [0.8, 0.5, 0.5], "scatterAnisotropy": 0.3}}})");
+  test::TempFile file(".gltf");
+  write_text(file.path(), triangle_gltf(scatter).dump());
+  const Material m = *from_mesh(file.path()).material;
+  const double c[3] = {0.9, 0.8, 0.7}, alpha[3] = {0.990588780, 0.911708855, 0.911708855};
+  for (int b = 0; b < 3; ++b) {
+    const double sigma_t = -std::log(c[b]) / 10.0;
+    EXPECT_NEAR(m.sigma_t()[b], sigma_t, 1e-6 * sigma_t) << b;
+    EXPECT_NEAR(m.sigma_s[b] / m.sigma_t()[b], alpha[b], 1e-6) << b;
+  }
+  EXPECT_EQ(m.g, glm::vec3(0.3f));
+}
+
+// Opaque glTF materials make the object opaque with the base colour; a missing baseColorFactor is glTF's white.
+TEST(GltfMaterial, OpaqueMaterialsGiveTheBaseColour) {
+  test::TempFile file(".gltf");
+  write_text(file.path(), triangle_gltf({{"pbrMetallicRoughness", {{"baseColorFactor", {0.25, 0.5, 0.75, 1.0}}}}}).dump());
+  const SceneObject o = from_mesh(file.path());
+  EXPECT_FALSE(o.material.has_value());
+  EXPECT_EQ(o.albedo, glm::vec3(0.25f, 0.5f, 0.75f));
+  write_text(file.path(), triangle_gltf({{"name", "plain"}}).dump());
+  EXPECT_EQ(from_mesh(file.path()).albedo, glm::vec3(1.0f));
+}
+
+// Every field lucent does not use is named, in one line per material.
+TEST(GltfMaterial, IgnoredFieldsAreNamedInOneLine) {
+  json m = kArtistMaterial;
+  m["pbrMetallicRoughness"]["roughnessFactor"] = 0.4;
+  m["pbrMetallicRoughness"]["metallicFactor"] = 0.5;
+  m["emissiveFactor"] = {0.1, 0.0, 0.0};
+  m["alphaMode"] = "BLEND";
+  m["extensions"]["KHR_materials_specular"] = {{"specularFactor", 0.5}};
+  test::TempFile file(".gltf");
+  json doc = triangle_gltf(m);
+  doc["materials"][0]["doubleSided"] = true;
+  write_text(file.path(), doc.dump());
+  std::vector<std::string> warnings;
+  from_mesh(file.path(), &warnings);
+  std::erase_if(warnings, [&](const std::string& w) { return w.rfind(file.path(), 0) != 0; });  // the scene's own
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], file.path() + ": /materials/0 ('wax'): lucent does not use metallicFactor 0.5, roughnessFactor "
+                                       "0.4 (the boundary is smooth; the methods' specular roughness is a method "
+                                       "parameter), emissiveFactor, alphaMode BLEND, doubleSided (objects are closed "
+                                       "volumes), KHR_materials_specular");
+}
+
+std::string base64_text(const std::string& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t n = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) n |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 2]);
+    out += kDigits[(n >> 18) & 63];
+    out += kDigits[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
+  }
+  return out;
+}
+
+// A textured material with diffuse transmission and no baseColorFactor (glTF's white) loads: its albedo map is
+// A = (1 - f) B + f D T per texel, f = 0.5, D = 1, T = c^(t / d) = 0.5 (c = 0.5, t = d), B the texel (sRGB 8-bit
+// values 128, 200, 64, 255 decoded: 0.2158605, 0.5775804, 0.0512695, 1).
+TEST(GltfMaterial, TexturedDiffuseTransmissionWithoutBaseColorFactor) {
+  ImageRGBA8 image;
+  image.width = 2, image.height = 2;
+  image.pixels = {128, 128, 128, 255, 200, 200, 200, 255, 64, 64, 64, 255, 255, 255, 255, 255};
+  json material = json::parse(R"({"extensions": {
+    "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.5},
+    "KHR_materials_volume": {"thicknessFactor": 0.01, "attenuationDistance": 0.01, "attenuationColor": [0.5, 0.5, 0.5]}},
+    "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})");
+  json doc = triangle_gltf(material);
+  doc["textures"] = json::array({{{"source", 0}}});
+  doc["images"] = json::array({{{"uri", "data:image/png;base64," + base64_text(encode_png(image))}}});
+  test::TempFile file(".gltf");
+  write_text(file.path(), doc.dump());
+  const Material m = *from_mesh(file.path()).material;
+  ASSERT_TRUE(m.textured());
+  const double texel[4] = {0.0512695, 1.0, 0.2158605, 0.5775804};  // rows from the bottom: the file's last row first
+  for (int i = 0; i < 4; ++i) {
+    const double albedo = 0.5 * texel[i] + 0.25;
+    const double total = flat_total_of_albedo(m.model, m.maps->alpha[static_cast<std::size_t>(i)].x, m.g.x, m.eta);
+    EXPECT_NEAR(total, std::min(albedo, 0.998), 1e-3) << i;
+  }
 }
 
 Material artist_material(float g) {
-  const json scene = {{"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
+  const json scene = {{"lights", kLight},
                       {"objects", json::array({json{{"shape", "box"},
                                                     {"material", {{"albedo", {0.7, 0.4, 0.2}},
                                                                   {"mfp_mm", {3.0, 1.0, 0.5}},
@@ -126,7 +249,7 @@ Material artist_material(float g) {
 
 // save_scene writes each object's material into its .gltf; an object reading that file with "from_mesh" gets the
 // same coefficients, exactly (extras.lucent), and through the standard extensions alone (extras removed) the same
-// sigma_t and flat total (g 0: glTF has no phase function).
+// sigma_t and single-scattering albedo (KHR_materials_volume_scatter), g the bands' mean.
 TEST(GltfMaterial, ExportImportRoundTrip) {
   for (float g : {0.6f, 0.0f}) {
     const Material original = artist_material(g);
@@ -136,25 +259,23 @@ TEST(GltfMaterial, ExportImportRoundTrip) {
     test::TempFile saved(".json");
     save_scene(scene, saved.path());
     const std::string mesh = std::filesystem::path(saved.path()).replace_extension(".meshes").string() + "/0_box.gltf";
-    const json scene_doc = {{"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
-                            {"objects", json::array({json{{"mesh", mesh}, {"material", "from_mesh"}}})}};
-    const Material exact = *parse_scene(scene_doc.dump(), "s.json", ".").objects[0].material;
+    const Material exact = *from_mesh(mesh).material;
     EXPECT_EQ(exact.sigma_a, original.sigma_a);
     EXPECT_EQ(exact.sigma_s, original.sigma_s);
     EXPECT_EQ(exact.g, original.g);
     EXPECT_EQ(exact.eta, original.eta);
     EXPECT_EQ(exact.model, original.model);
-    if (g != 0.0f) continue;
-    json gltf = read_gltf_json(mesh);
+    json gltf = read_json(mesh);
     gltf["materials"][0].erase("extras");
     write_text(mesh, gltf.dump());
-    const Material standard = *parse_scene(scene_doc.dump(), "s.json", ".").objects[0].material;
+    const Material standard = *from_mesh(mesh).material;
     EXPECT_EQ(standard.model, kDefaultBssrdfModel);  // the scene default: glTF does not name a model
     EXPECT_EQ(standard.eta, original.eta);
-    const double albedo[3] = {0.7, 0.4, 0.2};
+    EXPECT_EQ(standard.g, glm::vec3(g));
     for (int b = 0; b < 3; ++b) {
       EXPECT_NEAR(standard.sigma_t()[b], original.sigma_t()[b], 1e-5 * original.sigma_t()[b]) << b;
-      EXPECT_NEAR(gltf["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"][b].get<double>(), albedo[b], 1e-3);
+      const double alpha = original.sigma_s[b] / original.sigma_t()[b];
+      EXPECT_NEAR(standard.sigma_s[b] / standard.sigma_t()[b], alpha, 1e-5 * (1.0 - alpha)) << b;
     }
     std::filesystem::remove_all(std::filesystem::path(mesh).parent_path());
   }
@@ -162,9 +283,7 @@ TEST(GltfMaterial, ExportImportRoundTrip) {
 
 // The one-line message a scene with one object {"mesh": <path>, "material": "from_mesh"} gets.
 std::string from_mesh_error(const std::string& path) {
-  const json scene = {{"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
-                      {"objects", json::array({json{{"mesh", path}, {"material", "from_mesh"}}})}};
-  return test::error_message([&] { parse_scene(scene.dump(), "s.json", "."); });
+  return test::error_message([&] { from_mesh(path); });
 }
 
 std::string with_material(const std::string& path, const json& material) {
@@ -172,7 +291,7 @@ std::string with_material(const std::string& path, const json& material) {
   return from_mesh_error(path);
 }
 
-TEST(GltfMaterial, BadFilesGiveOneLine) {
+TEST(GltfMaterial, BadFilesGiveOneLineAtAKeyOfTheFile) {
   test::TempFile file(".gltf");
   const std::string p = file.path(), prefix = "s.json: /objects/0/material: " + p;
   json volume = kArtistMaterial;
@@ -183,8 +302,14 @@ TEST(GltfMaterial, BadFilesGiveOneLine) {
   volume = kArtistMaterial;
   volume["extensions"]["KHR_materials_volume"].erase("attenuationDistance");
   EXPECT_EQ(with_material(p, volume),
-            prefix + ": /materials/0/extensions/KHR_materials_volume/attenuationD...: missing; a translucent "
-                     "material needs a mean free path (or extras.lucent.mfp_mm)");
+            prefix + ": /materials/0/extensions/KHR_materials_volume: no attenuationDistance (glTF's default: "
+                     "infinite, a clear medium); lucent's medium needs one, or extras.lucent.mfp_mm");
+  json thin = kArtistMaterial;
+  thin["extensions"].erase("KHR_materials_volume");
+  EXPECT_EQ(with_material(p, thin),
+            prefix + ": /materials/0/extensions/KHR_materials_diffuse_transmission: thin-walled (no "
+                     "KHR_materials_volume): lucent renders a medium and needs its attenuationDistance, or "
+                     "extras.lucent.mfp_mm");
   // attenuationDistance: any positive distance, 0 and negative ones refused under the same stated range.
   for (const double d : {0.0, -1.0}) {
     volume = kArtistMaterial;
@@ -194,20 +319,39 @@ TEST(GltfMaterial, BadFilesGiveOneLine) {
                                    "range; allowed range (0, inf) m",
                                    d));
   }
-  // Too long for a float: its mean free path 1e28 m x 1000 mm/m / -ln(0.9) = 9.49122e31 mm is refused.
+  // Too long for a float: 1e35 m of attenuation is a mean free path beyond 1e30 mm.
   volume = kArtistMaterial;
-  volume["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 1e28;
+  volume["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 1e35;
   EXPECT_EQ(with_material(p, volume),
-            prefix + ": /materials/0/mfp_mm/0: 9.49122e+31 is out of range; allowed range [-1e+30, 1e+30] mm");
+            prefix + ": /materials/0/extensions/KHR_materials_volume/attenuationD...: 1e+35 m gives the mean free "
+                     "path 4.46133e+35 mm in band 0; lucent's range is (1e-30, 1e30) mm");
+  json anisotropy = kArtistMaterial;
+  anisotropy["extensions"]["KHR_materials_volume_scatter"] = {{"multiscatterColorFactor", {0.5, 0.5, 0.5}},
+                                                              {"scatterAnisotropy", 1}};
+  EXPECT_EQ(with_material(p, anisotropy),
+            prefix + ": /materials/0/extensions/KHR_materials_volume_scatter/scat...: 1 is out of range; lucent's "
+                     "phase functions take (-1, 1)");
   json ior = kArtistMaterial;
   ior["extensions"]["KHR_materials_ior"]["ior"] = 5;
   EXPECT_EQ(with_material(p, ior),
             prefix + ": /materials/0/extensions/KHR_materials_ior/ior: 5 is out of range; allowed range [1, 3]");
   json black = kArtistMaterial;
   black["pbrMetallicRoughness"]["baseColorFactor"] = {0.0, 0.5, 0.5, 1.0};
+  black["extensions"].erase("KHR_materials_diffuse_transmission");
+  black["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 0.5}};
   EXPECT_EQ(with_material(p, black),
-            prefix + ": /materials/0/pbrMetallicRoughness/baseColorFactor/0: 0 is out of range for a translucent "
-                     "material's surface albedo; allowed range (0, 1)");
+            prefix + ": /materials/0/pbrMetallicRoughness/baseColorFactor/0: makes the surface albedo 0; lucent's "
+                     "media reflect light");
+  json over = kArtistMaterial;
+  over["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 1.5, 0.5, 1.0};
+  EXPECT_EQ(with_material(p, over), prefix + ": /materials/0/pbrMetallicRoughness/baseColorFactor/1: 1.5 is not a "
+                                             "number in [0, 1]");
+  json no_scatter = kArtistMaterial;
+  no_scatter["extensions"]["KHR_materials_volume_scatter"] = json::object();
+  EXPECT_EQ(with_material(p, no_scatter),
+            prefix + ": /materials/0/extensions/KHR_materials_volume_scatter: multi-scatter albedo 0 gives the "
+                     "single-scatter albedo 5.71678e-06; lucent's media scatter and absorb (allowed range (0, 1) "
+                     "exclusive) (absent: glTF's default [0, 0, 0] scatters nothing)");
   json two = triangle_gltf(kArtistMaterial);
   two["meshes"][0]["primitives"].push_back(two["meshes"][0]["primitives"][0]);
   two["meshes"][0]["primitives"][1]["material"] = 1;
@@ -218,26 +362,37 @@ TEST(GltfMaterial, BadFilesGiveOneLine) {
   bad_extra["extras"]["lucent"]["sigma_a"] = {0.1, 0.1, 0.1};
   EXPECT_EQ(with_material(p, bad_extra),
             prefix + ": /materials/0: give exactly one of sigma_s and sigma_s_prime");
+  json missing_image = triangle_gltf(kArtistMaterial);
+  missing_image["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  missing_image["textures"] = json::array({{{"source", 0}}});
+  missing_image["images"] = json::array({{{"uri", "no_such_image.png"}}});
+  write_text(p, missing_image.dump());
+  EXPECT_EQ(from_mesh_error(p), prefix + ": /images/0/uri: cannot load 'no_such_image.png'");
+  missing_image["images"][0]["uri"] = "data:image/png;base64,aGVsbG8=";  // "hello"
+  write_text(p, missing_image.dump());
+  EXPECT_EQ(from_mesh_error(p), prefix + ": /images/0: cannot read PNG: not a PNG or JPEG image");
+}
 
+TEST(GltfMaterial, MalformedContainersGiveOneLine) {
   test::TempFile glb(".glb");
-  write_text(glb.path(), std::string("glTF\x01\0\0\0", 8) + std::string(20, '\0'));
-  EXPECT_EQ(test::error_message([&] { read_gltf_json(glb.path()); }),
-            glb.path() + ": binary glTF version 1; lucent reads version 2");
-  write_text(glb.path(), std::string("glTF\x02\0\0\0\0\0\0\0\xe8\x03\0\0JSON{}", 22));
-  EXPECT_EQ(test::error_message([&] { read_gltf_json(glb.path()); }),
-            glb.path() + ": binary glTF: JSON chunk of 1000 bytes runs past the end of the file");
-  write_text(glb.path(), "{}");
-  EXPECT_EQ(test::error_message([&] { read_gltf_json(glb.path()); }),
-            glb.path() + ": not a binary glTF (no 'glTF' header)");
-  const json shape = {{"lights", json::array({json{{"direction", {0.0, -1.0, 0.0}}}})},
-                      {"objects", json::array({json{{"shape", "sphere"}, {"material", "from_mesh"}}})}};
+  const std::string prefix = glb.path() + ": cannot read glTF: ";  // the mesh loader refuses them first in a scene
+  for (const std::string& bytes :
+       {std::string("glTF\x01\0\0\0", 8) + std::string(20, '\0'), std::string("glTF\x02\0\0\0\0\0\0\0\xe8\x03\0\0JSON{}", 22),
+        std::string("{}"), std::string("glTF", 4), std::string(1000, '[')}) {
+    write_text(glb.path(), bytes);
+    const std::string message = test::error_message([&] { read_gltf_material(glb.path()); });
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << message;
+  }
+  const json shape = {{"lights", kLight}, {"objects", json::array({json{{"shape", "sphere"}, {"material", "from_mesh"}}})}};
   EXPECT_EQ(test::error_message([&] { parse_scene(shape.dump(), "s.json", "."); }),
             "s.json: /objects/0/material: \"from_mesh\" needs a glTF mesh (.gltf or .glb)");
 }
 
-// A .glb: the JSON chunk is read (padded to 4 bytes, as the container requires).
+// A .glb: the JSON chunk (padded to 4 bytes, as the container requires) and the binary chunk.
 TEST(GltfMaterial, BinaryGltf) {
-  std::string text = triangle_gltf(kArtistMaterial).dump();
+  json doc = triangle_gltf(kArtistMaterial);
+  std::string text = doc.dump();
   text.resize((text.size() + 3) / 4 * 4, ' ');
   auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
   test::TempFile glb(".glb");

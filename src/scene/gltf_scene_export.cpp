@@ -1,0 +1,243 @@
+// gltf_scene_export.cpp: a whole scene as one glTF 2.0 file for other tools (lucent/scene_writer.h,
+// save_scene_gltf; docs/materials.md, "Whole-scene export"). Written with nlohmann's JSON, as the per-object meshes
+// are (scene_writer.cpp); tests read it back through tinygltf.
+//
+//   node "<scene stem>" (scale scale_mm / 1000: glTF's unit is the metre)
+//     one node and mesh per object, named after it, its transform as a matrix, its material (gltf_material.h)
+//   node "camera": a perspective camera (yfov, the render's aspect ratio)
+//   one node per light: KHR_lights_punctual; radiance [W/m^2] -> lux and intensity [W/sr] -> candela at 683 lm/W
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "lucent/error.h"
+#include "lucent/output_file.h"
+#include "lucent/scene_writer.h"
+#include "lucent/warning.h"
+#include "scene/gltf_material.h"
+
+namespace lucent {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kLumensPerWatt = 683.0;  // the photometric convention of glTF's exporters and importers (Blender's)
+constexpr float kRoughnessWithoutMethodSpecular = 0.05f;  // nearly smooth; 0 hides point highlights in rasterizers
+constexpr int kFloat = 5126, kUnsignedInt = 5125, kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+json vec(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
+json matrix(const glm::mat4& m) {
+  json j = json::array();
+  const float* p = glm::value_ptr(m);  // column-major, as glTF's matrix
+  for (int i = 0; i < 16; ++i) j.push_back(p[i]);
+  return j;
+}
+
+// One binary buffer, its views and accessors.
+class BufferBuilder {
+ public:
+  template <class T>
+  int add(const std::vector<T>& values, int component_type, const char* type, int target, json extra = json::object()) {
+    while (bytes_.size() % 4 != 0) bytes_.push_back(0);
+    const auto* begin = reinterpret_cast<const std::uint8_t*>(values.data());
+    views_.push_back({{"buffer", 0}, {"byteOffset", bytes_.size()}, {"byteLength", values.size() * sizeof(T)},
+                      {"target", target}});
+    bytes_.insert(bytes_.end(), begin, begin + values.size() * sizeof(T));
+    json accessor = {{"bufferView", views_.size() - 1}, {"componentType", component_type}, {"count", values.size()},
+                     {"type", type}};
+    accessor.update(extra);
+    accessors_.push_back(accessor);
+    return static_cast<int>(accessors_.size()) - 1;
+  }
+  const std::vector<std::uint8_t>& bytes() const { return bytes_; }
+  const json& views() const { return views_; }
+  const json& accessors() const { return accessors_; }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+  json views_ = json::array(), accessors_ = json::array();
+};
+
+std::string base64(const std::vector<std::uint8_t>& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t n = static_cast<std::uint32_t>(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) n |= static_cast<std::uint32_t>(bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) n |= bytes[i + 2];
+    out += kDigits[(n >> 18) & 63];
+    out += kDigits[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
+  }
+  return out;
+}
+
+json primitive(const TriangleMesh& mesh, BufferBuilder& buffer) {
+  glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
+  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  json attributes = {{"POSITION", buffer.add(mesh.positions, kFloat, "VEC3", kArrayBuffer, {{"min", vec(lo)}, {"max", vec(hi)}})},
+                     {"NORMAL", buffer.add(mesh.normals, kFloat, "VEC3", kArrayBuffer)}};
+  if (!mesh.uvs.empty()) {  // glTF's texture origin is the image's top left, lucent's the bottom left
+    std::vector<glm::vec2> texcoords;
+    for (glm::vec2 uv : mesh.uvs) texcoords.emplace_back(uv.x, 1.0f - uv.y);
+    attributes["TEXCOORD_0"] = buffer.add(texcoords, kFloat, "VEC2", kArrayBuffer);
+  }
+  return {{"attributes", attributes}, {"indices", buffer.add(mesh.indices, kUnsignedInt, "SCALAR", kElementArrayBuffer)},
+          {"mode", 4}};
+}
+
+// glTF's roughness: the methods' GGX alpha is roughness^2 (glTF's convention), else nearly smooth.
+float scene_roughness(const Scene& scene) {
+  if (!scene.method_params.has("roughness")) return kRoughnessWithoutMethodSpecular;
+  return static_cast<float>(std::sqrt(std::max(scene.method_params.number("roughness"), 0.0)));
+}
+
+json object_material(const SceneObject& object, float roughness, const std::string& path) {
+  if (!object.material) {
+    json m = gltf_opaque_material_json(object.albedo, roughness);
+    m["name"] = object.name;
+    return m;
+  }
+  if (object.material->textured())
+    warn(fmt::format("{}: object '{}': its material maps are not written (the glTF material holds the maps' mean; "
+                     "the scene file keeps the maps)", path, object.name));
+  glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
+  for (const glm::vec3& p : object.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 size = glm::max(hi - lo, glm::vec3(0.0f));
+  return gltf_material_json(*object.material, std::min({size.x, size.y, size.z}), roughness);
+}
+
+// A node whose local -z axis is `direction` (lights), at `position`.
+glm::mat4 light_frame(glm::vec3 direction, glm::vec3 position) {
+  const glm::vec3 z = -glm::normalize(direction);
+  const glm::vec3 helper = std::abs(z.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 x = glm::normalize(glm::cross(helper, z)), y = glm::cross(z, x);
+  return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), glm::vec4(position, 1));
+}
+
+// KHR_lights_punctual's colour (normalized to its largest band) and intensity (the largest band, photometric).
+json punctual(glm::vec3 watts, const char* type) {
+  const float peak = std::max({watts.x, watts.y, watts.z});
+  return {{"type", type}, {"color", vec(peak > 0.0f ? watts / peak : glm::vec3(1.0f))},
+          {"intensity", kLumensPerWatt * static_cast<double>(peak)}};
+}
+
+void add_lights(const Scene& scene, float metres_per_unit, json& doc) {
+  json lights = json::array();
+  auto node = [&](json light, const glm::mat4& frame, const std::string& name) {
+    light["name"] = name;
+    lights.push_back(light);
+    doc["nodes"].push_back({{"name", name}, {"matrix", matrix(frame)},
+                            {"extensions", {{"KHR_lights_punctual", {{"light", lights.size() - 1}}}}}});
+    doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
+  };
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].specular)  // not one of an environment map's lights
+      node(punctual(scene.lights[i].radiance, "directional"), light_frame(scene.lights[i].direction, glm::vec3(0.0f)),
+           fmt::format("directional light {}", i));
+  for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
+    const PointLight& p = scene.point_lights[i];
+    json light = punctual(p.intensity, p.spot ? "spot" : "point");
+    if (p.spot)
+      light["spot"] = {{"innerConeAngle", glm::radians(p.inner_deg)}, {"outerConeAngle", glm::radians(p.outer_deg)}};
+    node(light, light_frame(p.spot ? p.direction : glm::vec3(0, 0, -1), p.position * metres_per_unit),
+         fmt::format("{} light {}", p.spot ? "spot" : "point", i));
+  }
+  if (lights.empty()) return;
+  doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
+  doc["extensionsUsed"].push_back("KHR_lights_punctual");
+}
+
+void add_camera(const Scene& scene, float metres_per_unit, json& doc) {
+  const Camera& c = scene.camera;
+  const glm::mat4 world_from_camera =
+      glm::inverse(glm::lookAt(c.eye * metres_per_unit, c.target * metres_per_unit, c.up));
+  const double distance = glm::length(c.target - c.eye) * static_cast<double>(metres_per_unit);
+  doc["cameras"] = json::array({{{"name", "camera"}, {"type", "perspective"},
+                                 {"perspective", {{"yfov", glm::radians(static_cast<double>(c.fov_y_deg))},
+                                                  {"aspectRatio", static_cast<double>(scene.render.width) / scene.render.height},
+                                                  {"znear", 1e-3 * distance}}}}});
+  doc["nodes"].push_back({{"name", "camera"}, {"camera", 0}, {"matrix", matrix(world_from_camera)}});
+  doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
+}
+
+// The objects under one node that scales scene units to metres.
+void add_objects(const Scene& frozen, const std::string& name, const std::string& path, BufferBuilder& buffer, json& doc) {
+  const float roughness = scene_roughness(frozen);
+  json root = {{"name", name}, {"scale", vec(glm::vec3(frozen.scale_mm / 1000.0f))}, {"children", json::array()},
+               {"extras", {{"lucent", {{"scale_mm", frozen.scale_mm}}}}}};
+  std::vector<std::string> extensions;
+  for (const SceneObject& object : frozen.objects) {
+    const json material = object_material(object, roughness, path);
+    for (const std::string& e : gltf_material_extensions(material))
+      if (std::find(extensions.begin(), extensions.end(), e) == extensions.end()) extensions.push_back(e);
+    doc["materials"].push_back(material);
+    doc["meshes"].push_back({{"name", object.name}, {"primitives", json::array({primitive(object.mesh, buffer)})}});
+    doc["meshes"].back()["primitives"][0]["material"] = doc["materials"].size() - 1;
+    doc["nodes"].push_back({{"name", object.name}, {"mesh", doc["meshes"].size() - 1},
+                            {"matrix", matrix(object.world_from_object)}});
+    root["children"].push_back(doc["nodes"].size() - 1);
+  }
+  doc["nodes"].push_back(root);
+  doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
+  for (const std::string& e : extensions) doc["extensionsUsed"].push_back(e);
+}
+
+std::string padded(std::string chunk, char pad) {
+  while (chunk.size() % 4 != 0) chunk += pad;
+  return chunk;
+}
+
+std::string u32(std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
+
+// The .glb container: header, JSON chunk, BIN chunk.
+std::string glb(const json& doc, const std::vector<std::uint8_t>& bytes) {
+  const std::string text = padded(doc.dump(), ' ');
+  const std::string bin = padded(std::string(bytes.begin(), bytes.end()), '\0');
+  const auto total = static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + bin.size());
+  return "glTF" + u32(2) + u32(total) + u32(static_cast<std::uint32_t>(text.size())) + "JSON" + text +
+         u32(static_cast<std::uint32_t>(bin.size())) + "BIN" + std::string(1, '\0') + bin;
+}
+
+}  // namespace
+
+std::string scene_gltf(const Scene& scene, const std::string& path) {
+  static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
+  const bool binary = std::filesystem::path(path).extension() == ".glb";
+  const Scene frozen = scene_at_time(scene, 0.0);  // deformations applied, blob surfaces extracted
+  json doc = {{"asset", {{"version", "2.0"}, {"generator", "lucent save_scene_gltf"}}},
+              {"scene", 0},
+              {"scenes", json::array({{{"name", std::filesystem::path(path).stem().string()}, {"nodes", json::array()}}})},
+              {"nodes", json::array()}, {"meshes", json::array()}, {"materials", json::array()},
+              {"extensionsUsed", json::array()}};
+  BufferBuilder buffer;
+  const float metres_per_unit = scene.scale_mm / 1000.0f;
+  add_objects(frozen, std::filesystem::path(path).stem().string(), path, buffer, doc);
+  add_camera(frozen, metres_per_unit, doc);
+  add_lights(frozen, metres_per_unit, doc);
+  if (doc["extensionsUsed"].empty()) doc.erase("extensionsUsed");
+  doc["bufferViews"] = buffer.views();
+  doc["accessors"] = buffer.accessors();
+  json buffer_json = {{"byteLength", buffer.bytes().size()}};
+  if (!binary) buffer_json["uri"] = "data:application/octet-stream;base64," + base64(buffer.bytes());
+  doc["buffers"] = json::array({buffer_json});
+  return binary ? glb(doc, buffer.bytes()) : doc.dump() + "\n";
+}
+
+void save_scene_gltf(const Scene& scene, const std::string& path) {
+  const std::vector<OutputPath> outputs = {{path, "glTF scene", {".gltf", ".glb"}}};
+  check_outputs(outputs, scene_input_files(scene));
+  const OutputLock lock(outputs);
+  write_file(path, scene_gltf(scene, path));
+}
+
+}  // namespace lucent
