@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
-targets=(mesh image scene vdb material_map)
+targets=(mesh image scene vdb material_map gltf)
 
 bash scripts/sanitize_build.sh "${targets[@]/#/fuzz_}"
 

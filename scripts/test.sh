@@ -21,7 +21,7 @@ stage "release build"
 stage "tests"
 
 # Sanitizer run: CPU tests only (GL drivers are not sanitizer-clean).
-bash scripts/sanitize_build.sh lucent_cpu_tests lucent_cli fuzz_mesh fuzz_image fuzz_scene fuzz_vdb fuzz_material_map
+bash scripts/sanitize_build.sh lucent_cpu_tests lucent_cli fuzz_mesh fuzz_image fuzz_scene fuzz_vdb fuzz_material_map fuzz_gltf
 stage "sanitizer build"
 (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure --parallel "$(nproc)" -L cpu)
