@@ -22,6 +22,7 @@
 #include "lucent/scene.h"
 #include "materials/artist_parameters.h"
 #include "materials/material_maps.h"
+#include "materials/shader_material_json.h"
 #include "scene/gltf_material.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
@@ -350,7 +351,10 @@ glm::vec3 reachable_mean_albedo(glm::vec3 mean, const ParamValues& v) {
   return mean;
 }
 
-Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
+// `scale_mm` turns the lengths of a principled or openpbr block (scene units) into mm.
+Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir,
+                       double scale_mm = 1.0) {
+  if (is_shader_material(raw)) return read_shader_material(raw, where, scale_mm);
   json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
   ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
   const std::optional<MapImage> albedo_map = read_map_key(v, "albedo_map", true, where, base_dir);
@@ -492,7 +496,7 @@ void read_mesh_material(SceneObject& object, const JsonLocation& where) {
   }
 }
 
-SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir) {
+SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir, double scale_mm) {
   ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile", "deform"});
   SceneObject object;
   object.name = v.text("name").empty() ? where.pointer : v.text("name");
@@ -525,7 +529,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   if (j.contains("material")) {
     if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
     if (j.at("material") == kFromMesh) read_mesh_material(object, where);
-    else object.material = read_material(j.at("material"), where.child("material"), base_dir);
+    else object.material = read_material(j.at("material"), where.child("material"), base_dir, scale_mm);
     if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
     if (object.material && object.material->textured())
       if (const std::string problem = texture_coordinates_problem(object); !problem.empty())
@@ -666,7 +670,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   const json objects = doc.value("objects", json::array());
   if (!objects.is_array() || objects.empty()) fail(root.child("objects"), "expected a non-empty array of objects");
   for (std::size_t i = 0; i < objects.size(); ++i)
-    scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir));
+    scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir, scene.scale_mm));
   read_method(doc.value("method", json::object()), root.child("method"), scene);
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
   warn_if_unlit(scene);
