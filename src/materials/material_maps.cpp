@@ -145,6 +145,7 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
       band_curve[c] = static_cast<int>(same - curves.begin());
     }
     std::size_t clamped = 0;
+    double texel_lo = 1.0, texel_hi = 0.0;  // the albedos the map asks for
     maps->alpha.resize(albedo->texels.size());
     for (std::size_t i = 0; i < albedo->texels.size(); ++i) {
       for (int c = 0; c < 3; ++c) {
@@ -161,6 +162,7 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
         // ends is 1 - 1e-7, which float texels and their bilinear blend round to 1 (no absorption, an unbounded
         // diffusion length).
         if (a <= curve.lowest() || a >= curve.highest()) ++clamped;
+        texel_lo = std::min(texel_lo, a), texel_hi = std::max(texel_hi, a);
         maps->alpha[i][c] = static_cast<float>(curve.alpha(curve.reachable(a)));
       }
     }
@@ -168,9 +170,10 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
       const AlbedoCurve& curve = curves.front();
       warn(fmt::format(
           "{}/albedo_map: {}: {} of {} texel values are outside the surface albedos the {} model "
-          "reaches ({:.4g}, {:.4g}) at g {} and eta {}; clamped to them",
+          "reaches ({:.4g}, {:.4g}) at g {} and eta {} (the map spans [{:.4g}, {:.4g}]); clamped to them; {}",
           where, albedo->file, clamped, 3 * albedo->texels.size(), to_string(curve_model), curve.lowest(),
-          std::min(curve.highest(), 1.0), curve.g(), base.eta));
+          std::min(curve.highest(), 1.0), curve.g(), base.eta, texel_lo, texel_hi,
+          models_reaching_advice(texel_lo, texel_hi, base.g, base.eta, base.model)));
     }
   }
   if (mfp_scale) {

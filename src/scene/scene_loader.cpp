@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
@@ -90,6 +91,8 @@ constexpr ParamDecl kObjectParams[] = {
     {"translate", ParamType::Vec3, "[0, 0, 0]", "units", -1e9, 1e9, "", "translation"},
     {"rotate_deg", ParamType::Vec3, "[0, 0, 0]", "degrees", -1e4, 1e4, "", "rotation about x, then y, then z"},
     {"scale", ParamType::Float, "1", "", kPositive, 1e9, "", "uniform scale"},
+    {"up_axis", ParamType::Enum, "\"y\"", "", 0, 0, "y|z|-z|x|-x|-y",
+     "the object's up axis, turned to +y before its own transform (z: Blender, 3ds Max exports)"},
     {"albedo", ParamType::Vec3, "[0.8, 0.8, 0.8]", "", 0, 1, "", "diffuse albedo of an opaque object"},
 };
 constexpr ParamDecl kMaterialParams[] = {
@@ -462,13 +465,26 @@ void check_world_extent(const TriangleMesh& mesh, const glm::mat4& world_from_ob
   }
 }
 
+// The rotation that takes the object's up axis to +y: z maps (x, y, z) to (x, z, -y), as Blender's Y-up exporters
+// do; x turns about z, -y about x by 180 degrees.
+glm::mat4 up_axis_rotation(const std::string& up) {
+  const float quarter = glm::half_pi<float>();
+  if (up == "z") return glm::rotate(glm::mat4(1.0f), -quarter, glm::vec3(1, 0, 0));
+  if (up == "-z") return glm::rotate(glm::mat4(1.0f), quarter, glm::vec3(1, 0, 0));
+  if (up == "x") return glm::rotate(glm::mat4(1.0f), quarter, glm::vec3(0, 0, 1));
+  if (up == "-x") return glm::rotate(glm::mat4(1.0f), -quarter, glm::vec3(0, 0, 1));
+  if (up == "-y") return glm::rotate(glm::mat4(1.0f), 2.0f * quarter, glm::vec3(1, 0, 0));
+  return glm::mat4(1.0f);
+}
+
 glm::mat4 read_transform(const ParamValues& v) {
   glm::vec3 r = glm::radians(v.vec3("rotate_deg"));
   glm::mat4 m = glm::translate(glm::mat4(1.0f), v.vec3("translate"));
   m = glm::rotate(m, r.z, glm::vec3(0, 0, 1));
   m = glm::rotate(m, r.y, glm::vec3(0, 1, 0));
   m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
-  return glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
+  m = glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
+  return m * up_axis_rotation(v.text("up_axis"));
 }
 
 // "material": "from_mesh": the material of the object's glTF mesh (scene/gltf_material.h); an opaque glTF material
@@ -505,7 +521,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   object.world_from_object = read_transform(v);
   if (v.text("shape") == "blobs") {
     // The blob field lives in world space about the origin (geometry/blob_field.h).
-    for (const char* key : {"translate", "rotate_deg", "scale", "deform"})
+    for (const char* key : {"translate", "rotate_deg", "scale", "deform", "up_axis"})
       if (j.contains(key)) fail(where.child(key), "not supported for blobs (the field is fixed in world space)");
     object.blob_resolution = v.integer("segments");
   } else {
