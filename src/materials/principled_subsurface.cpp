@@ -128,7 +128,7 @@ PrincipledConversion principled_subsurface_material(const PrincipledSubsurface& 
     m.sigma_a[band] = static_cast<float>((1.0 - out.alpha[band]) * sigma_t);
   }
   m.g = glm::vec3(static_cast<float>(g));
-  m.eta = static_cast<float>(std::min(eta, 3.0));
+  m.eta = 1.0f;  // index-matched, as Cycles' walk
   validate_material(m, where);
   return out;
 }

@@ -15,11 +15,13 @@
 //   single-scattering albedo alpha = the fit of Wrenninge, Villemin and Hery, "Path traced subsurface scattering
 //            using anisotropic phase functions and non-exponential free flights" (Pixar TM 17-07, 2017), of the
 //            index-matched half-space multiple-scattering albedo A as a function of alpha and g, inverted;
-//   sigma_s = alpha sigma_t, sigma_a = (1 - alpha) sigma_t, eta = clamp(subsurface_ior, 1.01, 3.8) (lucent's
-//            boundary: Cycles' walk in 3.4 has none, its Fresnel is the Principled specular layer).
+//   sigma_s = alpha sigma_t, sigma_a = (1 - alpha) sigma_t;
+//   eta = 1: Cycles 3.4's walk has no refractive boundary (a path leaves where it first crosses the surface, and
+//            subsurface_ior only sets the radius above); the Principled specular lobe is a separate BSDF that
+//            lucent's renderers do not add. Measured against Cycles (docs/materials.md): with eta 1 lucent's
+//            volpath renders a sphere 5-8% darker than Cycles; with eta = subsurface_ior 23-54% darker.
 // Limits: Cycles raises alpha below 0.2 to 0.2 and darkens the walk by alpha / 0.2 (a tint lucent has no place for:
-// lucent keeps the fitted alpha); the Christensen-Burley method has no medium and is refused; a subsurface factor
-// below 1 also mixes a diffuse BSDF in Blender only through the colour and radius above.
+// lucent keeps the fitted alpha); the Christensen-Burley method has no medium and is refused (shader_material_json).
 #pragma once
 #include <string>
 
@@ -36,13 +38,13 @@ struct PrincipledSubsurface {
   float subsurface = 0.0f;                                // factor [0, 1]; scales the radius, mixes the colour
   glm::vec3 subsurface_radius{1.0f, 0.2f, 0.1f};          // [scene units]
   glm::vec3 subsurface_color{0.8f, 0.8f, 0.8f};           // linear RGB [0, 1]
-  float subsurface_ior = 1.4f;
+  float subsurface_ior = 1.4f;                            // sets the radius (random_walk), clamped to [1.01, 3.8]
   float subsurface_anisotropy = 0.0f;                     // [0, 0.9] after Cycles' clamp
   PrincipledMethod method = PrincipledMethod::RandomWalk;
 };
 
 struct PrincipledConversion {
-  Material material;               // sigma_a, sigma_s [mm^-1], g, eta
+  Material material;               // sigma_a, sigma_s [mm^-1], g, eta 1
   glm::dvec3 albedo{0.0};          // A: the mixed colour Cycles inverts
   glm::dvec3 radius_mm{0.0};       // d after the method's scaling: 1 / sigma_t' [mm]
   glm::dvec3 alpha_prime{0.0};     // random_walk: Jensen's reduced albedo from A (else 0)
@@ -58,7 +60,7 @@ double cycles_alpha_prime(double rd, double eta);
 double cycles_single_scattering_albedo(double albedo, double g);
 
 // The medium; throws lucent::Error("<where>: <field> ...") for a NaN, a subsurface factor outside (0, 1], a radius
-// <= 0 after the factor, a colour outside [0, 1], or the Christensen-Burley method.
+// <= 0, a colour outside [0, 1].
 PrincipledConversion principled_subsurface_material(const PrincipledSubsurface& p, double scale_mm,
                                                     const std::string& where);
 
