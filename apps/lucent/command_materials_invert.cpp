@@ -63,6 +63,10 @@ void print_text(const ArtistParameters& a, const ArtistInversion& inv, const glm
   for (int b = 0; b < 3; ++b)
     fmt::print("{:<5} {:>8.4f} {:>10.4g} {:>7.3f} {:>10.6f} {:>15.6g} {:>15.6g} {:>11.5f}\n", "RGB"[b], a.albedo[b],
                a.mfp_mm[b], a.g[b], inv.alpha[b], m.sigma_a[b], m.sigma_s[b], inv.total[b]);
+  const glm::vec3 sigma_tr = m.sigma_tr();
+  fmt::print("diffusion length 1 / sigma_tr [mm]  R {:.4g}  G {:.4g}  B {:.4g}: an object much thicker than this shows "
+             "the albedo; a thinner one transmits the band and shows less of it\n",
+             1.0f / sigma_tr.x, 1.0f / sigma_tr.y, 1.0f / sigma_tr.z);
   if (inv.curve_model != a.model)
     fmt::print("flat total: the {} model's curve, which inverts the {} model\n", to_string(inv.curve_model),
                to_string(a.model));
