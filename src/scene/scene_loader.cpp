@@ -103,7 +103,7 @@ constexpr ParamDecl kMaterialParams[] = {
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated", "diffusion model S_d (default: kDefaultBssrdfModel, the closest to volpath measured)"},
-    {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the model's flat total diffuse reflectance (with mfp_mm, instead of coefficients)"},
+    {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the thick-slab total diffuse reflectance (with mfp_mm, instead of coefficients); a thinner object than the diffusion length shows less of it"},
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
     {"albedo_map", ParamType::String, "\"\"", "", 0, 0, "",
      "surface albedo per texel through the mesh's texture coordinates (.png sRGB, .exr, .hdr; with mfp_mm, instead of albedo)"},
