@@ -207,6 +207,18 @@ TEST(ArtistAdvice, AlbedoMapWarningNamesAModel) {
             std::string::npos) << warning;
   const FlatTotalRange standard = flat_total_range(BssrdfModel::StandardDipole, 0.0f, 1.3f);
   EXPECT_TRUE(standard.contains(0.0497) && standard.contains(0.5029));
+  // A black texel is outside every model's range: the model that clamps the fewest values is named, here the
+  // black texel's three (the standard dipole reaches 0.0497, the directional dipole neither).
+  image.at(1, 0)[0] = image.at(1, 0)[1] = image.at(1, 0)[2] = 0;
+  write_png(png.path(), image);
+  ::testing::internal::CaptureStderr();
+  parse_scene(scene.dump(), "s.json", ".");
+  const std::string black = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(black.find("6 of 6 texel values are outside the surface albedos the directional model reaches"),
+            std::string::npos) << black;
+  EXPECT_NE(black.find("; the standard model clamps the fewest, 3 (model \"standard\"); texel values of 0 (no light "
+                       "returns) and 1 (no absorption) are outside every model's range"),
+            std::string::npos) << black;
 }
 
 // up_axis z turns (x, y, z) into (x, z, -y) before scale, rotation and translation: (1, 2, 3) -> (1, 3, -2),

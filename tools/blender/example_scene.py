@@ -60,6 +60,7 @@ def build(sphere_only):
         floor.data.materials.append(grey)
         bpy.ops.object.light_add(type="POINT", location=(0.03, -0.03, 0.03))
         bpy.context.active_object.data.energy = 2.0  # W
+        bpy.context.active_object.data.shadow_soft_size = 0.0  # a point, as lucent's (Blender's default is 0.25 m)
     bpy.ops.object.light_add(type="SUN", rotation=(math.radians(30), 0, math.radians(-20)))
     bpy.context.active_object.data.energy = SUN_STRENGTH
     bpy.context.active_object.data.angle = 0.0
