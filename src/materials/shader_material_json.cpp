@@ -19,7 +19,7 @@ constexpr ParamDecl kPrincipled[] = {
     {"subsurface_radius", ParamType::Vec3, "[1, 0.2, 0.1]", "units", 0, 1e30, "", "Subsurface Radius per band (scene units, times scale_mm)"},
     {"subsurface_color", ParamType::Vec3, "[0.8, 0.8, 0.8]", "", 0, 1, "", "Subsurface Color (linear RGB)"},
     {"subsurface_ior", ParamType::Float, "1.4", "", 1, 3.8, "", "Subsurface IOR: sets the radius (random_walk); the medium is index-matched (eta 1), as in Cycles"},
-    {"subsurface_anisotropy", ParamType::Float, "0", "", 0, 0.9, "", "Subsurface Anisotropy: Henyey-Greenstein g"},
+    {"subsurface_anisotropy", ParamType::Float, "0", "", 0, 1, "", "Subsurface Anisotropy: Henyey-Greenstein g (clamped to 0.9, as Cycles does)"},
     {"subsurface_method", ParamType::Enum, "\"random_walk\"", "", 0, 0, "random_walk|random_walk_fixed_radius|burley",
      "Cycles subsurface method (burley has no medium and is refused)"},
 };

@@ -752,7 +752,9 @@ std::vector<ParamSection> scene_param_sections() {
   std::vector<ParamSection> sections = {{"scene", kSceneParams},       {"camera", kCameraParams},
                                         {"lights[]", kLightParams},    {"environment", kEnvironmentParams},
                                         {"objects[]", kObjectParams},          {"objects[].deform", kDeformParams},
-                                        {"objects[].material", kMaterialParams}, {"objects[].material.field", kFieldParams}, {"render", kRenderParams}};
+                                        {"objects[].material", kMaterialParams}, {"objects[].material.field", kFieldParams},
+                                        {"objects[].material.principled", kPrincipledParams},
+                                        {"objects[].material.openpbr", kOpenPbrParams}, {"render", kRenderParams}};
   for (const auto* m : methods::method_registry()) sections.push_back({m->name, m->params});
   return sections;
 }
