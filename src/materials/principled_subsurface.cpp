@@ -111,6 +111,9 @@ PrincipledConversion principled_subsurface_material(const PrincipledSubsurface& 
   for (int band = 0; band < 3; ++band) {
     // Colour and radius as the Principled node mixes and scales them.
     const double a = (1.0 - factor) * p.base_color[band] + factor * p.subsurface_color[band];
+    if (!(a > 0.0))
+      fail(where, fmt::format("the mixed colour (base_color and subsurface_color by subsurface) is 0 in band {}: a "
+                              "black medium does not scatter; give the object an albedo instead", band));
     double d = p.subsurface_radius[band] * factor * scale_mm;
     // The method's radius scaling (bssrdf_setup_radius).
     if (p.method == PrincipledMethod::RandomWalk) {

@@ -72,7 +72,8 @@ Material read_openpbr(const json& block, const JsonLocation& where, double scale
   p.subsurface_radius_scale = v.vec3("subsurface_radius_scale");
   p.subsurface_scatter_anisotropy = static_cast<float>(v.number("subsurface_scatter_anisotropy"));
   p.specular_ior = static_cast<float>(v.number("specular_ior"));
-  return invert_artist_parameters(openpbr_artist_parameters(p, scale_mm, model, where.str()), where.str()).material;
+  const ArtistParameters artist = openpbr_artist_parameters(p, scale_mm, model, where.str());
+  return invert_artist_parameters(artist, where.str() + " (subsurface_color as albedo)").material;
 }
 
 }  // namespace

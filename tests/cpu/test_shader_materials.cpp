@@ -139,6 +139,13 @@ TEST(PrincipledSubsurface, SceneBlockErrors) {
   EXPECT_EQ(shader_test_error({{"principled", {{"subsurface", 0}}}}),
             "s.json: /objects/0/material/principled: subsurface = 0 is out of range; allowed range (0, 1] (0 is an "
             "opaque diffuse surface: give the object an albedo instead)");
+  EXPECT_EQ(shader_test_error({{"principled", {{"subsurface_color", 0}, {"base_color", {0.5, 0.5, 0.5}}}}}),
+            "s.json: /objects/0/material/principled: the mixed colour (base_color and subsurface_color by subsurface) "
+            "is 0 in band 0: a black medium does not scatter; give the object an albedo instead");
+  const std::string unreached = shader_test_error({{"openpbr", {{"subsurface_color", {0.99, 0.5, 0.5}}}},
+                                                   {"model", "photon-beam"}});
+  EXPECT_EQ(unreached.rfind("s.json: /objects/0/material/openpbr (subsurface_color as albedo): albedo[0] = 0.99 is "
+                            "above the largest flat total the model reaches", 0), 0u) << unreached;
   EXPECT_EQ(shader_test_error({{"principled", json::object()}, {"openpbr", json::object()}}),
             "s.json: /objects/0/material: give one of principled and openpbr");
   EXPECT_EQ(shader_test_error({{"openpbr", {{"subsurface_weight", 0.5}}}}),
