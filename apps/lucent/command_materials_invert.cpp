@@ -1,5 +1,7 @@
 // command_materials_invert.cpp: `lucent materials invert`: coefficients from the surface albedo and the mean free
-// path per band (materials/artist_parameters.h), printed as a scene material with the flat total they give.
+// path per band (materials/artist_parameters.h), or from Blender's Principled BSDF or OpenPBR subsurface inputs
+// (--principled / --openpbr '<JSON>', materials/shader_material_json.h), printed as a scene material with the flat
+// total they give.
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +14,7 @@
 #include "lucent/material.h"
 #include "materials/artist_parameters.h"
 #include "materials/model_total_reflectance.h"
+#include "materials/shader_material_json.h"
 #include "materials/tabulated_bssrdf.h"
 #include "option_checks.h"
 
@@ -23,6 +26,8 @@ struct InvertOptions {
   float eta = 1.3f;
   std::string model{to_string(kDefaultBssrdfModel)};
   bool json = false;
+  std::string principled, openpbr;  // a JSON object of the block's keys
+  double scale_mm = 1.0;
 };
 
 glm::vec3 per_band(const std::vector<float>& v, const char* name) {
@@ -58,6 +63,10 @@ void print_text(const ArtistParameters& a, const ArtistInversion& inv, const glm
   for (int b = 0; b < 3; ++b)
     fmt::print("{:<5} {:>8.4f} {:>10.4g} {:>7.3f} {:>10.6f} {:>15.6g} {:>15.6g} {:>11.5f}\n", "RGB"[b], a.albedo[b],
                a.mfp_mm[b], a.g[b], inv.alpha[b], m.sigma_a[b], m.sigma_s[b], inv.total[b]);
+  const glm::vec3 sigma_tr = m.sigma_tr();
+  fmt::print("diffusion length 1 / sigma_tr [mm]  R {:.4g}  G {:.4g}  B {:.4g}: an object much thicker than this shows "
+             "the albedo; a thinner one transmits the band and shows less of it\n",
+             1.0f / sigma_tr.x, 1.0f / sigma_tr.y, 1.0f / sigma_tr.z);
   if (inv.curve_model != a.model)
     fmt::print("flat total: the {} model's curve, which inverts the {} model\n", to_string(inv.curve_model),
                to_string(a.model));
@@ -66,7 +75,43 @@ void print_text(const ArtistParameters& a, const ArtistInversion& inv, const glm
                tabulated->y, tabulated->z);
 }
 
+// A scene-file material of coefficients (what a principled block becomes).
+nlohmann::json coefficients_json(const Material& m) {
+  return {{"sigma_a", array(glm::dvec3(m.sigma_a))}, {"sigma_s", array(glm::dvec3(m.sigma_s))},
+          {"g", array(glm::dvec3(m.g))}, {"eta", shortest(m.eta)}, {"model", std::string(to_string(m.model))}};
+}
+
+// --principled / --openpbr: the block read as a scene file reads it, printed as coefficients and flat totals.
+void run_shader_block(const InvertOptions& o) {
+  const char* key = o.principled.empty() ? "openpbr" : "principled";
+  const std::string& text = o.principled.empty() ? o.openpbr : o.principled;
+  const JsonLocation where{fmt::format("--{}", key), ""};
+  nlohmann::json material = {{key, parse_json(text, where)}, {"model", o.model}};
+  if (!parse_bssrdf_model(o.model))
+    throw Error(fmt::format("--model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, "
+                            "tabulated", o.model));
+  Material m = read_shader_material(material, {fmt::format("materials invert --{}", key), ""}, o.scale_mm);
+  Material curve = m;
+  curve.model = inversion_curve_model(m.model);
+  const glm::dvec3 total = model_total_reflectance(curve, 0.0).total;
+  if (o.json) {
+    const nlohmann::json out = {{"material", coefficients_json(m)},
+                                {"flat_total", array(total)},
+                                {"flat_total_model", std::string(to_string(curve.model))}};
+    return fmt::print("{}\n", out.dump(2));
+  }
+  fmt::print("{} block, scale_mm {}  ->  model {}  eta {}  g {}\n", key, o.scale_mm, to_string(m.model), m.eta, m.g.x);
+  fmt::print("{:<5} {:>15} {:>15} {:>10} {:>11}\n", "band", "sigma_a [mm^-1]", "sigma_s [mm^-1]", "mfp [mm]",
+             "flat total");
+  for (int b = 0; b < 3; ++b)
+    fmt::print("{:<5} {:>15.6g} {:>15.6g} {:>10.4g} {:>11.5f}\n", "RGB"[b], m.sigma_a[b], m.sigma_s[b],
+               1.0 / (m.sigma_a[b] + m.sigma_s[b]), total[b]);
+}
+
 void run(const InvertOptions& o) {
+  if (!o.principled.empty() || !o.openpbr.empty()) return run_shader_block(o);
+  if (o.albedo.empty() || o.mfp.empty())
+    throw Error("materials invert: give --albedo and --mfp, or --principled or --openpbr");
   ArtistParameters a;
   a.albedo = per_band(o.albedo, "albedo");
   a.mfp_mm = per_band(o.mfp, "mfp");
@@ -96,13 +141,27 @@ void add_materials_invert_command(CLI::App& materials) {
       "invert", "coefficients from the surface albedo (the model's flat total reflectance) and the mean free path");
   const auto any = number_in(-1e30, 1e30);
   cmd->add_option("--albedo", o->albedo, "surface albedo per band, R,G,B (or one number), in (0, 1)")
-      ->delimiter(',')->check(any)->required();
+      ->delimiter(',')->check(any);
   cmd->add_option("--mfp", o->mfp, "mean free path 1 / sigma_t per band (unreduced), R,G,B (or one number) [mm]")
-      ->delimiter(',')->check(any)->required();
+      ->delimiter(',')->check(any);
   cmd->add_option("--g", o->g, "Henyey-Greenstein g, one number or R,G,B")->delimiter(',')->check(any)->capture_default_str();
   cmd->add_option("--eta", o->eta, "relative refractive index n_material / n_outside")->check(any)->capture_default_str();
   cmd->add_option("--model", o->model, "directional | standard | photon-beam | better-dipole | tabulated")
       ->capture_default_str();
+  CLI::Option* principled = cmd->add_option(
+      "--principled", o->principled,
+      "Blender 3.4 Principled BSDF subsurface inputs as JSON, e.g. '{\"subsurface\": 1, \"subsurface_radius\": "
+      "[1, 0.2, 0.1], \"subsurface_color\": [0.8, 0.4, 0.3]}' (docs/materials.md)");
+  CLI::Option* openpbr = cmd->add_option(
+      "--openpbr", o->openpbr,
+      "OpenPBR subsurface inputs as JSON, e.g. '{\"subsurface_color\": [0.8, 0.4, 0.3], \"subsurface_radius\": 1}'");
+  principled->excludes(openpbr);
+  for (const char* name : {"--albedo", "--mfp", "--g", "--eta"}) {
+    principled->excludes(name);
+    openpbr->excludes(name);
+  }
+  cmd->add_option("--scale-mm", o->scale_mm, "--principled, --openpbr: millimetres per unit of their radii")
+      ->check(number_in(1e-9, 1e9))->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON: {\"material\": <a scene-file material>, \"flat_total\": ...}");
   add_no_cache_flag(cmd);
   cmd->callback([o] { run(*o); });

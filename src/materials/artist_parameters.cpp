@@ -1,6 +1,7 @@
 // artist_parameters.cpp: see artist_parameters.h.
 #include "materials/artist_parameters.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -66,7 +67,8 @@ std::string curve_name(BssrdfModel model) {
   return fmt::format("the {} model (the {} model's inversion curve)", to_string(curve), to_string(model));
 }
 
-// The single-scattering albedo of one band; throws when the model's totals do not reach `albedo`.
+// The single-scattering albedo of one band; throws when the model's totals do not reach `albedo`, naming the
+// models that do.
 double band_alpha(const ArtistParameters& a, int band, const std::string& where) {
   const BssrdfModel curve = inversion_curve_model(a.model);
   const float g = a.g[band];
@@ -76,14 +78,66 @@ double band_alpha(const ArtistParameters& a, int band, const std::string& where)
   const float target = a.albedo[band];
   const std::string range = fmt::format("({:.4g}, {:.4g}) for {} at g {} and eta {}", total_lo,
                                         std::min(total_hi, 1.0), curve_name(a.model), g, a.eta);
+  const std::string advice = "; " + models_reaching_advice(target, target, a.g, a.eta, a.model);
   if (target <= total_lo)
-    fail(where, fmt::format("albedo[{}] = {} is below the smallest flat total the model reaches", band, target), range);
+    fail(where, fmt::format("albedo[{}] = {} is below the smallest flat total the model reaches", band, target),
+         range + advice);
   if (target >= total_hi)
-    fail(where, fmt::format("albedo[{}] = {} is above the largest flat total the model reaches", band, target), range);
+    fail(where, fmt::format("albedo[{}] = {} is above the largest flat total the model reaches", band, target),
+         range + advice);
   return solve_alpha(curve, g, a.eta, target, lo, total_lo, hi, total_hi);
 }
 
+constexpr BssrdfModel kInvertibleModels[] = {BssrdfModel::StandardDipole, BssrdfModel::DirectionalDipole,
+                                             BssrdfModel::PhotonBeamDiffusion, BssrdfModel::BetterDipole};
+
+// "the standard model", "the standard and directional models", "the standard, directional and photon-beam models".
+std::string model_list(const std::vector<BssrdfModel>& models) {
+  std::string names;
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    if (i > 0) names += i + 1 == models.size() ? " and " : ", ";
+    names += to_string(models[i]);
+  }
+  return fmt::format("the {} model{}", names, models.size() > 1 ? "s" : "");
+}
+
 }  // namespace
+
+FlatTotalRange flat_total_range(BssrdfModel model, float g, float eta) {
+  const BssrdfModel curve = inversion_curve_model(model);
+  return {flat_total_of_albedo(curve, kArtistAlphaMin, g, eta),
+          std::min(1.0, flat_total_of_albedo(curve, kArtistAlphaMax, g, eta))};
+}
+
+std::vector<BssrdfModel> models_reaching(double lo, double hi, const glm::vec3& g, float eta, BssrdfModel model) {
+  std::vector<BssrdfModel> out;
+  for (BssrdfModel candidate : kInvertibleModels) {
+    if (candidate == inversion_curve_model(model)) continue;
+    bool reaches = true;
+    for (int band = 0; band < 3 && reaches; ++band) {
+      if (band > 0 && g[band] == g[band - 1]) continue;
+      const FlatTotalRange range = flat_total_range(candidate, g[band], eta);
+      reaches = range.contains(lo) && range.contains(hi);
+    }
+    if (reaches) out.push_back(candidate);
+  }
+  return out;
+}
+
+std::string models_reaching_advice(double lo, double hi, const glm::vec3& g, float eta, BssrdfModel model) {
+  const std::vector<BssrdfModel> models = models_reaching(lo, hi, g, eta, model);
+  const std::string what = lo == hi ? "it" : "them all";
+  if (!models.empty())
+    return fmt::format("{} reach{} {} (model \"{}\")", model_list(models), models.size() > 1 ? "" : "es", what,
+                       to_string(models.front()));
+  FlatTotalRange widest{1.0, 0.0};
+  for (BssrdfModel candidate : kInvertibleModels) {
+    const FlatTotalRange range = flat_total_range(candidate, g.x, eta);
+    widest.lowest = std::min(widest.lowest, range.lowest), widest.highest = std::max(widest.highest, range.highest);
+  }
+  return fmt::format("no lucent diffusion model reaches {} at g {} and eta {} (together they reach ({:.4g}, {:.4g}))",
+                     what, g.x, eta, widest.lowest, widest.highest);
+}
 
 BssrdfModel inversion_curve_model(BssrdfModel model) {
   return model == BssrdfModel::Tabulated ? BssrdfModel::StandardDipole : model;

@@ -20,6 +20,7 @@
 // `lucent materials invert` reports the total the tabulated model then gives.
 #pragma once
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -46,6 +47,21 @@ BssrdfModel inversion_curve_model(BssrdfModel model);
 // The flat total diffuse reflectance at normal incidence of one band medium with single-scattering albedo `alpha`
 // under `model` (not the tabulated model).
 double flat_total_of_albedo(BssrdfModel model, double alpha, float g, float eta);
+
+// The flat totals `model`'s inversion curve reaches at g and eta: (lowest, min(highest, 1)).
+struct FlatTotalRange {
+  double lowest = 0.0, highest = 1.0;
+  bool contains(double albedo) const { return albedo > lowest && albedo < highest; }
+};
+FlatTotalRange flat_total_range(BssrdfModel model, float g, float eta);
+
+// The models (standard, directional, photon-beam, better-dipole, in that order; not `model` nor its curve) whose
+// ranges at eta and each band's g hold every albedo in [lo, hi].
+std::vector<BssrdfModel> models_reaching(double lo, double hi, const glm::vec3& g, float eta, BssrdfModel model);
+
+// The advice that ends an out-of-range message: "the standard and better-dipole models reach it (model
+// \"standard\")", or "no lucent diffusion model reaches it at g ... and eta ...; ..." with the widest range.
+std::string models_reaching_advice(double lo, double hi, const glm::vec3& g, float eta, BssrdfModel model);
 
 struct ArtistInversion {
   Material material;             // coefficients in mm^-1, g, eta and the model asked for

@@ -124,6 +124,35 @@ glm::vec3 map_mean(const MapImage& image) {
   return glm::vec3(sum / std::max<double>(1.0, static_cast<double>(image.texels.size())));
 }
 
+namespace {
+
+// The advice for an albedo map with texels outside the model's range: the models that reach them all, or else the
+// model that clamps the fewest texel values (0 and 1 are outside every model's range).
+std::string albedo_map_advice(const MapImage& albedo, double texel_lo, double texel_hi, const Material& base,
+                              std::size_t clamped) {
+  if (!models_reaching(texel_lo, texel_hi, base.g, base.eta, base.model).empty())
+    return models_reaching_advice(texel_lo, texel_hi, base.g, base.eta, base.model);
+  const BssrdfModel own = inversion_curve_model(base.model);
+  BssrdfModel fewest = own;
+  std::size_t fewest_count = clamped;
+  for (BssrdfModel model : {BssrdfModel::StandardDipole, BssrdfModel::DirectionalDipole,
+                            BssrdfModel::PhotonBeamDiffusion, BssrdfModel::BetterDipole}) {
+    if (model == own) continue;
+    FlatTotalRange range[3];
+    for (int c = 0; c < 3; ++c) range[c] = flat_total_range(model, base.g[c], base.eta);
+    std::size_t count = 0;
+    for (const glm::vec3& texel : albedo.texels)
+      for (int c = 0; c < 3; ++c) count += range[c].contains(texel[c]) ? 0 : 1;
+    if (count < fewest_count) fewest = model, fewest_count = count;
+  }
+  const std::string edges = "texel values of 0 (no light returns) and 1 (no absorption) are outside every model's range";
+  if (fewest == own) return fmt::format("no other model clamps fewer; {}", edges);
+  return fmt::format("the {} model clamps the fewest, {} (model \"{}\"); {}", to_string(fewest), fewest_count,
+                     to_string(fewest), edges);
+}
+
+}  // namespace
+
 std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const MapImage* albedo,
                                                  const MapImage* mfp_scale, const std::string& where) {
   auto maps = std::make_shared<MaterialMaps>();
@@ -145,6 +174,7 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
       band_curve[c] = static_cast<int>(same - curves.begin());
     }
     std::size_t clamped = 0;
+    double texel_lo = 1.0, texel_hi = 0.0;  // the albedos the map asks for
     maps->alpha.resize(albedo->texels.size());
     for (std::size_t i = 0; i < albedo->texels.size(); ++i) {
       for (int c = 0; c < 3; ++c) {
@@ -161,6 +191,7 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
         // ends is 1 - 1e-7, which float texels and their bilinear blend round to 1 (no absorption, an unbounded
         // diffusion length).
         if (a <= curve.lowest() || a >= curve.highest()) ++clamped;
+        texel_lo = std::min(texel_lo, a), texel_hi = std::max(texel_hi, a);
         maps->alpha[i][c] = static_cast<float>(curve.alpha(curve.reachable(a)));
       }
     }
@@ -168,9 +199,10 @@ std::shared_ptr<MaterialMaps> make_material_maps(const Material& base, const Map
       const AlbedoCurve& curve = curves.front();
       warn(fmt::format(
           "{}/albedo_map: {}: {} of {} texel values are outside the surface albedos the {} model "
-          "reaches ({:.4g}, {:.4g}) at g {} and eta {}; clamped to them",
+          "reaches ({:.4g}, {:.4g}) at g {} and eta {} (the map spans [{:.4g}, {:.4g}]); clamped to them; {}",
           where, albedo->file, clamped, 3 * albedo->texels.size(), to_string(curve_model), curve.lowest(),
-          std::min(curve.highest(), 1.0), curve.g(), base.eta));
+          std::min(curve.highest(), 1.0), curve.g(), base.eta, texel_lo, texel_hi,
+          albedo_map_advice(*albedo, texel_lo, texel_hi, base, clamped)));
     }
   }
   if (mfp_scale) {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
@@ -22,6 +23,7 @@
 #include "lucent/scene.h"
 #include "materials/artist_parameters.h"
 #include "materials/material_maps.h"
+#include "materials/shader_material_json.h"
 #include "scene/gltf_material.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
@@ -89,6 +91,8 @@ constexpr ParamDecl kObjectParams[] = {
     {"translate", ParamType::Vec3, "[0, 0, 0]", "units", -1e9, 1e9, "", "translation"},
     {"rotate_deg", ParamType::Vec3, "[0, 0, 0]", "degrees", -1e4, 1e4, "", "rotation about x, then y, then z"},
     {"scale", ParamType::Float, "1", "", kPositive, 1e9, "", "uniform scale"},
+    {"up_axis", ParamType::Enum, "\"y\"", "", 0, 0, "y|z|-z|x|-x|-y",
+     "the object's up axis, turned to +y before its own transform (z: Blender, 3ds Max exports)"},
     {"albedo", ParamType::Vec3, "[0.8, 0.8, 0.8]", "", 0, 1, "", "diffuse albedo of an opaque object"},
 };
 constexpr ParamDecl kMaterialParams[] = {
@@ -99,7 +103,7 @@ constexpr ParamDecl kMaterialParams[] = {
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated", "diffusion model S_d (default: kDefaultBssrdfModel, the closest to volpath measured)"},
-    {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the model's flat total diffuse reflectance (with mfp_mm, instead of coefficients)"},
+    {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the thick-slab total diffuse reflectance (with mfp_mm, instead of coefficients); a thinner object than the diffusion length shows less of it"},
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
     {"albedo_map", ParamType::String, "\"\"", "", 0, 0, "",
      "surface albedo per texel through the mesh's texture coordinates (.png sRGB, .exr, .hdr; with mfp_mm, instead of albedo)"},
@@ -350,7 +354,10 @@ glm::vec3 reachable_mean_albedo(glm::vec3 mean, const ParamValues& v) {
   return mean;
 }
 
-Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir) {
+// `scale_mm` turns the lengths of a principled or openpbr block (scene units) into mm.
+Material read_material(const json& raw, const JsonLocation& where, const std::string& base_dir,
+                       double scale_mm = 1.0) {
+  if (is_shader_material(raw)) return read_shader_material(raw, where, scale_mm);
   json j = raw.is_string() ? json{{"preset", raw}} : normalized_material(raw);
   ParamValues v = read_params(j, {"material", kMaterialParams}, where, {"field"});
   const std::optional<MapImage> albedo_map = read_map_key(v, "albedo_map", true, where, base_dir);
@@ -458,13 +465,26 @@ void check_world_extent(const TriangleMesh& mesh, const glm::mat4& world_from_ob
   }
 }
 
+// The rotation that takes the object's up axis to +y: z maps (x, y, z) to (x, z, -y), as Blender's Y-up exporters
+// do; x turns about z, -y about x by 180 degrees.
+glm::mat4 up_axis_rotation(const std::string& up) {
+  const float quarter = glm::half_pi<float>();
+  if (up == "z") return glm::rotate(glm::mat4(1.0f), -quarter, glm::vec3(1, 0, 0));
+  if (up == "-z") return glm::rotate(glm::mat4(1.0f), quarter, glm::vec3(1, 0, 0));
+  if (up == "x") return glm::rotate(glm::mat4(1.0f), quarter, glm::vec3(0, 0, 1));
+  if (up == "-x") return glm::rotate(glm::mat4(1.0f), -quarter, glm::vec3(0, 0, 1));
+  if (up == "-y") return glm::rotate(glm::mat4(1.0f), 2.0f * quarter, glm::vec3(1, 0, 0));
+  return glm::mat4(1.0f);
+}
+
 glm::mat4 read_transform(const ParamValues& v) {
   glm::vec3 r = glm::radians(v.vec3("rotate_deg"));
   glm::mat4 m = glm::translate(glm::mat4(1.0f), v.vec3("translate"));
   m = glm::rotate(m, r.z, glm::vec3(0, 0, 1));
   m = glm::rotate(m, r.y, glm::vec3(0, 1, 0));
   m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
-  return glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
+  m = glm::scale(m, glm::vec3(static_cast<float>(v.number("scale"))));
+  return m * up_axis_rotation(v.text("up_axis"));
 }
 
 // A glTF base colour texture as the material's albedo map (the surface albedo per texel, docs/materials.md), as
@@ -529,7 +549,7 @@ void warn_about_gltf_mean_free_paths(const json& objects, const Scene& scene) {
   }
 }
 
-SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir) {
+SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir, double scale_mm) {
   ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile", "deform"});
   SceneObject object;
   object.name = v.text("name").empty() ? where.pointer : v.text("name");
@@ -538,7 +558,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   object.world_from_object = read_transform(v);
   if (v.text("shape") == "blobs") {
     // The blob field lives in world space about the origin (geometry/blob_field.h).
-    for (const char* key : {"translate", "rotate_deg", "scale", "deform"})
+    for (const char* key : {"translate", "rotate_deg", "scale", "deform", "up_axis"})
       if (j.contains(key)) fail(where.child(key), "not supported for blobs (the field is fixed in world space)");
     object.blob_resolution = v.integer("segments");
   } else {
@@ -562,7 +582,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   if (j.contains("material")) {
     if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
     if (j.at("material") == kFromMesh) read_mesh_material(object, where);
-    else object.material = read_material(j.at("material"), where.child("material"), base_dir);
+    else object.material = read_material(j.at("material"), where.child("material"), base_dir, scale_mm);
     if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
     if (object.material && object.material->textured())
       if (const std::string problem = texture_coordinates_problem(object); !problem.empty())
@@ -716,7 +736,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   const json objects = doc.value("objects", json::array());
   if (!objects.is_array() || objects.empty()) fail(root.child("objects"), "expected a non-empty array of objects");
   for (std::size_t i = 0; i < objects.size(); ++i)
-    scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir));
+    scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir, scene.scale_mm));
   warn_about_gltf_mean_free_paths(objects, scene);
   read_method(doc.value("method", json::object()), root.child("method"), scene);
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
@@ -783,7 +803,9 @@ std::vector<ParamSection> scene_param_sections() {
   std::vector<ParamSection> sections = {{"scene", kSceneParams},       {"camera", kCameraParams},
                                         {"lights[]", kLightParams},    {"environment", kEnvironmentParams},
                                         {"objects[]", kObjectParams},          {"objects[].deform", kDeformParams},
-                                        {"objects[].material", kMaterialParams}, {"objects[].material.field", kFieldParams}, {"render", kRenderParams}};
+                                        {"objects[].material", kMaterialParams}, {"objects[].material.field", kFieldParams},
+                                        {"objects[].material.principled", kPrincipledParams},
+                                        {"objects[].material.openpbr", kOpenPbrParams}, {"render", kRenderParams}};
   for (const auto* m : methods::method_registry()) sections.push_back({m->name, m->params});
   return sections;
 }

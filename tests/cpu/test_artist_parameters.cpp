@@ -127,7 +127,8 @@ TEST(ArtistParameters, AlbedoBeyondTheModelsRange) {
   EXPECT_LT(model_total_reflectance(near_one, 0.0).total.x, 0.97);
   EXPECT_EQ(inversion_error(a),
             fmt::format("mat: albedo[1] = 0.97 is above the largest flat total the model reaches; allowed range "
-                        "({:.4g}, {:.4g}) for the photon-beam model at g 0 and eta 1.3", lo, hi));
+                        "({:.4g}, {:.4g}) for the photon-beam model at g 0 and eta 1.3; {}", lo, hi,
+                        models_reaching_advice(0.97, 0.97, glm::vec3(0.0f), 1.3f, a.model)));
   a.model = BssrdfModel::DirectionalDipole;
   a.eta = 1.0f;
   a.albedo = {0.5f, 0.5f, 0.01f};
@@ -135,7 +136,8 @@ TEST(ArtistParameters, AlbedoBeyondTheModelsRange) {
   EXPECT_GT(directional_lo, 0.01);
   EXPECT_EQ(inversion_error(a),
             fmt::format("mat: albedo[2] = 0.01 is below the smallest flat total the model reaches; allowed range "
-                        "({:.4g}, 1) for the directional model at g 0 and eta 1", directional_lo));
+                        "({:.4g}, 1) for the directional model at g 0 and eta 1; {}", directional_lo,
+                        models_reaching_advice(0.01, 0.01, glm::vec3(0.0f), 1.0f, a.model)));
   a.model = BssrdfModel::Tabulated;
   a.albedo = {0.5f, 0.5f, 0.9999f};
   EXPECT_NE(inversion_error(a).find("for the standard model (the tabulated model's inversion curve) at g 0 and eta 1"),
