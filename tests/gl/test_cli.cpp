@@ -251,7 +251,7 @@ TEST(Cli, UnknownKey) {
   expect_one_line_error(
       run("render " + scene),
       "lucent: " + scene + ": /objects/0/colour: unknown key; known keys: name, shape, mesh, radius, inner_radius, "
-      "major_radius, minor_radius, size, extent, segments, translate, rotate_deg, scale, albedo, material, profile, deform");
+      "major_radius, minor_radius, size, extent, segments, translate, rotate_deg, scale, up_axis, albedo, material, profile, deform");
 }
 
 TEST(Cli, NegativeSigma) {
