@@ -23,11 +23,7 @@ struct ExportOptions {
 
 void run_export(const ExportOptions& o) {
   const Scene scene = o.scene_path == "-" ? default_scene(o.sets) : load_scene(o.scene_path, o.sets);
-  const std::string extension = std::filesystem::path(o.output).extension().string();
-  if (extension == ".gltf" || extension == ".glb") save_scene_gltf(scene, o.output);
-  else if (extension == ".json") save_scene(scene, o.output);
-  else throw Error(fmt::format("export: {}: the output is .gltf or .glb (one glTF file) or .json (a scene file and its "
-                               "meshes)", o.output));
+  save_scene_as(scene, o.output);
   fmt::print("wrote {}\n", o.output);
 }
 

@@ -20,7 +20,8 @@ void add_view_command(CLI::App& app) {
                   "with --frames: the rendered view (not the panel) as .png (tone-mapped) or .exr (radiance)");
   cmd->add_option("--screenshot-window", options->screenshot_window, "with --frames: the whole window, panel included (.png)");
   cmd->add_option("--save-scene", options->save_scene,
-                  "with --frames: save the scene as the panel's \"save scene as\" does (lucent render of it reproduces the view)");
+                  "with --frames: save the scene as the panel's \"save scene as\" does: .json (lucent render of it reproduces "
+                  "the view) or .gltf/.glb (one glTF file for Blender and glTF viewers, as lucent export)");
   cmd->add_option("--panel-width", options->panel_width, "panel width in pixels (at most half the window)")
       ->check(CLI::Range(160, 2000));
   cmd->add_option("--window-width", options->window_width,

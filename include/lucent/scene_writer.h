@@ -38,6 +38,8 @@ void save_scene(const Scene& scene, const std::string& path);
 // candela at 683 lm/W). A .glb `path` gets the binary container, a .gltf one its buffer embedded (base64). Animated
 // objects are written as they are at time 0. Throws lucent::Error naming the file it cannot write.
 void save_scene_gltf(const Scene& scene, const std::string& path);
+// save_scene_gltf for a .gltf or .glb `path`, save_scene for a .json one; another extension is a lucent::Error.
+void save_scene_as(const Scene& scene, const std::string& path);
 // The bytes save_scene_gltf writes (`path` chooses the container and names the scene).
 std::string scene_gltf(const Scene& scene, const std::string& path);
 

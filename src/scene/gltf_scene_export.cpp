@@ -240,4 +240,12 @@ void save_scene_gltf(const Scene& scene, const std::string& path) {
   write_file(path, scene_gltf(scene, path));
 }
 
+void save_scene_as(const Scene& scene, const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension == ".gltf" || extension == ".glb") save_scene_gltf(scene, path);
+  else if (extension == ".json") save_scene(scene, path);
+  else throw Error(fmt::format("{}: a scene is saved as .gltf or .glb (one glTF file) or .json (a scene file and its "
+                               "meshes)", path));
+}
+
 }  // namespace lucent

@@ -158,7 +158,7 @@ TEST(GltfSceneExport, ExportCommandWritesTheFile) {
   EXPECT_EQ(file.model.lights.size(), 1u);
   const test::CliResult bad = test::run_cli("export " + std::string(LUCENT_SCENES_DIR) + "/default.json out.obj");
   EXPECT_EQ(bad.exit_code, 1);
-  EXPECT_EQ(bad.output, "lucent: export: out.obj: the output is .gltf or .glb (one glTF file) or .json (a scene file "
+  EXPECT_EQ(bad.output, "lucent: out.obj: a scene is saved as .gltf or .glb (one glTF file) or .json (a scene file "
                         "and its meshes)\n");
 }
 

@@ -6,6 +6,8 @@
 // exceeds the tolerance. Failing comparisons write the images and a difference image to test-output/.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -144,13 +146,22 @@ TEST_F(ViewScreenshot, TheSavedSceneRendersTheSameImage) {
 
 // A window of another shape (400x300, a 240-pixel panel asked): the panel takes at most half the window (200), the
 // 160x120 view is scaled by 1.25 into the 200x300 beside it and centred, background above and below; the view
-// is still rendered at 160x120 (the screenshot).
+// is still rendered at 160x120 (the screenshot). The same run saves the scene as a binary glTF.
 TEST(ViewLayout, AViewInAWindowOfAnotherShapeIsScaledToFitAndCentred) {
   const std::string view_png = output_path("view_fit_view.png"), window_png = output_path("view_fit_window.png");
+  const std::string glb = output_path("view_fit_scene.glb");
+  std::filesystem::remove(glb);
   CliResult view = run_shell(xvfb("view " + kScene + kFast + " --width 160 --height 120 --window-width 400 "
                                   "--window-height 300 --panel-width 240 --frames 1 --screenshot " + view_png +
-                                  " --screenshot-window " + window_png));
+                                  " --screenshot-window " + window_png + " --save-scene " + glb));
   ASSERT_EQ(view.exit_code, 0) << view.output;
+  {
+    std::ifstream in(glb, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(bytes.substr(0, 4), "glTF") << glb;
+    EXPECT_NE(bytes.find("KHR_lights_punctual"), std::string::npos) << glb;
+    EXPECT_NE(bytes.find("\"cameras\""), std::string::npos) << glb;
+  }
   const ImageRGBA8 window = read_png(window_png), rendered = read_png(view_png);
   ASSERT_EQ(window.width, 400);
   ASSERT_EQ(window.height, 300);

@@ -144,7 +144,7 @@ class ViewerApp {
     // The batch outputs are checked before the first frame, as `lucent render` checks its own.
     if (o.frames > 0 && session_.renderer())
       check_outputs({view_output(o.screenshot), {o.screenshot_window, "--screenshot-window", {".png"}},
-                     {o.save_scene, "--save-scene", {".json"}}},
+                     {o.save_scene, "--save-scene", {".json", ".gltf", ".glb"}}},
                     scene_input_files(session_.renderer()->scene()));
   }
 
@@ -284,7 +284,7 @@ class ViewerApp {
         state_.status = "wrote " + state_.screenshot_path;
       }
       if (actions.save_scene) {
-        save_scene(session_.scene_for_saving(view_.x, view_.y), state_.scene_save_path);
+        save_scene_as(session_.scene_for_saving(view_.x, view_.y), state_.scene_save_path);
         state_.status = fmt::format("wrote {} (lucent render {} reproduces the view)", state_.scene_save_path,
                                     state_.scene_save_path);
       }
@@ -299,7 +299,8 @@ class ViewerApp {
     if (!session_.renderer() || !session_.error().empty())
       throw Error(session_.error().empty() ? "nothing rendered" : session_.error());
     if (!options_.screenshot.empty()) write_view(*session_.renderer(), options_.screenshot);
-    if (!options_.save_scene.empty()) save_scene(session_.scene_for_saving(view_.x, view_.y), options_.save_scene);
+    if (!options_.save_scene.empty())
+      save_scene_as(session_.scene_for_saving(view_.x, view_.y), options_.save_scene);
     fmt::print("{}: {}x{}, {} frame(s) accumulated{}{}\n", session_.scene_path().empty() ? "<built-in default scene>" : session_.scene_path(),
                view_.x, view_.y, session_.renderer()->accumulated_frames(),
                options_.screenshot.empty() ? "" : " -> " + options_.screenshot,
