@@ -18,6 +18,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "io/base64.h"
 #include "lucent/error.h"
 #include "lucent/output_file.h"
 #include "lucent/scene_writer.h"
@@ -66,20 +67,6 @@ class BufferBuilder {
   json views_ = json::array(), accessors_ = json::array();
 };
 
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    std::uint32_t n = static_cast<std::uint32_t>(bytes[i]) << 16;
-    if (i + 1 < bytes.size()) n |= static_cast<std::uint32_t>(bytes[i + 1]) << 8;
-    if (i + 2 < bytes.size()) n |= bytes[i + 2];
-    out += kDigits[(n >> 18) & 63];
-    out += kDigits[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
-  }
-  return out;
-}
 
 json primitive(const TriangleMesh& mesh, BufferBuilder& buffer) {
   glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
