@@ -69,7 +69,7 @@ struct MethodInfo {
   std::string_view summary;
   std::span<const ParamDecl> params;
   std::span<const PassDecl> passes;  // in frame order; a frame may skip some (e.g. a converged or solved state)
-  std::span<const StatDecl> stats;
+  std::span<const StatDecl> stats = {};
   // Parameters for a small, fast render (a JSON object merged into the scene's "method"): what the conformance
   // test (tests/gl/test_method_conformance.cpp) and CI use.
   std::string_view quick_settings = "{}";

@@ -22,26 +22,19 @@ constexpr PassDecl kPasses[] = {
 
 extern const MethodInfo diffuse_wrap_info;
 const MethodInfo diffuse_wrap_info{
-    "diffuse-wrap",
-    "lower-bound baseline: Lambertian wrap lighting with the material's total diffuse reflectance, no transport",
-    kParams,
-    kPasses,
-    {},
-    R"({"light_map_size": 128, "specular": false})",
+    .name = "diffuse-wrap",
+    .summary = "lower-bound baseline: Lambertian wrap lighting with the material's total diffuse reflectance, no transport",
+    .params = kParams,
+    .passes = kPasses,
+    .quick_settings = R"({"light_map_size": 128, "specular": false})",
     // Measured 62% brighter than the standard dipole's bssrdf reference on llvmpipe (wrap 0.2; 0.0698 against 0.0430,
     // and 30% brighter than volpath's 0.0537): the flat total on the lit side, where the sphere is thinner than the
     // profile and the model lets light out through the back.
-    0.79,
-    false,
-    nullptr,  // atlas_options
-    nullptr,  // precompute
-    false,    // reads_material_maps
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .reference_tolerance = 0.79,
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{1.11,   // sphere, per pixel: 0.878
-                          1.26, 1.27,  // backlit thin slab, mean and per pixel: 1.000, 1.008
-                          0.49, 1.07},  // coarse box: 0.383, 0.842
+    .weakest = ConformanceTolerances{1.11,   // sphere, per pixel: 0.878
+                                     1.26, 1.27,  // backlit thin slab, mean and per pixel: 1.000, 1.008
+                                     0.49, 1.07},  // coarse box: 0.383, 0.842
 };
 
 }  // namespace lucent::methods

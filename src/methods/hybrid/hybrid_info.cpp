@@ -47,26 +47,23 @@ texture_space::AtlasOptions atlas_options(const ParamValues& params) {
 
 extern const MethodInfo hybrid_info;
 const MethodInfo hybrid_info{
-    "hybrid",
-    "texture-space importance sampling with a local circular pattern near each point: R_d split into local and global terms (Chang et al. 2008, Section 4)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"atlas_size": 256, "N": 256, "rings": 8, "ring_points": 8, "light_map_size": 128, "specular": false})",
-    0.025,  // measured 0.011 on llvmpipe (2026-11-28) with the standard dipole (0.04266 against 0.04313) and with the
-            // directional dipole (0.08633 against 0.08731):
-            // R_p is 3.0 mm on the 1 mm conformance sphere, so nearly all local (light-plane pattern, full S_d);
-            // with the tangent-plane pattern and the radial profile it was 0.090
-    true,
-    atlas_options,
-    nullptr,  // precompute
-    false,    // reads_material_maps
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .name = "hybrid",
+    .summary = "texture-space importance sampling with a local circular pattern near each point: R_d split into local and global terms (Chang et al. 2008, Section 4)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"atlas_size": 256, "N": 256, "rings": 8, "ring_points": 8, "light_map_size": 128, "specular": false})",
+    // Measured 0.011 on llvmpipe (2026-11-28) with the standard dipole (0.04266 against 0.04313) and with the
+    // directional dipole (0.08633 against 0.08731):
+    // R_p is 3.0 mm on the 1 mm conformance sphere, so nearly all local (light-plane pattern, full S_d);
+    // with the tangent-plane pattern and the radial profile it was 0.090
+    .reference_tolerance = 0.025,
+    .needs_texture_atlas = true,
+    .atlas_options = atlas_options,
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{0.03,   // sphere, per pixel: 0.014
-                          0.03, 0.03,  // backlit thin slab, mean and per pixel: 0.010, 0.014
-                          0.02, 0.04},  // coarse box: 0.003, 0.018
+    .weakest = ConformanceTolerances{0.03,   // sphere, per pixel: 0.014
+                                     0.03, 0.03,  // backlit thin slab, mean and per pixel: 0.010, 0.014
+                                     0.02, 0.04},  // coarse box: 0.003, 0.018
 };
 
 }  // namespace lucent::methods

@@ -51,26 +51,22 @@ texture_space::AtlasOptions atlas_options(const ParamValues& params) {
 
 extern const MethodInfo layered_parallax_info;
 const MethodInfo layered_parallax_info{
-    "layered-parallax",
-    "multi-layer parallax: outer layer over a parallax-shifted inner layer lit by a blurred texture-space light map (Oat 2006, Norberg 2010)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"atlas_size": 256, "texture_size": 64, "irradiance_map_size": 64, "light_map_size": 128, "specular": false})",
+    .name = "layered-parallax",
+    .summary = "multi-layer parallax: outer layer over a parallax-shifted inner layer lit by a blurred texture-space light map (Oat 2006, Norberg 2010)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"atlas_size": 256, "texture_size": 64, "irradiance_map_size": 64, "light_map_size": 128, "specular": false})",
     // A look, not physics: the colours come from the textures, not from the material's coefficients, and the light
     // is Lambertian through two coloured layers. Measured on llvmpipe: relative error 0.642 (0.0706 against the
     // standard dipole's 0.0430); the tolerance says only "the same order of magnitude as a lit translucent sphere".
-    0.81,
-    true,  // texture coordinates: the mesh's own where usable, an atlas otherwise (unique, as the light map needs)
-    atlas_options,
-    nullptr,  // precompute
-    false,    // reads_material_maps
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .reference_tolerance = 0.81,
+    .needs_texture_atlas = true,  // texture coordinates: the mesh's own where usable, an atlas otherwise (unique, as the light map needs)
+    .atlas_options = atlas_options,
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{1.64,   // sphere, per pixel: 1.303
-                          1.26, 1.27,  // backlit thin slab, mean and per pixel: 1.000, 1.008
-                          0.82, 1.66},  // coarse box: 0.646, 1.316
+    .weakest = ConformanceTolerances{1.64,   // sphere, per pixel: 1.303
+                                     1.26, 1.27,  // backlit thin slab, mean and per pixel: 1.000, 1.008
+                                     0.82, 1.66},  // coarse box: 0.646, 1.316
 };
 
 }  // namespace lucent::methods

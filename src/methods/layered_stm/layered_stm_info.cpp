@@ -53,27 +53,23 @@ texture_space::AtlasOptions atlas_options(const ParamValues& params) {
 
 extern const MethodInfo layered_stm_info;
 const MethodInfo layered_stm_info{
-    "layered-stm",
-    "subsurface texture mapping: single scattering ray-marched through heightfield layers (Francois et al. 2006, Norberg 2010)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"atlas_size": 256, "samples": 16, "maps": "uniform", "light_map_size": 128, "specular": false})",
+    .name = "layered-stm",
+    .summary = "subsurface texture mapping: single scattering ray-marched through heightfield layers (Francois et al. 2006, Norberg 2010)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"atlas_size": 256, "samples": 16, "maps": "uniform", "light_map_size": 128, "specular": false})",
     // Single scattering only, against a multiple-scattering (diffusion) reference: the conformance sphere's milk-like
     // medium (albedo 0.95-0.98) scatters most of its light more than once, so the method sees a small part of it.
     // Measured on llvmpipe: relative error 0.725 (single scattering 0.0118 against the standard dipole's 0.0430). Agreement in order of
     // magnitude only; the physics of the method is checked against single scattering (tests/gl/test_layered_stm.cpp).
-    0.95,
-    true,  // texture coordinates: the mesh's own where usable, an atlas otherwise
-    atlas_options,
-    nullptr,  // precompute
-    false,    // reads_material_maps
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .reference_tolerance = 0.95,
+    .needs_texture_atlas = true,  // texture coordinates: the mesh's own where usable, an atlas otherwise
+    .atlas_options = atlas_options,
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{1.00,   // sphere, per pixel: 0.785
-                          1.26, 1.27,  // backlit thin slab, mean and per pixel: 1.000, 1.008
-                          0.98, 1.05},  // coarse box: 0.774, 0.826
+    .weakest = ConformanceTolerances{1.00,   // sphere, per pixel: 0.785
+                                     1.26, 1.27,  // backlit thin slab, mean and per pixel: 1.000, 1.008
+                                     0.98, 1.05},  // coarse box: 0.774, 0.826
 };
 
 }  // namespace lucent::methods

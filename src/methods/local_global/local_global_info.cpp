@@ -78,25 +78,24 @@ constexpr PrecomputeDecl kPrecompute{"local-global", 3, precompute};
 
 extern const MethodInfo local_global_info;
 const MethodInfo local_global_info{
-    "local-global",
-    "local 7 x 7 texel kernels plus vertex-to-vertex global throughput over a texture atlas, precomputed (Lensch et al. 2002)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"atlas_size": 128, "light_map_size": 128, "specular": false})",
-    0.02,  // measured 0.007 on llvmpipe (2026-11-28, remeshed, the standard dipole: 0.04285 against 0.04314); with the
-           // directional dipole 0.274 (0.06339 against 0.08735): its kernels use the normal-incidence radial profile
-           // (bssrdf_radial_Rd), which drops the directional dipole's oblique light
-    true,
-    atlas_options,
-    &kPrecompute,
-    false,
-    false,
-    prepare_meshes,
+    .name = "local-global",
+    .summary = "local 7 x 7 texel kernels plus vertex-to-vertex global throughput over a texture atlas, precomputed (Lensch et al. 2002)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"atlas_size": 128, "light_map_size": 128, "specular": false})",
+    // Measured 0.007 on llvmpipe (2026-11-28, remeshed, the standard dipole: 0.04285 against 0.04314); with the
+    // directional dipole 0.274 (0.06339 against 0.08735): its kernels use the normal-incidence radial profile
+    // (bssrdf_radial_Rd), which drops the directional dipole's oblique light
+    .reference_tolerance = 0.02,
+    .needs_texture_atlas = true,
+    .atlas_options = atlas_options,
+    .precompute = &kPrecompute,
+    .prepare_meshes = prepare_meshes,
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{0.01,   // sphere, per pixel: 0.000
-                          0.02, 0.02,  // backlit thin slab, mean and per pixel: 0.004, 0.006
-                          0.02, 0.03},  // coarse box: 0.007, 0.016
+    .weakest = ConformanceTolerances{0.01,   // sphere, per pixel: 0.000
+                                     0.02, 0.02,  // backlit thin slab, mean and per pixel: 0.004, 0.006
+                                     0.02, 0.03},  // coarse box: 0.007, 0.016
 };
 
 }  // namespace lucent::methods

@@ -27,23 +27,19 @@ constexpr StatDecl kStats[] = {
 
 extern const MethodInfo per_pixel_info;
 const MethodInfo per_pixel_info{
-    "per-pixel",
-    "caching-free baseline: the same light-space sampling per screen pixel every frame (Dal Corso et al. Fig. 11)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"N": 16, "light_map_size": 128, "specular": false})",
-    0.05,  // measured 1.4% on llvmpipe
-    false,
-    nullptr,
-    nullptr,
-    true,  // textured materials: eq. 9 with the coefficients at the pixel's texture coordinates
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .name = "per-pixel",
+    .summary = "caching-free baseline: the same light-space sampling per screen pixel every frame (Dal Corso et al. Fig. 11)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"N": 16, "light_map_size": 128, "specular": false})",
+    // Measured 1.4% on llvmpipe
+    .reference_tolerance = 0.05,
+    .reads_material_maps = true,  // textured materials: eq. 9 with the coefficients at the pixel's texture coordinates
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{0.18,   // sphere, per pixel: 0.133
-                          0.02, 0.10,  // backlit thin slab, mean and per pixel: 0.001, 0.069
-                          0.02, 0.16},  // coarse box: 0.002, 0.116
+    .weakest = ConformanceTolerances{0.18,   // sphere, per pixel: 0.133
+                                     0.02, 0.10,  // backlit thin slab, mean and per pixel: 0.001, 0.069
+                                     0.02, 0.16},  // coarse box: 0.002, 0.116
 };
 
 }  // namespace lucent::methods

@@ -57,23 +57,19 @@ constexpr StatDecl kStats[] = {
 
 extern const MethodInfo radiosity_maps_info;
 const MethodInfo radiosity_maps_info{
-    "radiosity-maps",
-    "directional subsurface scattering cached in scattered-radiosity maps (Dal Corso et al. 2015)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"K": 8, "N": 16, "map_size": 64, "light_map_size": 128, "vpls": 0, "specular": false})",
-    0.05,  // measured 1.2% on llvmpipe (the same model as the reference; what remains is map resolution and noise)
-    false,
-    nullptr,
-    nullptr,
-    true,  // textured materials: eq. 9 per map texel with the coefficients at the texel's texture coordinates
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .name = "radiosity-maps",
+    .summary = "directional subsurface scattering cached in scattered-radiosity maps (Dal Corso et al. 2015)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"K": 8, "N": 16, "map_size": 64, "light_map_size": 128, "vpls": 0, "specular": false})",
+    // Measured 1.2% on llvmpipe (the same model as the reference; what remains is map resolution and noise)
+    .reference_tolerance = 0.05,
+    .reads_material_maps = true,  // textured materials: eq. 9 per map texel with the coefficients at the texel's texture coordinates
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{0.05,   // sphere, per pixel: 0.026
-                          0.02, 0.03,  // backlit thin slab, mean and per pixel: 0.003, 0.014
-                          0.02, 0.05},  // coarse box: 0.002, 0.031
+    .weakest = ConformanceTolerances{0.05,   // sphere, per pixel: 0.026
+                                     0.02, 0.03,  // backlit thin slab, mean and per pixel: 0.003, 0.014
+                                     0.02, 0.05},  // coarse box: 0.002, 0.031
 };
 
 }  // namespace lucent::methods

@@ -38,27 +38,22 @@ constexpr StatDecl kStats[] = {
 
 extern const MethodInfo random_walk_info;
 const MethodInfo random_walk_info{
-    "random-walk",
-    "the physics on the GPU: volumetric path tracing with sphere jumps, converging to the volpath reference",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"samples_per_frame": 4})",
+    .name = "random-walk",
+    .summary = "the physics on the GPU: volumetric path tracing with sphere jumps, converging to the volpath reference",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"samples_per_frame": 4})",
     // Against the bssrdf reference (the diffusion model), not the physics it estimates: the conformance sphere is
     // two transport mean free paths in radius, where the half-space model misses the light leaving through the
     // back: measured 24.7% brighter than the standard dipole on llvmpipe (0.0538 against 0.0431; 38% darker than
     // the directional dipole), and equal to volpath within noise (below and tests/gl/test_random_walk.cpp).
-    0.32,
-    false,    // needs_texture_atlas
-    nullptr,  // atlas_options
-    nullptr,  // precompute
-    false,    // reads_material_maps
-    true,     // estimates_volpath
-    nullptr,  // prepare_meshes
+    .reference_tolerance = 0.32,
+    .estimates_volpath = true,     // estimates_volpath
     // Where methods are weakest, against the volpath reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{0.28,   // sphere, per pixel: 0.211
-                          0.02, 0.32,  // backlit thin slab, mean and per pixel: 0.001, 0.242
-                          0.02, 0.26},  // coarse box: 0.002, 0.193
+    .weakest = ConformanceTolerances{0.28,   // sphere, per pixel: 0.211
+                                     0.02, 0.32,  // backlit thin slab, mean and per pixel: 0.001, 0.242
+                                     0.02, 0.26},  // coarse box: 0.002, 0.193
 };
 
 }  // namespace lucent::methods

@@ -37,27 +37,21 @@ constexpr StatDecl kStats[] = {
 
 extern const MethodInfo screen_space_info;
 const MethodInfo screen_space_info{
-    "screen-space",
-    "separable screen-space blur of the irradiance with a Burley normalized-diffusion kernel (Jimenez et al. 2015), "
-    "transmittance through thin parts (Jimenez et al. 2010)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"light_map_size": 128, "specular": false})",
+    .name = "screen-space",
+    .summary = "separable screen-space blur of the irradiance with a Burley normalized-diffusion kernel (Jimenez et al. 2015), "
+               "transmittance through thin parts (Jimenez et al. 2010)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"light_map_size": 128, "specular": false})",
     // Measured 41.7% brighter than the standard dipole's bssrdf reference on llvmpipe (0.0609 against 0.0430; 13%
     // above volpath's 0.0537): the blur is normalised to the flat total, which the 1 mm sphere (about as wide as
     // the profile) does not reach.
-    0.53,
-    false,
-    nullptr,  // atlas_options
-    nullptr,  // precompute
-    false,    // reads_material_maps
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .reference_tolerance = 0.53,
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{0.77,   // sphere, per pixel: 0.603
-                          0.20, 0.23,  // backlit thin slab, mean and per pixel: 0.148, 0.173
-                          0.71, 0.87},  // coarse box: 0.557, 0.686
+    .weakest = ConformanceTolerances{0.77,   // sphere, per pixel: 0.603
+                                     0.20, 0.23,  // backlit thin slab, mean and per pixel: 0.148, 0.173
+                                     0.71, 0.87},  // coarse box: 0.557, 0.686
 };
 
 }  // namespace lucent::methods

@@ -41,26 +41,23 @@ texture_space::AtlasOptions atlas_options(const ParamValues& params) {
 
 extern const MethodInfo texture_space_is_info;
 const MethodInfo texture_space_is_info{
-    "texture-space-is",
-    "texture-space importance sampling: N surface samples drawn from the irradiance over an atlas, shared by all pixels (Chang et al. 2008)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"atlas_size": 256, "N": 256, "light_map_size": 128, "specular": false})",
-    0.02,  // measured 0.003 on llvmpipe (2026-11-28) with the standard dipole (0.04302 against 0.04313) and 0.005 with
-           // the directional dipole (0.08684 against 0.08731):
-           // the full S_d per sample; with the normal-incidence radial profile it was 0.272
-    true,
-    atlas_options,
-    nullptr,
-    true,  // textured materials: R_d with the coefficients at the pixel's texture coordinates (the mesh's own, kept
-           // beside the atlas's: TriangleMesh::material_uvs)
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .name = "texture-space-is",
+    .summary = "texture-space importance sampling: N surface samples drawn from the irradiance over an atlas, shared by all pixels (Chang et al. 2008)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"atlas_size": 256, "N": 256, "light_map_size": 128, "specular": false})",
+    // Measured 0.003 on llvmpipe (2026-11-28) with the standard dipole (0.04302 against 0.04313) and 0.005 with
+    // the directional dipole (0.08684 against 0.08731):
+    // the full S_d per sample; with the normal-incidence radial profile it was 0.272
+    .reference_tolerance = 0.02,
+    .needs_texture_atlas = true,
+    .atlas_options = atlas_options,
+    .reads_material_maps = true,  // textured materials: R_d with the coefficients at the pixel's texture coordinates (the mesh's own, kept
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{0.02,   // sphere, per pixel: 0.008
-                          0.01, 0.02,  // backlit thin slab, mean and per pixel: 0.000, 0.007
-                          0.02, 0.03},  // coarse box: 0.004, 0.013
+    .weakest = ConformanceTolerances{0.02,   // sphere, per pixel: 0.008
+                                     0.01, 0.02,  // backlit thin slab, mean and per pixel: 0.000, 0.007
+                                     0.02, 0.03},  // coarse box: 0.004, 0.013
 };
 
 }  // namespace lucent::methods

@@ -38,26 +38,20 @@ constexpr StatDecl kStats[] = {
 
 extern const MethodInfo voxel_paths_info;
 const MethodInfo voxel_paths_info{
-    "voxel-paths",
-    "shortest optical paths through a solid voxelization (Dijkstra-style relaxation on the GPU; first version)",
-    kParams,
-    kPasses,
-    kStats,
-    R"({"resolution": 32, "light_map_size": 128, "specular": false})",
+    .name = "voxel-paths",
+    .summary = "shortest optical paths through a solid voxelization (Dijkstra-style relaxation on the GPU; first version)",
+    .params = kParams,
+    .passes = kPasses,
+    .stats = kStats,
+    .quick_settings = R"({"resolution": 32, "light_map_size": 128, "specular": false})",
     // Not the dipole: exp(-n) along shortest optical paths (the paper's eq. 1) is measured 2.74x brighter than
     // the standard dipole's bssrdf reference on the conformance sphere (0.1608 against 0.0430; 3.0x volpath's
     // 0.0537); docs/accuracy.md compares it with the path tracer.
-    3.5,
-    false,
-    nullptr,  // atlas_options
-    nullptr,  // precompute
-    false,    // reads_material_maps
-    false,    // estimates_volpath
-    nullptr,  // prepare_meshes
+    .reference_tolerance = 3.5,
     // Where methods are weakest, against the bssrdf reference (llvmpipe, 2026-11-28, measured values after each):
-    ConformanceTolerances{4.22,   // sphere, per pixel: 3.366
-                          0.72, 0.74,  // backlit thin slab, mean and per pixel: 0.560, 0.582
-                          4.45, 5.09},  // coarse box: 3.546, 4.057
+    .weakest = ConformanceTolerances{4.22,   // sphere, per pixel: 3.366
+                                     0.72, 0.74,  // backlit thin slab, mean and per pixel: 0.560, 0.582
+                                     4.45, 5.09},  // coarse box: 3.546, 4.057
 };
 
 }  // namespace lucent::methods
