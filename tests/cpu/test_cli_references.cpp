@@ -25,6 +25,7 @@
 #include "lucent/image.h"
 #include "progress_bar.h"
 #include "sample_progress.h"
+#include "../child_exit.h"
 #include <nlohmann/json.hpp>
 
 namespace {
@@ -391,12 +392,7 @@ TEST(CliReferences, SigintSavesAResumableReference) {
   };
   for (int tries = 0; tries < 1200 && !spp_done(); ++tries) ::usleep(100000);
   ::kill(pid, SIGINT);
-  int status = 0;
-  for (int tries = 0; tries < 1200 && ::waitpid(pid, &status, WNOHANG) == 0; ++tries) ::usleep(100000);
-  if (::waitpid(pid, &status, WNOHANG) == 0) {
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &status, 0);
-  }
+  const int status = lucent::test::wait_for_exit_or_kill(pid);
   std::stringstream output;
   output << std::ifstream(log).rdbuf();
   ASSERT_TRUE(WIFEXITED(status)) << output.str();

@@ -26,6 +26,7 @@
 #include "lucent/error.h"
 #include "lucent/image.h"
 #include "lucent/output_file.h"
+#include "../child_exit.h"
 
 extern char** environ;
 
@@ -250,12 +251,7 @@ TEST(CliConcurrentOutputs, InterruptedReferenceSavesItsCompletedPasses) {
   ::kill(pid, SIGINT);
   // A reference that does not stop is ended after two minutes, and the test fails below (not a timing check: it
   // keeps a broken build from hanging the test run).
-  int status = 0;
-  for (int tries = 0; tries < 1200 && ::waitpid(pid, &status, WNOHANG) == 0; ++tries) ::usleep(100000);
-  if (::waitpid(pid, &status, WNOHANG) == 0) {
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &status, 0);
-  }
+  const int status = lucent::test::wait_for_exit_or_kill(pid);
   std::stringstream output;
   output << std::ifstream(log).rdbuf();
   ASSERT_TRUE(WIFEXITED(status)) << output.str();
