@@ -23,19 +23,25 @@ double band_mean(const ImageRGBA32F& image, std::size_t i) {
 
 }  // namespace
 
-SphereComparison compare_sphere_with_reference(const std::string& method, const std::string& method_keys,
-                                               const std::string& model, int frames, int reference_spp) {
-  ensure_gl_context();
-  const std::string json = fmt::format(R"({{
+std::string sphere_scene_json(const std::string& method_object, const std::string& model, int size, int frames,
+                              int seed) {
+  return fmt::format(R"({{
     "scale_mm": 1,
     "camera": {{ "eye": [0, 0, 6], "target": [0, 0, 0], "fov_y_deg": 24 }},
     "lights": [{{ "direction": [-0.8, -0.3, -0.5], "radiance": [1, 1, 1] }}],
     "objects": [{{ "shape": "sphere", "radius": 1, "segments": 64,
                   "material": {{ "sigma_a": [0.05, 0.08, 0.12], "sigma_s": [2.0, 2.2, 2.5], "g": 0, "eta": 1.3,
                                  "model": "{}" }} }}],
-    "method": {{ "name": "{}", {} }},
-    "render": {{ "width": {}, "height": {}, "frames": {}, "seed": 7 }} }})",
-                                       model, method, method_keys, kSphereSize, kSphereSize, frames);
+    "method": {{ {} }},
+    "render": {{ "width": {}, "height": {}, "frames": {}, "seed": {} }} }})",
+                     model, method_object, size, size, frames, seed);
+}
+
+SphereComparison compare_sphere_with_reference(const std::string& method, const std::string& method_keys,
+                                               const std::string& model, int frames, int reference_spp) {
+  ensure_gl_context();
+  const std::string json =
+      sphere_scene_json(fmt::format(R"("name": "{}", {})", method, method_keys), model, kSphereSize, frames, 7);
   const Scene scene = parse_scene(json, "sphere comparison scene", ".");
   OffscreenFramebuffer framebuffer(kSphereSize, kSphereSize);
   Renderer renderer(scene);

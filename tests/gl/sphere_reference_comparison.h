@@ -17,6 +17,11 @@ struct SphereComparison {
   int lit_blocks = 0;
 };
 
+// The conformance sphere's scene (JSON) at size x size pixels: `method_object` is the "method" object's content
+// ("\"name\": \"hybrid\", \"N\": 64"), `model` the material's "model".
+std::string sphere_scene_json(const std::string& method_object, const std::string& model, int size, int frames,
+                              int seed);
+
 // `method_keys`: the "method" object's keys besides "name"; `model`: the material's "model" ("standard",
 // "directional"). Band means per pixel; the reference takes `reference_spp` samples per pixel.
 SphereComparison compare_sphere_with_reference(const std::string& method, const std::string& method_keys,

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <string>
 
-#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "image_compare.h"
@@ -19,16 +18,8 @@ namespace {
 constexpr int kSize = 64;
 
 lucent::ImageRGBA32F render(const std::string& method_keys, const std::string& model, int seed) {
-  const std::string json = fmt::format(R"({{
-    "scale_mm": 1,
-    "camera": {{ "eye": [0, 0, 6], "target": [0, 0, 0], "fov_y_deg": 24 }},
-    "lights": [{{ "direction": [-0.8, -0.3, -0.5], "radiance": [1, 1, 1] }}],
-    "objects": [{{ "shape": "sphere", "radius": 1, "segments": 64,
-                  "material": {{ "sigma_a": [0.05, 0.08, 0.12], "sigma_s": [2.0, 2.2, 2.5], "g": 0, "eta": 1.3,
-                                "model": "{}" }} }}],
-    "method": {{ {}, "atlas_size": 256, "N": 64, "light_map_size": 128, "specular": false }},
-    "render": {{ "width": {}, "height": {}, "frames": 1, "seed": {} }} }})",
-                                       model, method_keys, kSize, kSize, seed);
+  const std::string json = lucent::test::sphere_scene_json(
+      method_keys + R"(, "atlas_size": 256, "N": 64, "light_map_size": 128, "specular": false)", model, kSize, 1, seed);
   const lucent::Scene scene = lucent::parse_scene(json, "hybrid noise scene", ".");
   lucent::OffscreenFramebuffer framebuffer(kSize, kSize);
   lucent::Renderer renderer(scene);
