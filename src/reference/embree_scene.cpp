@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "lucent/error.h"
+#include "geometry/triangle_adjacency.h"
 #include "scene/mesh_enclosure.h"
 
 namespace lucent::reference {
@@ -45,6 +46,16 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
   if (object.material) {
     const Material& m = *object.material;
     d.translucent = true;
+    d.neighbours = triangle_neighbours(d.positions, d.indices);
+    d.planes.reserve(d.corners.size());
+    for (const ObjectData::Corners& c : d.corners) {
+      const glm::dvec3 a(c.position[0]), b(c.position[1]), e(c.position[2]);
+      const glm::dvec3 cross = glm::cross(b - a, e - a);
+      const double length = glm::length(cross);
+      glm::dvec3 n = length > 0.0 ? cross / length : glm::dvec3(0.0);
+      if (glm::dot(n, glm::dvec3(c.normal[0] + c.normal[1] + c.normal[2])) < 0.0) n = -n;
+      d.planes.emplace_back(glm::vec3(n), static_cast<float>(std::sqrt(0.5 * length)));
+    }
     d.sigma_a = glm::dvec3(m.sigma_a) * static_cast<double>(scale_mm);
     d.sigma_s = glm::dvec3(m.sigma_s) * static_cast<double>(scale_mm);
     d.g = m.g;
@@ -166,6 +177,7 @@ SurfaceHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& di
   SurfaceHit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.object = object_of_geometry_[rh.hit.geomID];
+  hit.triangle = static_cast<int>(rh.hit.primID);
   hit.t = rh.ray.tfar;
   const ObjectData::Corners& c = objects_[static_cast<std::size_t>(hit.object)].corners[rh.hit.primID];
   double u = rh.hit.u, v = rh.hit.v;
@@ -285,7 +297,8 @@ SurfaceSample EmbreeScene::sample_surface(int object, double u0, double u1, doub
   glm::dvec3 p = b0 * glm::dvec3(c.position[0]) + b1 * glm::dvec3(c.position[1]) + b2 * glm::dvec3(c.position[2]);
   glm::dvec3 n = b0 * glm::dvec3(c.normal[0]) + b1 * glm::dvec3(c.normal[1]) + b2 * glm::dvec3(c.normal[2]);
   const double offset = kRelativeOffset * std::max<double>(largest_abs(p), c.magnitude);
-  return {p, glm::normalize(n), 1.0 / d.area, corner_uv(d, static_cast<unsigned>(triangle), b1, b2), offset};
+  return {p, glm::normalize(n), static_cast<int>(triangle), 1.0 / d.area,
+          corner_uv(d, static_cast<unsigned>(triangle), b1, b2), offset};
 }
 
 }  // namespace lucent::reference

@@ -17,6 +17,7 @@ namespace lucent::reference {
 struct SurfaceHit {
   double t = 0.0;
   int object = -1;           // index into Scene::objects; -1 = miss
+  int triangle = -1;         // the triangle's index in the object (ObjectData::corners)
   glm::dvec3 position{0.0};  // [scene units]
   glm::dvec3 normal{0.0};    // interpolated shading normal, unit, pointing out of the object
   glm::dvec3 geometric_normal{0.0};  // unit, on the same side as `normal`
@@ -70,10 +71,16 @@ struct ObjectData {
     float magnitude;  // the largest |coordinate| of the three positions
   };
   std::vector<Corners> corners;
+  // Translucent objects, for the specular-chain solvers that walk on the boundary: each triangle's neighbour across
+  // each edge (geometry/triangle_adjacency.h), and its plane: xyz the unit normal on the side of its corner normals,
+  // w the square root of its area (its size).
+  std::vector<std::array<std::int32_t, 3>> neighbours;
+  std::vector<glm::vec4> planes;
 };
 
 struct SurfaceSample {
   glm::dvec3 position, normal;
+  int triangle = -1;  // the triangle's index in the object
   double pdf_area;  // 1 / area
   glm::dvec2 uv{0.0};  // texture coordinates (textured objects only)
   double offset = 0.0;  // as SurfaceHit::offset

@@ -3,10 +3,10 @@
 // volpath (the physics): brute-force volumetric path tracing. Translucent interiors are homogeneous media
 // (sigma_a, sigma_s, per-band Henyey-Greenstein g) behind a smooth dielectric boundary (Fresnel reflection and
 // refraction, total internal reflection, eta); opaque objects are Lambertian with full global illumination.
-// Directional and point lights are deltas, so light reaches a medium vertex only through a refracting boundary
-// point: next-event estimation finds that point by fixed-point iteration on the refraction direction and weights
-// the refracted beam by its Fresnel transmittance, its compression at a locally flat boundary (cos theta_i /
-// cos theta_t; for a point light the pencil's footprint, see volpath.cpp) and the attenuation to the vertex.
+// Directional and point lights are deltas, so light reaches a medium vertex only along specular chains through the
+// boundary: next-event estimation solves for them (Newton's method on the chain, every refracted path and those
+// reflected once inside, with the exact focusing of the curved boundary; boundary_light.h) and weights each by its
+// Fresnel terms, its generalized geometry term and the attenuation to the vertex.
 // A point light inside a medium (EmbreeScene::medium_of_point_light) is connected to that medium's vertices
 // straight through it, unless the boundary is in between. Russian roulette keeps it unbiased.
 // Heterogeneous media (a material's "field", media/heterogeneous_field.h): free flights by delta tracking against
@@ -15,10 +15,9 @@
 // Sphere jumps (ReferenceScene::sphere_jumps): deep inside a homogeneous medium a path crosses the largest sphere
 // that fits there in one step, a pre-computed walk (shared/sphere_walk.h) weighted for absorption and the other
 // bands, with the collisions' next-event estimates represented by one of them; unbiased (docs/references.md).
-// Known limits: one entry point per medium vertex (the nearest along the refracted direction; thin parts with
-// several entry points miss the others); focusing by the boundary's curvature is neglected (exact on flat
-// boundaries, a bias of the order of depth / focal length on curved ones); nested or touching translucent objects
-// are not supported.
+// Known limits: light reflected twice or more inside the boundary before it first scatters, and light that leaves
+// the object and enters it again (a concave part's light through another part), are not estimated; nested or
+// touching translucent objects are not supported.
 //
 // bssrdf (the model; homogeneous only: a material's field is ignored, as by the diffusion models): Monte Carlo
 // integration of Dal Corso et al.'s eq. 1 over the object's surface with the
@@ -82,6 +81,12 @@ glm::dvec3 direct_light_lambertian(const ReferenceScene& s, const SurfaceHit& hi
 // the ray goes straight through its boundary) attenuates it by its transmittance between the points where the
 // ray enters and leaves it (exact when homogeneous, ratio tracking when heterogeneous).
 glm::dvec3 shadow_transmittance(const ReferenceScene& s, glm::dvec3 origin, glm::dvec3 direction, double t_max,
+                                Rng& rng);
+
+// volpath: the transmittance between a and b inside object o whose homogeneous coefficients are `k` (the material's,
+// or a textured material's at the point the path entered): exact when homogeneous, ratio tracking when
+// heterogeneous (unbiased, in [0, 1]).
+glm::dvec3 medium_transmittance(const ObjectData& o, const MediumCoefficients& k, glm::dvec3 a, glm::dvec3 b,
                                 Rng& rng);
 
 }  // namespace lucent::reference

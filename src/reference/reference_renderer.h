@@ -17,8 +17,10 @@ namespace lucent::reference {
 // without it are version 1). It is raised whenever a scene, seed and sample count render a different image: a
 // reference of another version is never resumed, merged or reused from the cache, since its samples estimate
 // something else. 2: self-intersection offsets relative to each hit (references no longer depend on the scene's
-// size), every path's random numbers hashed from (seed, pixel, sample).
-inline constexpr int kReferenceVersion = 2;
+// size), every path's random numbers hashed from (seed, pixel, sample). 3: volpath's light through a refracting
+// boundary from every specular chain with its exact geometry term (reference/boundary_light.h), where version 2
+// followed one refracted path weighted as if the boundary were flat.
+inline constexpr int kReferenceVersion = 3;
 
 // A reference's version from its metadata (1 when absent).
 int reference_version(const nlohmann::json& metadata);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <span>
 
+#include "reference/boundary_light.h"
 #include "reference/integrators.h"
 #include "shared/sphere_walk.h"
 #include "transport/random_walk.h"
@@ -13,115 +14,20 @@ namespace {
 
 constexpr int kMaxSurfaceBounces = 64;
 constexpr int kRouletteAfter = 8;
-constexpr int kMaxShadowCrossings = 64;  // index-matched media a shadow ray crosses at most  // events before Russian roulette on the throughput starts
-// Fixed-point iterations for the refracted light path stop when the direction moves by less than this [rad].
-constexpr double kRefractionTolerance = 1e-7;
+constexpr int kMaxShadowCrossings = 64;  // index-matched media a shadow ray crosses at most
 
 double mean(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
 double max_component(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
 
 glm::dvec3 exp_neg(const glm::dvec3& v) { return glm::dvec3(std::exp(-v.x), std::exp(-v.y), std::exp(-v.z)); }
 
-glm::dvec3 hg_pdf_bands(double cos_theta, const glm::dvec3& g) {
-  return {henyey_greenstein_pdf(cos_theta, g.x), henyey_greenstein_pdf(cos_theta, g.y),
-          henyey_greenstein_pdf(cos_theta, g.z)};
-}
+}  // namespace
 
-// The refracted beam of a directional light that reaches medium point x: entry point, inside direction, the
-// irradiance factor (transmittance x beam compression) and the path length inside.
-struct RefractedBeam {
-  bool found = false;
-  glm::dvec3 entry, direction;  // direction: the way the light travels inside
-  double irradiance_factor = 0.0;
-  double distance = 0.0;
-  double offset = 0.0;  // the entry point's self-intersection offset (SurfaceHit::offset)
-};
-
-RefractedBeam find_refracted_beam(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 light_dir) {
-  const ObjectData& o = s.rt.object(object);
-  RefractedBeam beam;
-  glm::dvec3 toward = -light_dir, inside(0.0);
-  SurfaceHit hit;
-  bool converged = false;
-  for (int iteration = 0; iteration < 16 && !converged; ++iteration) {
-    hit = s.rt.intersect(x, toward);
-    if (!hit.hit() || hit.object != object) return beam;
-    if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;  // the boundary faces away from the light
-    inside = refract(light_dir, hit.normal, o.eta);
-    converged = glm::length(-inside - toward) < kRefractionTolerance;
-    toward = -inside;
-  }
-  // Converged: the last hit is the entry point (its ray differs from the light path's by under the tolerance).
-  // Otherwise the last direction is traced once more and accepted only if the light refracted there travels
-  // along it. (Accepting an unconverged direction let cos(theta_t) approach 0 and the compression blow up.)
-  if (!converged) {
-    hit = s.rt.intersect(x, toward);
-    if (!hit.hit() || hit.object != object || glm::dot(hit.normal, light_dir) >= 0.0) return beam;
-    inside = refract(light_dir, hit.normal, o.eta);
-    if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;
-  }
-  beam.entry = hit.position;
-  beam.direction = inside;
-  beam.distance = hit.t;
-  beam.offset = hit.offset;
-  double cos_i = -glm::dot(light_dir, hit.normal);
-  double T12 = 1.0 - dielectric_reflectance(light_dir, hit.normal, o.eta);
-  // Beam compression of a locally flat boundary: power through area A arrives on cos(theta_i) A and leaves on
-  // cos(theta_t) A. Focusing by curvature is neglected: measured through the interpolated normals of the bunny
-  // mesh by finite differences it gave spurious factors up to 3e4 (that normal field is not a smooth surface).
-  double compression = cos_i / std::max(1e-9, glm::dot(-beam.direction, hit.normal));
-  beam.irradiance_factor = T12 * compression;
-  beam.found = true;
-  return beam;
-}
-
-// The refracted path from a point light at x_l (outside) to medium point x: the entry point y solves, by
-// fixed-point iteration, "the light's ray x_l -> y refracts toward x". Irradiance factor: flux conservation in
-// the pencil through a locally flat boundary, with the light at height D = |y - x_l| cos(theta_i) above the
-// tangent plane and x at depth d = |x - y| cos(theta_t) below it (refracted_point_irradiance: T12 I / (D + d /
-// eta)^2 at normal incidence, the light's image seen from inside, and the directional light's cos(theta_i) /
-// cos(theta_t) compression as D grows). `irradiance_factor` holds E_perp / I.
-RefractedBeam find_refracted_point_beam(const ReferenceScene& s, int object, glm::dvec3 x, glm::dvec3 x_l) {
-  const ObjectData& o = s.rt.object(object);
-  RefractedBeam beam;
-  glm::dvec3 toward = glm::normalize(x_l - x), light_dir(0.0), inside(0.0);
-  SurfaceHit hit;
-  bool converged = false;
-  for (int iteration = 0; iteration < 32 && !converged; ++iteration) {
-    hit = s.rt.intersect(x, toward);
-    if (!hit.hit() || hit.object != object) return beam;
-    light_dir = glm::normalize(hit.position - x_l);
-    if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;  // the boundary faces away from the light
-    inside = refract(light_dir, hit.normal, o.eta);
-    converged = glm::length(-inside - toward) < kRefractionTolerance;
-    toward = -inside;
-  }
-  if (!converged) {  // as for directional lights: trace the last direction once more and check it
-    hit = s.rt.intersect(x, toward);
-    if (!hit.hit() || hit.object != object) return beam;
-    light_dir = glm::normalize(hit.position - x_l);
-    if (glm::dot(hit.normal, light_dir) >= 0.0) return beam;
-    inside = refract(light_dir, hit.normal, o.eta);
-    if (glm::dot(inside, -toward) < 1.0 - 1e-6) return beam;  // not converged: no light path
-  }
-  double cos_i = -glm::dot(light_dir, hit.normal), cos_t = -glm::dot(inside, hit.normal);
-  if (cos_i <= 1e-9 || cos_t <= 1e-9) return beam;
-  double D = glm::length(hit.position - x_l) * cos_i, d = hit.t * cos_t;
-  beam.entry = hit.position;
-  beam.direction = inside;
-  beam.distance = hit.t;
-  beam.offset = hit.offset;
-  beam.irradiance_factor = (1.0 - dielectric_reflectance(light_dir, hit.normal, o.eta)) *
-                          refracted_point_irradiance(D, d, cos_i, cos_t, o.eta);
-  beam.found = true;
-  return beam;
-}
-
-// Transmittance along the segment from `a` to `b` inside object o whose homogeneous coefficients are `k` (the
-// material's, or a textured material's at the point the path entered): exact in a homogeneous medium; in a
-// heterogeneous one, ratio tracking (Novak et al. 2014): tentative points at the rate mu of the largest band
-// majorant, each multiplying band k by 1 - sigma_t,k(x) / mu. Unbiased, and in [0, 1] because mu >= sigma_t.
-glm::dvec3 transmittance(const ObjectData& o, const MediumCoefficients& k, glm::dvec3 a, glm::dvec3 b, Rng& rng) {
+// Exact in a homogeneous medium; in a heterogeneous one, ratio tracking (Novak et al. 2014): tentative points at the
+// rate mu of the largest band majorant, each multiplying band k by 1 - sigma_t,k(x) / mu. Unbiased, and in [0, 1]
+// because mu >= sigma_t.
+glm::dvec3 medium_transmittance(const ObjectData& o, const MediumCoefficients& k, glm::dvec3 a, glm::dvec3 b,
+                                Rng& rng) {
   const double length = glm::length(b - a);
   if (!o.heterogeneous()) return exp_neg(k.sigma_t() * length);
   const double mu = max_component(o.majorant);
@@ -133,8 +39,6 @@ glm::dvec3 transmittance(const ObjectData& o, const MediumCoefficients& k, glm::
   }
   return T;
 }
-
-}  // namespace
 
 // Index-matched media on a shadow ray attenuate it: nothing bends the ray at their boundaries, so the light
 // crosses them along the same straight line. (Stopping at every surface lost the light through a bunny's front
@@ -150,7 +54,7 @@ glm::dvec3 shadow_transmittance(const ReferenceScene& s, glm::dvec3 origin, glm:
     // The far side: the next surface must be the same object's (nested or touching media are not supported).
     const SurfaceHit leave = s.rt.intersect(enter.position, direction, t_max - enter.t);
     if (!leave.hit() || leave.object != enter.object) return glm::dvec3(0.0);
-    T *= transmittance(o, o.medium_at(enter.uv), enter.position, leave.position, rng);
+    T *= medium_transmittance(o, o.medium_at(enter.uv), enter.position, leave.position, rng);
     if (max_component(T) <= 0.0) return T;
     origin = leave.position;
     t_max -= enter.t + leave.t;
@@ -161,47 +65,24 @@ glm::dvec3 shadow_transmittance(const ReferenceScene& s, glm::dvec3 origin, glm:
 namespace {
 
 // Next-event estimation at a medium scattering vertex: light in-scattered toward -path_dir, through the medium
-// `k` of the path.
+// `k` of the path: a point light inside this medium straight through it, every other light through the boundary
+// (boundary_light.h).
 glm::dvec3 medium_next_event(const ReferenceScene& s, int object, const MediumCoefficients& k, glm::dvec3 x,
                              glm::dvec3 path_dir, Rng& rng) {
   const ObjectData& o = s.rt.object(object);
-  glm::dvec3 L(0.0);
-  for (const DirectionalLight& light : s.scene.lights) {
-    glm::dvec3 light_dir = glm::normalize(glm::dvec3(light.direction));
-    RefractedBeam beam = find_refracted_beam(s, object, x, light_dir);
-    if (!beam.found) continue;
-    glm::dvec3 entry_outside = beam.entry - beam.offset * light_dir * 2.0;
-    const glm::dvec3 outside = shadow_transmittance(s, entry_outside, -light_dir, 1e30, rng);
-    if (max_component(outside) <= 0.0) continue;
-    glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
-    L += glm::dvec3(light.radiance) * beam.irradiance_factor * outside * transmittance(o, k, beam.entry, x, rng) * phase;
-  }
+  glm::dvec3 L = light_through_boundary(s, object, k, x, path_dir, rng);
   for (std::size_t i = 0; i < s.scene.point_lights.size(); ++i) {
+    if (s.rt.medium_of_point_light(i) != object) continue;
+    // A light inside this medium: straight to it when no boundary is in between (a concave medium's light
+    // behind a fold reaches x only through the boundary: not estimated, as for thin parts).
     const PointLight& light = s.scene.point_lights[i];
-    glm::dvec3 x_l(light.position);
-    const int light_medium = s.rt.medium_of_point_light(i);
-    if (light_medium == object) {
-      // A light inside this medium: straight to it when no boundary is in between (a concave medium's light
-      // behind a fold reaches x only through the boundary: not estimated, as for thin parts).
-      const glm::dvec3 to_light = x_l - x;
-      const double d = glm::length(to_light);
-      if (!(d > 0.0) || s.rt.intersect(x, to_light / d, d, 0.0).hit()) continue;
-      const glm::dvec3 light_dir = -to_light / d;  // the way the light travels
-      glm::dvec3 phase = hg_pdf_bands(glm::dot(light_dir, -path_dir), o.g);
-      L += point_light_intensity(s, light, light_dir) / (d * d) * transmittance(o, k, x_l, x, rng) * phase;
-      continue;
-    }
-    if (light_medium >= 0) continue;  // inside another medium: reaches x only through two boundaries
-    RefractedBeam beam = find_refracted_point_beam(s, object, x, x_l);
-    if (!beam.found) continue;
-    glm::dvec3 light_dir = glm::normalize(beam.entry - x_l);
-    glm::dvec3 entry_outside = beam.entry - beam.offset * light_dir * 2.0;
-    double to_light = glm::length(x_l - entry_outside);
-    const glm::dvec3 outside = shadow_transmittance(s, entry_outside, -light_dir, to_light - EmbreeScene::offset_at(x_l), rng);
-    if (max_component(outside) <= 0.0) continue;
-    glm::dvec3 phase = hg_pdf_bands(glm::dot(beam.direction, -path_dir), o.g);
-    L += point_light_intensity(s, light, light_dir) * beam.irradiance_factor * outside *
-         transmittance(o, k, beam.entry, x, rng) * phase;
+    const glm::dvec3 x_l(light.position);
+    const glm::dvec3 to_light = x_l - x;
+    const double d = glm::length(to_light);
+    if (!(d > 0.0) || s.rt.intersect(x, to_light / d, d, 0.0).hit()) continue;
+    const glm::dvec3 light_dir = -to_light / d;  // the way the light travels
+    const glm::dvec3 phase = henyey_greenstein_pdf_bands(glm::dot(light_dir, -path_dir), o.g);
+    L += point_light_intensity(s, light, light_dir) / (d * d) * medium_transmittance(o, k, x_l, x, rng) * phase;
   }
   return L;
 }
@@ -352,7 +233,7 @@ bool scatter(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) {
   if (s.max_scatter > 0 && ++p.scatterings >= s.max_scatter) return false;
   if (sphere_jump(s, p, rng, x)) return roulette(p, rng);
   glm::dvec3 next = sample_henyey_greenstein(rng, p.direction, o.g[p.hero]);
-  glm::dvec3 phase = hg_pdf_bands(glm::dot(next, p.direction), o.g);
+  glm::dvec3 phase = henyey_greenstein_pdf_bands(glm::dot(next, p.direction), o.g);
   p.throughput *= phase / phase[p.hero];
   p.r_u *= phase / phase[p.hero];
   p.origin = x, p.direction = next;

@@ -22,6 +22,11 @@ double henyey_greenstein_pdf(double cos_theta, double g) {
   return (1.0 - g * g) / (4.0 * M_PI * denominator * std::sqrt(denominator));
 }
 
+glm::dvec3 henyey_greenstein_pdf_bands(double cos_theta, const glm::dvec3& g) {
+  return {henyey_greenstein_pdf(cos_theta, g.x), henyey_greenstein_pdf(cos_theta, g.y),
+          henyey_greenstein_pdf(cos_theta, g.z)};
+}
+
 glm::dvec3 sample_henyey_greenstein(Rng& rng, const glm::dvec3& direction, double g) {
   double xi = rng.uniform();
   double cos_theta;

@@ -16,6 +16,8 @@ double sample_free_flight(Rng& rng, double sigma_t);
 // g > 0 scatters forward).
 glm::dvec3 sample_henyey_greenstein(Rng& rng, const glm::dvec3& direction, double g);
 double henyey_greenstein_pdf(double cos_theta, double g);  // [1/sr], cos_theta between old and new directions
+// The same per band, for per-band asymmetries g.
+glm::dvec3 henyey_greenstein_pdf_bands(double cos_theta, const glm::dvec3& g);
 
 // Fresnel reflectance for light travelling in `direction` that meets a boundary with unit normal `normal`
 // (either orientation) passing from relative index 1 into eta_ratio = n_other_side / n_this_side.

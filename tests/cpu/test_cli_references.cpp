@@ -124,13 +124,14 @@ TEST(CliReferences, ResumeRefusesAnythingButTheSameReference) {
   // Version 1 (no "reference_version"): its samples estimate another image.
   ASSERT_EQ(run(render).exit_code, 0);
   nlohmann::json m = nlohmann::json::parse(std::ifstream(meta));
-  EXPECT_EQ(m["reference_version"].get<int>(), 2);
+  EXPECT_EQ(m["reference_version"].get<int>(), lucent::reference::kReferenceVersion);
   m.erase("reference_version");
   std::ofstream(meta) << m.dump();
   Result old = run(resume);
   EXPECT_NE(old.exit_code, 0);
   EXPECT_EQ(old.output, "lucent: " + meta + ": cannot resume: the reference was rendered by version 1 of the "
-                        "references' estimators, this lucent renders version 2; its samples estimate another image: "
+                        "references' estimators, this lucent renders version " + std::to_string(lucent::reference::kReferenceVersion) +
+                            "; its samples estimate another image: "
                         "render it anew\n");
   // Another scene under the same file name.
   ASSERT_EQ(run(render).exit_code, 0);

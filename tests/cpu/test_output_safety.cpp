@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "reference/reference_renderer.h"
+
 #include "lucent/material.h"
 #include "../cli_runner.h"
 #include "lucent/error.h"
@@ -339,7 +341,8 @@ TEST(OutputSafetyCli, LinksLongNamesAndResumingTheWrongReference) {
   auto other_integrator = run_cli("reference " + scene + " --integrator volpath --spp 1 -q --resume -o " + ref);
   EXPECT_EQ(other_integrator.output, "lucent: " + (dir / "r.meta.json").string() +
                                          ": cannot resume: the reference has integrator \"bssrdf\", this run \"volpath\"\n");
-  put(dir / "r.meta.json", R"({"integrator": "bssrdf", "seed": 1, "samples_per_pixel": 2147483647, "reference_version": 2, )"
+  put(dir / "r.meta.json", R"({"integrator": "bssrdf", "seed": 1, "samples_per_pixel": 2147483647, "reference_version": )" +
+                            std::to_string(lucent::reference::kReferenceVersion) + R"(, )"
                             R"("models": ")" + std::string(lucent::to_string(lucent::kDefaultBssrdfModel)) + R"("})");
   auto overflow = run_cli("reference " + scene + " --integrator bssrdf --spp 1 -q --resume -o " + ref);
   EXPECT_EQ(overflow.output, "lucent: " + (dir / "r.meta.json").string() +
