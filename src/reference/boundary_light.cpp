@@ -24,12 +24,10 @@ constexpr double kMaxStepOfRadius = 0.25;     // longest step on the boundary, i
 constexpr double kSameChain = 1e-4;
 constexpr int kMaxTrials = 1024;          // seeds drawn to find a chain again: (1 - p_Z)^1024 of 1 / p_Z is cut
 constexpr int kFacingTries = 8;           // surface samples a seed may take to face the light
-// The probabilities with which a vertex estimates the unreflected chains beyond those its deterministic seeds find,
-// and the chains reflected once inside, where the straight line to the light crosses no medium; both fall with that
-// line's transmittance, to at least kLeastProbability.
-constexpr double kOtherChainsProbability = 0.25;
-constexpr double kReflectedChainsProbability = 0.1;
-constexpr double kLeastProbability = 0.02;
+// The probability with which a vertex estimates the unreflected chains beyond those its deterministic seeds find, and
+// the least with which it estimates the chains reflected once inside (light_through_chains).
+constexpr double kOtherChainsProbability = 0.1;
+constexpr double kLeastReflectedProbability = 0.05;
 
 // A light as the chains see it.
 struct LightTarget {
@@ -261,8 +259,9 @@ bool same_chain(const SurfaceRoot& a, const SurfaceRoot& b) {
 }
 
 // The chains found from deterministic seeds (at most two, each counted once).
+constexpr int kMaxKnownChains = 8;
 struct KnownChains {
-  std::array<SurfaceRoot, 2> roots{};
+  std::array<SurfaceRoot, kMaxKnownChains> roots{};
   int count = 0;
   bool contains(const SurfaceRoot& z) const {
     for (int i = 0; i < count; ++i)
@@ -270,7 +269,7 @@ struct KnownChains {
     return false;
   }
   void add(const SurfaceRoot& z) {
-    if (z.found && !contains(z) && count < 2) roots[static_cast<std::size_t>(count++)] = z;
+    if (z.found && !contains(z) && count < kMaxKnownChains) roots[static_cast<std::size_t>(count++)] = z;
   }
 };
 
@@ -505,17 +504,35 @@ glm::dvec3 chains_of(const ReferenceScene& s, int object, const MediumCoefficien
   return L;
 }
 
-// Every chain of one light. The deterministic seeds: e where the straight line from x toward the light leaves the
-// object, and the rim seed; for chains reflected once, those with r where the line away from the light leaves (light
-// reflected at the far side back toward x) and where the rim seed's light meets the boundary again. The estimates
-// beyond the unreflected chains' deterministic ones run with a probability (Russian roulette, unbiased) that follows
-// the transmittance along the straight line: deep inside, where every chain's light is faint, they are rarely worth
-// their cost.
+// The seed of a large flat face that faces the light: where the light refracted by that face, traced back from x,
+// meets the object; a seed only when that point is on the face (the face's chain then needs no Newton step for a
+// directional light).
+bool face_seed(const ReferenceScene& s, int object, glm::dvec3 x, int face, const LightTarget& light, SurfacePoint& e,
+               BoundaryLightCounts* counts) {
+  const ObjectData& o = s.rt.object(object);
+  const glm::dvec3 n(o.faces.patches[static_cast<std::size_t>(face)].normal);
+  const glm::dvec3 travel = light.travel_at(x);
+  if (!(glm::dot(n, travel) < 0.0)) return false;
+  const double cos_i = -glm::dot(travel, n);
+  const double cos_t = std::sqrt(std::max(0.0, 1.0 - (1.0 - cos_i * cos_i) / (o.eta * o.eta)));
+  const glm::dvec3 inside = glm::normalize(travel / o.eta + (cos_i / o.eta - cos_t) * n);
+  return exit_along(s, object, x, -inside, e, counts) &&
+         o.faces.patch_of[static_cast<std::size_t>(e.triangle)] == face;
+}
+
+// Every chain of one light. The deterministic seeds of unreflected chains: e where the straight line from x toward
+// the light leaves the object, the rim seed, and each large flat face's seed; of chains reflected once, each of their
+// solutions' e (or the straight line's, where there is none) with r where the light that arrives along it would go on
+// past x, and on flat faces with r on each other face where that light reflected there would reach x. Manifold sampling of the other chains
+// runs with a fixed probability, and the chains reflected once with one that follows the transmittance from x to
+// where the first solution's light would leave past x and back (Russian roulette, unbiased): light reflected at the
+// far side is worth its cost near that side.
 glm::dvec3 light_through_chains(const ReferenceScene& s, int object, const MediumCoefficients& k, glm::dvec3 x,
                                 glm::dvec3 path_dir, const LightTarget& light, const glm::dvec3& light_radiance,
                                 const PointLight* point_light, Rng& rng, BoundaryLightCounts* counts) {
   if (counts) ++counts->estimates;
-  SurfacePoint toward, rim;
+  const ObjectData& o = s.rt.object(object);
+  SurfacePoint toward, seed;
   const bool has_toward = exit_along(s, object, x, light.toward_from(x), toward, counts);
   KnownChains unreflected;
   if (has_toward) {
@@ -524,25 +541,61 @@ glm::dvec3 light_through_chains(const ReferenceScene& s, int object, const Mediu
     if (counts) counts->primary_evaluations += counts->evaluations - before;
     if (counts && unreflected.count > 0) ++counts->primary_found;
   }
-  const bool has_rim =
-      unreflected.count > 0 && rim_seed(s, object, x, unreflected.roots[0].point, light, rim, counts);
-  if (has_rim) unreflected.add(solve(s, object, x, rim, SurfacePoint{}, 0, light, counts));
+  if (unreflected.count > 0 && rim_seed(s, object, x, unreflected.roots[0].point, light, seed, counts))
+    unreflected.add(solve(s, object, x, seed, SurfacePoint{}, 0, light, counts));
+  for (int face = 0; face < static_cast<int>(o.faces.patches.size()); ++face)
+    if (face_seed(s, object, x, face, light, seed, counts))
+      unreflected.add(solve(s, object, x, seed, SurfacePoint{}, 0, light, counts));
+  glm::dvec3 L = chains_of(s, object, k, x, path_dir, 0, unreflected, kOtherChainsProbability, light, light_radiance,
+                           point_light, rng, counts);
+  if (!has_toward) return L;
 
+  // The entries of reflected chains: each unreflected solution's exit point with the way its light goes inside (or,
+  // where none was found, the straight line's exit with the light's way), and where that light would leave past x.
+  struct Entry {
+    SurfacePoint e;
+    glm::dvec3 w;
+  };
+  std::array<Entry, kMaxKnownChains> entries;
+  const int entry_count = std::max(1, unreflected.count);
+  for (int i = 0; i < entry_count; ++i) {
+    const SurfacePoint e = unreflected.count > 0 ? unreflected.roots[static_cast<std::size_t>(i)].point : toward;
+    entries[static_cast<std::size_t>(i)] = {e, unreflected.count > 0 ? glm::normalize(x - e.position) : -light.toward_from(x)};
+  }
+  std::array<SurfacePoint, kMaxKnownChains> beyond;
+  std::array<bool, kMaxKnownChains> has_beyond{};
+  auto past_x = [&](int i) {
+    has_beyond[static_cast<std::size_t>(i)] =
+        exit_along(s, object, x, entries[static_cast<std::size_t>(i)].w, beyond[static_cast<std::size_t>(i)], counts);
+  };
+  past_x(0);
   const glm::dvec3 sigma_t = k.sigma_t();
-  const double depth = has_toward ? std::min({sigma_t.x, sigma_t.y, sigma_t.z}) * glm::length(toward.position - x) : 0.0;
-  const double transmittance = std::exp(-depth);
-  const double others = std::max(kLeastProbability, kOtherChainsProbability * transmittance);
-  glm::dvec3 L = chains_of(s, object, k, x, path_dir, 0, unreflected, others, light, light_radiance, point_light, rng,
-                           counts);
-  const double reflected = std::max(kLeastProbability, kReflectedChainsProbability * transmittance);
+  const double back_and_forth =
+      has_beyond[0] ? 2.0 * std::min({sigma_t.x, sigma_t.y, sigma_t.z}) * glm::length(beyond[0].position - x) : 0.0;
+  const double reflected = std::clamp(std::exp(-back_and_forth), kLeastReflectedProbability, 1.0);
   if (rng.uniform() < reflected) {
     KnownChains once;
-    SurfacePoint away, rim_back;
-    if (has_toward && exit_along(s, object, x, -light.toward_from(x), away, counts))
-      once.add(solve(s, object, x, toward, away, 1, light, counts));
-    if (has_rim && refracted_exit(s, object, rim, light, rim_back, counts))
-      once.add(solve(s, object, x, rim, rim_back, 1, light, counts));
-    L += chains_of(s, object, k, x, path_dir, 1, once, 1.0, light, light_radiance, point_light, rng, counts) /
+    for (int i = 0; i < entry_count; ++i) {
+      const SurfacePoint& e = entries[static_cast<std::size_t>(i)].e;
+      const glm::dvec3 w = entries[static_cast<std::size_t>(i)].w;
+      if (i > 0) past_x(i);
+      if (has_beyond[static_cast<std::size_t>(i)])
+        once.add(solve(s, object, x, e, beyond[static_cast<std::size_t>(i)], 1, light, counts));
+      // Light that entered through a flat face and reflected off another flat face: r where the reflected light,
+      // traced back from x, meets the object (on that face).
+      const int entry_face = o.faces.patch_of[static_cast<std::size_t>(e.triangle)];
+      if (entry_face < 0) continue;
+      for (int face = 0; face < static_cast<int>(o.faces.patches.size()) && once.count < kMaxKnownChains; ++face) {
+        const glm::dvec3 n(o.faces.patches[static_cast<std::size_t>(face)].normal);
+        if (face == entry_face || !(glm::dot(w, n) > 0.0)) continue;
+        SurfacePoint r;
+        if (exit_along(s, object, x, -(w - 2.0 * glm::dot(w, n) * n), r, counts) &&
+            o.faces.patch_of[static_cast<std::size_t>(r.triangle)] == face)
+          once.add(solve(s, object, x, e, r, 1, light, counts));
+      }
+    }
+    L += chains_of(s, object, k, x, path_dir, 1, once, kOtherChainsProbability, light, light_radiance, point_light,
+                   rng, counts) /
          reflected;
   }
   return L;

@@ -56,6 +56,7 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
       if (glm::dot(n, glm::dvec3(c.normal[0] + c.normal[1] + c.normal[2])) < 0.0) n = -n;
       d.planes.emplace_back(glm::vec3(n), static_cast<float>(std::sqrt(0.5 * length)));
     }
+    d.faces = flat_patches(d.positions, d.indices, d.normals, d.neighbours);
     d.sigma_a = glm::dvec3(m.sigma_a) * static_cast<double>(scale_mm);
     d.sigma_s = glm::dvec3(m.sigma_s) * static_cast<double>(scale_mm);
     d.g = m.g;

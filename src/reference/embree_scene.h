@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "lucent/scene.h"
+#include "geometry/flat_patches.h"
 #include "reference/alias_table.h"
 
 namespace lucent::reference {
@@ -76,6 +77,7 @@ struct ObjectData {
   // w the square root of its area (its size).
   std::vector<std::array<std::int32_t, 3>> neighbours;
   std::vector<glm::vec4> planes;
+  FlatPatches faces;  // its large flat faces (geometry/flat_patches.h)
 };
 
 struct SurfaceSample {

@@ -68,7 +68,9 @@ namespace {
 // `k` of the path: a point light inside this medium straight through it, every other light through the boundary
 // (boundary_light.h).
 glm::dvec3 medium_next_event(const ReferenceScene& s, int object, const MediumCoefficients& k, glm::dvec3 x,
-                             glm::dvec3 path_dir, Rng& rng) {
+                             glm::dvec3 path_dir, const Rng& path_rng) {
+  // Its own random numbers: the path's do not depend on how many the estimate draws.
+  Rng rng = path_rng.split();
   const ObjectData& o = s.rt.object(object);
   glm::dvec3 L = light_through_boundary(s, object, k, x, path_dir, rng);
   for (std::size_t i = 0; i < s.scene.point_lights.size(); ++i) {

@@ -32,14 +32,12 @@ LUCENT_SHADER_BEGIN
 using creal = double;
 using creal2 = glm::dvec2;
 using creal3 = glm::dvec3;
-using creal3x3 = glm::dmat3;
 LUCENT_SHADER_END
 #define LUCENT_CREAL(x) double(x)
 #else
 #define creal float
 #define creal2 vec2
 #define creal3 vec3
-#define creal3x3 mat3
 #define LUCENT_CREAL(x) float(x)
 #endif
 

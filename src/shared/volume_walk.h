@@ -1,7 +1,7 @@
 // volume_walk.h: the steps of a volumetric random walk written once for C++ and GLSL (bridge.h): free-flight
-// distances, Henyey-Greenstein phase sampling, reflection and refraction at a smooth dielectric boundary, and the
-// irradiance of a point light's pencil refracted by a locally flat boundary. The GPU path tracer (the random-walk
-// method) runs them in float; the sphere-jump tables are generated with them on both sides.
+// distances, Henyey-Greenstein phase sampling, reflection and refraction at a smooth dielectric boundary. The GPU
+// path tracer (the random-walk method) runs them in float; the sphere-jump tables are generated with them on both
+// sides. (Light through the boundary: shared/specular_chain.h.)
 #ifndef LUCENT_SHARED_VOLUME_WALK_H
 #define LUCENT_SHARED_VOLUME_WALK_H
 #include "shared/bridge.h"
@@ -61,14 +61,6 @@ LUCENT_INLINE vec3 refract_direction(vec3 direction, vec3 normal, float eta_rati
   float sin2_t = (1.0f - cos_i * cos_i) / (eta_ratio * eta_ratio);
   float cos_t = sqrt(max(0.0f, 1.0f - sin2_t));
   return normalize(direction / eta_ratio + (cos_i / eta_ratio - cos_t) * n);
-}
-
-// A point light's pencil refracted by a flat boundary: the light at height D above the plane, the receiver at
-// depth d below it, incidence cos_i and refraction cos_t. E_perp(receiver) / (T12 I) by flux conservation in the
-// pencil (1 / (D + d / eta)^2 at normal incidence).
-LUCENT_INLINE float refracted_point_irradiance(float D, float d, float cos_i, float cos_t, float eta) {
-  return 1.0f / (cos_t * (D / cos_i + d / (eta * cos_t)) *
-                 (D / (cos_i * cos_i) + d * cos_i / (eta * cos_t * cos_t * cos_t)));
 }
 
 LUCENT_SHADER_END

@@ -34,6 +34,10 @@ class Rng {
   // Uniform in [0, 1).
   double uniform() { return static_cast<double>(next()) * (1.0 / 4294967296.0); }
 
+  // A generator for a side computation (a next-event estimate) keyed on this one's state, which it does not advance:
+  // the numbers the path draws stay those it would draw without the side computation, whatever that draws.
+  Rng split() const { return Rng(mix(state_ ^ 0x5851f42d4c957f2dULL), mix(state_ + increment_)); }
+
  private:
   // SplitMix64's finalizer (Steele, Lea and Flood 2014): a bijection of 64-bit integers with full avalanche.
   static std::uint64_t mix(std::uint64_t z) {

@@ -7,6 +7,7 @@
 #include "methods/method.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -22,6 +23,7 @@
 #include "methods/random_walk/distance_grid.h"
 #include "methods/random_walk/random_walk_io.h"
 #include "methods/random_walk/triangle_bvh.h"
+#include "methods/random_walk/walk_boundary.h"
 #include "render/light_views.h"
 #include "render/view_accumulator.h"
 #include "shared/sphere_walk.h"
@@ -78,8 +80,10 @@ std::vector<float> jump_bank_g(const Scene& scene) {
   return banks;
 }
 
-// `triangles`: the scene's triangles at the instant rendered (any order), whose boxes bound each object's walk.
-std::vector<shader::WalkObjectGPU> walk_objects(const Scene& scene, std::span<const shader::TriangleGPU> triangles) {
+// `triangles`: the scene's triangles at the instant rendered (any order), whose boxes bound each object's walk;
+// `boundary`: each object's entries in the area distribution and its flat faces (walk_boundary.h).
+std::vector<shader::WalkObjectGPU> walk_objects(const Scene& scene, std::span<const shader::TriangleGPU> triangles,
+                                                const random_walk::WalkBoundary& boundary) {
   const std::vector<float> banks = jump_bank_g(scene);
   std::vector<glm::vec3> mesh_lower(scene.objects.size(), glm::vec3(1e30f)), mesh_upper(scene.objects.size(), glm::vec3(-1e30f));
   for (const shader::TriangleGPU& t : triangles) {
@@ -103,7 +107,9 @@ std::vector<shader::WalkObjectGPU> walk_objects(const Scene& scene, std::span<co
     o.sigma_s = glm::vec4(m.sigma_s * scale, 1.0f);
     o.g = glm::vec4(m.g, static_cast<float>(static_cast<int>(m.field.type)));
     glm::vec3 lower = mesh_lower[i], upper = mesh_upper[i];
-    o.mesh_lower = glm::vec4(lower, 0.0f), o.mesh_upper = glm::vec4(upper, 0.0f);
+    o.mesh_lower = glm::vec4(lower, std::bit_cast<float>(boundary.ranges[i].x));
+    o.mesh_upper = glm::vec4(upper, std::bit_cast<float>(boundary.ranges[i].y));
+    o.faces = glm::ivec4(boundary.face_ranges[i], 0, 0);
     // A field stays where the undeformed object is (scene_at_time's rule, as volpath places it).
     if (m.field.has_bounds) {
       lower = m.field.bounds_lower, upper = m.field.bounds_upper;
@@ -137,6 +143,7 @@ class RandomWalk final : public Method {
     bvh_ = random_walk::build_triangle_bvh(gathered.triangles);
     if (bvh_.nodes.empty()) throw Error(fmt::format("{}: method 'random-walk' needs at least one triangle", scene.source));
     rest_triangles_ = std::move(gathered.triangles);
+    boundary_ = random_walk::build_walk_boundary(scene, bvh_.triangles);
     jump_banks_ = jump_bank_g(scene);
     if (!jump_banks_.empty()) {
       random_walk::DistanceGridOptions options;
@@ -168,7 +175,10 @@ class RandomWalk final : public Method {
     }
     nodes_ = storage_buffer(bvh_.nodes, "random-walk BVH nodes");
     triangles_ = storage_buffer(bvh_.triangles, "random-walk triangles");
-    objects_ = storage_buffer(walk_objects(scene, rest_triangles_), "random-walk objects");
+    objects_ = storage_buffer(walk_objects(scene, rest_triangles_, boundary_), "random-walk objects");
+    neighbours_ = storage_buffer(boundary_.neighbours, "random-walk triangle neighbours");
+    areas_ = storage_buffer(boundary_.areas, "random-walk surface areas");
+    faces_ = storage_buffer(boundary_.faces, "random-walk flat faces");
     glCreateBuffers(1, &block_buffer_);
     glNamedBufferStorage(block_buffer_, sizeof(shader::RandomWalkGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gpu::label_object(GL_BUFFER, block_buffer_, "random-walk block");
@@ -187,6 +197,9 @@ class RandomWalk final : public Method {
     glDeleteBuffers(1, &nodes_);
     glDeleteBuffers(1, &triangles_);
     glDeleteBuffers(1, &objects_);
+    glDeleteBuffers(1, &neighbours_);
+    glDeleteBuffers(1, &areas_);
+    glDeleteBuffers(1, &faces_);
     glDeleteBuffers(1, &spheres_);
     glDeleteTextures(1, &distance_texture_);
   }
@@ -243,6 +256,9 @@ class RandomWalk final : public Method {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_NODES, nodes_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_TRIANGLES, triangles_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_OBJECTS, objects_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_NEIGHBOURS, neighbours_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_AREAS, areas_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_FACES, faces_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_PATHS, paths_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_COUNTERS, counters_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_SPHERES, spheres_ != 0 ? spheres_ : objects_);
@@ -292,13 +308,15 @@ class RandomWalk final : public Method {
     return true;
   }
   bool update_materials(const Scene& scene) override {
-    const std::vector<shader::WalkObjectGPU> objects = walk_objects(scene, bvh_.triangles);
+    const std::vector<shader::WalkObjectGPU> objects = walk_objects(scene, bvh_.triangles, boundary_);
     glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
     return true;
   }
   std::size_t gpu_memory_bytes() const override {
     return accumulated_.gpu_memory_bytes() + sphere_bytes_ + grid_.distances.size() * sizeof(float) + path_capacity_ * sizeof(shader::WalkPathGPU) + bvh_.nodes.size() * sizeof(shader::BvhNodeGPU) +
-           bvh_.triangles.size() * sizeof(shader::TriangleGPU) + scene_.objects.size() * sizeof(shader::WalkObjectGPU);
+           bvh_.triangles.size() * sizeof(shader::TriangleGPU) + scene_.objects.size() * sizeof(shader::WalkObjectGPU) +
+           boundary_.neighbours.size() * sizeof(glm::ivec4) + boundary_.areas.size() * sizeof(glm::vec2) +
+           boundary_.faces.size() * sizeof(glm::vec4);
   }
 
  private:
@@ -322,7 +340,10 @@ class RandomWalk final : public Method {
     glNamedBufferSubData(triangles_, 0, static_cast<GLsizeiptr>(bvh_.triangles.size() * sizeof(shader::TriangleGPU)),
                          bvh_.triangles.data());
     geometry_time_ = context.time_seconds;
-    const std::vector<shader::WalkObjectGPU> objects = walk_objects(context.scene, moved);
+    random_walk::update_walk_areas(boundary_, bvh_.triangles);
+    glNamedBufferSubData(areas_, 0, static_cast<GLsizeiptr>(boundary_.areas.size() * sizeof(glm::vec2)),
+                         boundary_.areas.data());
+    const std::vector<shader::WalkObjectGPU> objects = walk_objects(context.scene, moved, boundary_);
     glNamedBufferSubData(objects_, 0, static_cast<GLsizeiptr>(objects.size() * sizeof(objects[0])), objects.data());
   }
 
@@ -429,10 +450,12 @@ class RandomWalk final : public Method {
   std::vector<int> light_media_;
   render::ViewAccumulator accumulated_{"random-walk accumulated radiance"};
   GLuint block_buffer_ = 0, nodes_ = 0, triangles_ = 0, objects_ = 0, paths_ = 0, counters_ = 0;
+  GLuint neighbours_ = 0, areas_ = 0, faces_ = 0;  // the surfaces the chain solvers walk on (walk_boundary.h)
   std::size_t path_capacity_ = 0;
   unsigned loop_cap_ = 0, loop_budget_ = 0;
   shader::WalkCountersGPU last_counters_{};
   random_walk::TriangleBvh bvh_;
+  random_walk::WalkBoundary boundary_;
   std::vector<shader::TriangleGPU> rest_triangles_;  // as gathered at time 0, in the scene's order
   double geometry_time_ = 0.0;
   float surface_moved_ = 0.0f;  // how far the surfaces moved from the rest pose the distance grid was built for

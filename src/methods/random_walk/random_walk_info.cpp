@@ -46,14 +46,15 @@ const MethodInfo random_walk_info{
     .quick_settings = R"({"samples_per_frame": 4})",
     // Against the bssrdf reference (the diffusion model), not the physics it estimates: the conformance sphere is
     // two transport mean free paths in radius, where the half-space model misses the light leaving through the
-    // back: measured 24.7% brighter than the standard dipole on llvmpipe (0.0538 against 0.0431; 38% darker than
-    // the directional dipole), and equal to volpath within noise (below and tests/gl/test_random_walk.cpp).
-    .reference_tolerance = 0.32,
+    // back and the light its curved boundary focuses: measured 60% brighter than the standard dipole on llvmpipe
+    // (0.0692 against 0.0431; 25% before volpath counted every refracted path with its focusing), and equal to
+    // volpath within noise (below and tests/gl/test_random_walk.cpp).
+    .reference_tolerance = 0.75,
     .estimates_volpath = true,     // estimates_volpath
-    // Where methods are weakest, against the volpath reference (llvmpipe, 2026-11-28, measured values after each):
-    .weakest = ConformanceTolerances{0.28,   // sphere, per pixel: 0.211
-                                     0.02, 0.32,  // backlit thin slab, mean and per pixel: 0.001, 0.242
-                                     0.02, 0.26},  // coarse box: 0.002, 0.193
+    // Where methods are weakest, against the volpath reference (llvmpipe, 2026-11-29, measured values after each):
+    .weakest = ConformanceTolerances{0.28,   // sphere, per pixel: 0.208
+                                     0.02, 0.32,  // backlit thin slab, mean and per pixel: 0.001, 0.232
+                                     0.02, 0.26},  // coarse box: 0.001, 0.183
 };
 
 }  // namespace lucent::methods

@@ -11,6 +11,12 @@
 #define LUCENT_BINDING_WALK_SPHERES 23    // SphereWalkGPU[]: the frame's sphere-jump records (std430)
 #define LUCENT_BINDING_WALK_PATHS 24      // WalkPathGPU[] per pixel: the paths in flight (std430)
 #define LUCENT_BINDING_WALK_COUNTERS 25   // WalkCountersGPU (std430)
+#define LUCENT_BINDING_WALK_NEIGHBOURS 26 // ivec4[] per TriangleGPU: xyz its neighbours across edges 0-1, 1-2, 2-0 (-1: none)
+#define LUCENT_BINDING_WALK_AREAS 27      // vec2[] per translucent object's triangles: x the cumulative area fraction,
+                                          // y the triangle's index (float bits); WalkObjectGPU.mesh_lower/upper.w
+#define LUCENT_BINDING_WALK_FACES 28      // vec4[]: the translucent objects' large flat faces (geometry/flat_patches.h),
+                                          // xyz the unit normal; WalkObjectGPU.faces; a triangle's face: its
+                                          // neighbours entry's w
 #define LUCENT_IMAGE_WALK_SUM 2           // RGBA32F: rgb the sum of the path samples, a their count
 #define LUCENT_TEX_WALK_DISTANCE 8        // R32F 3D: distance from each cell centre to the nearest surface
 
@@ -39,7 +45,7 @@ struct TriangleGPU {
   vec4 n2;  // xyz: unit shading normal at corner 2; w: 0
 };
 
-// One scene object as the walk sees it (std430, 144 bytes): a medium behind a dielectric boundary, or a
+// One scene object as the walk sees it (std430, 160 bytes): a medium behind a dielectric boundary, or a
 // Lambertian surface. Coefficients in 1/scene unit, unreduced sigma_s.
 struct WalkObjectGPU {
   vec4 sigma_a;   // xyz; w: eta (relative index)
@@ -49,8 +55,10 @@ struct WalkObjectGPU {
   vec4 lower;     // xyz: the field's world box [scene units]; w: the field's feature size [scene units]
   vec4 upper;     // xyz; w: the field's contrast
   vec4 majorant;  // xyz: max m sigma_t per band; w: the sphere-jump bank of its g (-1: no jumps; g differs by band)
-  vec4 mesh_lower;  // xyz: the mesh's own world box (a vertex outside it has leaked out of a closed mesh)
-  vec4 mesh_upper;
+  vec4 mesh_lower;  // xyz: the mesh's own world box (a vertex outside it has leaked out of a closed mesh); w: its
+                    // triangles' first entry in the area distribution (LUCENT_BINDING_WALK_AREAS; float bits)
+  vec4 mesh_upper;  // xyz; w: their count (float bits)
+  ivec4 faces;      // x: its first large flat face (LUCENT_BINDING_WALK_FACES), y: their count; zw: unused
 };
 
 // One pixel's path in flight between dispatches (std430, 128 bytes): a frame's paths advance over several
@@ -108,11 +116,11 @@ static_assert(offsetof(lucent::shader::BvhNodeGPU, upper) == 16);
 static_assert(sizeof(lucent::shader::TriangleGPU) == 96);
 static_assert(offsetof(lucent::shader::TriangleGPU, n0) == 48);
 static_assert(offsetof(lucent::shader::TriangleGPU, n2) == 80);
-static_assert(sizeof(lucent::shader::WalkObjectGPU) == 144);
+static_assert(sizeof(lucent::shader::WalkObjectGPU) == 160);
 static_assert(sizeof(lucent::shader::RandomWalkGPU) == 240 + 4 * LUCENT_MAX_LIGHTS);
 static_assert(sizeof(lucent::shader::WalkPathGPU) == 128);
 static_assert(sizeof(lucent::shader::WalkCountersGPU) == 16);
-static_assert(LUCENT_BINDING_WALK_NODES >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_WALK_COUNTERS <= LUCENT_METHOD_STORAGE_LAST);
+static_assert(LUCENT_BINDING_WALK_NODES >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_WALK_FACES <= LUCENT_METHOD_STORAGE_LAST);
 static_assert(LUCENT_IMAGE_WALK_SUM >= LUCENT_METHOD_IMAGE_FIRST && LUCENT_IMAGE_WALK_SUM <= LUCENT_METHOD_IMAGE_LAST);
 static_assert(LUCENT_TEX_WALK_DISTANCE >= LUCENT_METHOD_TEX_FIRST && LUCENT_TEX_WALK_DISTANCE <= LUCENT_METHOD_TEX_LAST);
 #endif

@@ -3,7 +3,7 @@
 // changes. Homogeneous media and procedural fields behind smooth dielectric boundaries (Fresnel, total internal
 // reflection), per-band Henyey-Greenstein phase functions with hero-band spectral MIS over the whole path, Lambertian
 // opaque surfaces with diffuse interreflection, and next-event estimation of every light through the refracting
-// boundary by the fixed-point refracted ray. Rays traverse the bounding volume hierarchy built on the CPU
+// boundary along every specular chain (boundary_light.glsl). Rays traverse the bounding volume hierarchy built on the CPU
 // (methods/random_walk/triangle_bvh.h). The walk's steps are the shared ones of shared/volume_walk.h; dense
 // media jump across spheres inside the medium (sphere_jump.glsl).
 #include "common/frame.glsl"
@@ -12,6 +12,7 @@
 #include "media/heterogeneous_field.h"
 #include "shared/random.h"
 #include "shared/sphere_walk.h"
+#include "shared/specular_chain.h"
 #include "shared/volume_walk.h"
 #include "methods/random_walk/random_walk_io.h"
 
@@ -65,7 +66,8 @@ float offset_at(vec3 p) { return kRelativeOffset * largest_abs(p); }
 // ---- rays -------------------------------------------------------------------------------------------------------
 struct Hit {
   float t;
-  int object;  // -1: miss
+  int object;    // -1: miss
+  int triangle;  // index into triangles[]
   vec3 position, normal, geometric_normal;  // normal: interpolated, out of the object; geometric: on its side
   float offset;
 };
@@ -83,6 +85,7 @@ float box_entry(vec3 lower, vec3 upper, vec3 origin, vec3 inv_direction, float t
 Hit trace(vec3 origin, vec3 direction, float t_max, float t_min) {
   Hit hit;
   hit.object = -1;
+  hit.triangle = -1;
   hit.t = t_max;
   vec3 inv_direction = 1.0f / mix(direction, vec3(1e-30f), lessThan(abs(direction), vec3(1e-30f)));
   int best = -1;
@@ -136,6 +139,7 @@ Hit trace(vec3 origin, vec3 direction, float t_max, float t_min) {
   TriangleGPU tri = triangles[best];
   float u = best_uv.x, v = best_uv.y;
   hit.object = floatBitsToInt(tri.p0.w);
+  hit.triangle = best;
   hit.position = tri.p0.xyz + u * tri.e1.xyz + v * tri.e2.xyz;
   hit.normal = normalize((1.0f - u - v) * tri.n0.xyz + u * tri.n1.xyz + v * tri.n2.xyz);
   vec3 ng = normalize(cross(tri.e1.xyz, tri.e2.xyz));
@@ -181,20 +185,27 @@ vec3 transmittance(int object, vec3 a, vec3 b) {
 }
 
 // The straight shadow ray from `origin` (outside every medium): opaque surfaces and refracting boundaries block
-// it, index-matched media attenuate it.
+// it, index-matched media attenuate it. One trace call for where the ray enters a medium and where it leaves it (the
+// shader compiler inlines every call).
 vec3 shadow_transmittance(vec3 origin, vec3 direction, float t_max) {
-  vec3 T = vec3(1.0f);
-  for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
+  vec3 T = vec3(1.0f), entered = origin;
+  int inside = -1;
+  // loop bound: checked; 2 kMaxShadowCrossings (128) (each iteration counted in loop_count, budgeted by random_walk.cpp)
+  for (int k = 0; k < 2 * kMaxShadowCrossings; ++k) {
     ++loop_count;
-    Hit enter = trace_from_surface(origin, direction, t_max);
-    if (enter.object < 0) return T;
-    if (!translucent(enter.object) || eta_of(enter.object) != 1.0f) return vec3(0.0f);
-    Hit leave = trace_from_surface(enter.position, direction, t_max - enter.t);
-    if (leave.object != enter.object) return vec3(0.0f);
-    T *= transmittance(enter.object, enter.position, leave.position);
-    if (max3(T) <= 0.0f) return T;
-    origin = leave.position;
-    t_max -= enter.t + leave.t;
+    Hit hit = trace_from_surface(origin, direction, t_max);
+    if (inside < 0) {
+      if (hit.object < 0) return T;
+      if (!translucent(hit.object) || eta_of(hit.object) != 1.0f) return vec3(0.0f);
+      inside = hit.object, entered = hit.position;
+    } else {
+      if (hit.object != inside) return vec3(0.0f);
+      T *= transmittance(inside, entered, hit.position);
+      if (max3(T) <= 0.0f) return T;
+      inside = -1;
+    }
+    origin = hit.position;
+    t_max -= hit.t;
   }
   return vec3(0.0f);
 }
@@ -208,71 +219,26 @@ vec3 point_intensity(LightGPU light, vec3 direction) {
   return I;
 }
 
-// The refracted path from a light to medium point x, by fixed-point iteration on the refracted direction
-// (volpath's find_refracted_beam and find_refracted_point_beam): entry point, direction inside, the irradiance
-// factor and the entry's offset. `point`: x_l is a point light's position, else light_dir its travel direction.
-struct Beam {
-  bool found;
-  vec3 entry, direction, light_dir;
-  float irradiance_factor, offset;
-};
-Beam refracted_beam(int object, vec3 x, bool point, vec3 x_l, vec3 light_dir) {
-  Beam beam;
-  beam.found = false;
-  float eta = eta_of(object);
-  vec3 toward = point ? normalize(x_l - x) : -light_dir, inside = vec3(0.0f);
-  Hit hit;
-  bool converged = false;
-  int iterations = point ? 32 : 16;
-  // loop bound: checked; at most 32 iterations per call, each counted in loop_count (budgeted by random_walk.cpp)
-  for (int iteration = 0; iteration < iterations && !converged; ++iteration) {
-    ++loop_count;
-    hit = trace_from_surface(x, toward, 1e30f);
-    if (hit.object != object) return beam;
-    if (point) light_dir = normalize(hit.position - x_l);
-    if (dot(hit.normal, light_dir) >= 0.0f) return beam;
-    inside = refract_direction(light_dir, hit.normal, eta);
-    converged = length(-inside - toward) < kRefractionTolerance;
-    toward = -inside;
-  }
-  if (!converged) {
-    hit = trace_from_surface(x, toward, 1e30f);
-    if (hit.object != object) return beam;
-    if (point) light_dir = normalize(hit.position - x_l);
-    if (dot(hit.normal, light_dir) >= 0.0f) return beam;
-    inside = refract_direction(light_dir, hit.normal, eta);
-    if (dot(inside, -toward) < 1.0f - 1e-6f) return beam;
-  }
-  float cos_i = -dot(light_dir, hit.normal), cos_t = -dot(inside, hit.normal);
-  float T12 = 1.0f - fresnel_reflectance(eta, abs(cos_i));
-  if (point) {
-    if (cos_i <= 1e-9f || cos_t <= 1e-9f) return beam;
-    float D = length(hit.position - x_l) * cos_i, d = hit.t * cos_t;
-    beam.irradiance_factor = T12 * refracted_point_irradiance(D, d, cos_i, cos_t, eta);
-  } else {
-    beam.irradiance_factor = T12 * cos_i / max(1e-9f, cos_t);
-  }
-  beam.entry = hit.position;
-  beam.direction = inside;
-  beam.light_dir = light_dir;
-  beam.offset = hit.offset;
-  beam.found = true;
-  return beam;
-}
+#include "methods/random_walk/shaders/boundary_light.glsl"
 
-// Light in-scattered at medium vertex x of `object` toward -path_dir (phase functions per band).
+// Light in-scattered at medium vertex x of `object` toward -path_dir (phase functions per band): a point light inside
+// this medium straight through it, every light outside it through the boundary (boundary_light.glsl).
 vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
   vec3 g = walk_objects[object].g.xyz;
   vec3 L = vec3(0.0f);
+  // Its own random numbers: the path's do not depend on how many the estimate draws.
+  uint path_key = rng_key, path_count = rng_count;
+  rng_key = pcg_hash(rng_key ^ pcg_hash(rng_count ^ 0x2545f491u));
+  rng_count = 0u;
   // loop bound: checked; at most LUCENT_MAX_LIGHTS lights per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     ++loop_count;
     LightGPU light = frame.lights[l];
     bool point = int(light.position.w) != LUCENT_LIGHT_DIRECTIONAL;
-    vec3 x_l = light.position.xyz;
     if (point) {
       int medium = light_medium(l);
       if (medium == object) {  // inside this medium: straight to it unless the boundary is in between
+        vec3 x_l = light.position.xyz;
         vec3 to_light = x_l - x;
         float d = length(to_light);
         if (!(d > 0.0f) || trace(x, to_light / d, d, 0.0f).object >= 0) continue;
@@ -283,16 +249,9 @@ vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
       }
       if (medium >= 0) continue;  // inside another medium
     }
-    Beam beam = refracted_beam(object, x, point, x_l, light.position.xyz);
-    if (!beam.found) continue;
-    vec3 entry_outside = beam.entry - beam.offset * beam.light_dir * 2.0f;
-    float t_max = point ? length(x_l - entry_outside) - offset_at(x_l) : 1e30f;
-    vec3 outside = shadow_transmittance(entry_outside, -beam.light_dir, t_max);
-    if (max3(outside) <= 0.0f) continue;
-    vec3 radiance = point ? point_intensity(light, beam.light_dir) : light.power.rgb;
-    L += radiance * beam.irradiance_factor * outside * transmittance(object, beam.entry, x) *
-         hg_phase_bands(dot(beam.direction, -path_dir), g);
+    L += light_through_boundary(object, x, path_dir, l);
   }
+  rng_key = path_key, rng_count = path_count;
   return L;
 }
 
@@ -304,20 +263,15 @@ vec3 lambertian_next_event(Hit hit, vec3 n, vec3 albedo) {
   for (int l = 0; l < frame.light_counts.x; ++l) {
     ++loop_count;
     LightGPU light = frame.lights[l];
-    if (int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL) {
-      vec3 to_light = -light.position.xyz;
-      float cos_l = dot(n, to_light);
-      if (cos_l <= 0.0f) continue;
-      L += albedo / kWalkPi * light.power.rgb * cos_l * shadow_transmittance(origin, to_light, 1e30f);
-    } else {
-      vec3 to_light = light.position.xyz - hit.position;
-      float d = length(to_light);
-      to_light /= d;
-      float cos_l = dot(n, to_light);
-      if (cos_l <= 0.0f) continue;
-      L += albedo / kWalkPi * point_intensity(light, -to_light) * cos_l / (d * d) *
-           shadow_transmittance(origin, to_light, d - offset_at(light.position.xyz));
-    }
+    bool directional = int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL;
+    vec3 to_light = directional ? -light.position.xyz : light.position.xyz - hit.position;
+    float d = directional ? 1.0f : length(to_light);
+    to_light /= d;
+    float cos_l = dot(n, to_light);
+    if (cos_l <= 0.0f) continue;
+    vec3 E = directional ? light.power.rgb : point_intensity(light, -to_light) / (d * d);
+    float t_max = directional ? 1e30f : d - offset_at(light.position.xyz);
+    L += albedo / kWalkPi * E * cos_l * shadow_transmittance(origin, to_light, t_max);
   }
   return L;
 }
@@ -368,6 +322,9 @@ float surface_distance_bound(vec3 x) {
   return texelFetch(distance_grid, cell, 0).r - length(x - centre) - method.jump_bound.x;
 }
 
+// The collision a jump's record represents, for its next-event estimate (n times the weight after it).
+vec3 jump_vertex, jump_vertex_direction, jump_vertex_weight;
+
 // At scattering vertex x (its next-event estimate done): jump across the largest sphere of the levels that lies
 // inside the medium, from a record of the frame's bank, turned toward a direction sampled from the phase function
 // with a uniform azimuth. The collisions inside count through the record's one vertex (n times its next-event
@@ -400,12 +357,14 @@ bool sphere_jump(vec3 x) {
   mat3 turn = mat3(c * basis[0] + s * basis[1], -s * basis[0] + c * basis[1], w);
   float radius = sphere_jump_level_radius(level) / sigma_hero;  // [scene units]
   float n = record.exit_dir.w;
+  jump_vertex_weight = vec3(0.0f);
   if (n >= 1.0f) {
     float j = record.vertex_dir.w;
     vec3 throughput_v = path_throughput * sphere_jump_throughput(j, record.vertex.w / sigma_hero, sigma_s, sigma_t, sigma_hero);
     vec3 r_u_v = path_r_u * sphere_jump_ratio(j, record.vertex.w / sigma_hero, sigma_t, sigma_hero);
-    vec3 v = x + radius * (turn * record.vertex.xyz);
-    path_radiance += n * throughput_v / mean3(r_u_v) * medium_next_event(path_medium, v, normalize(turn * record.vertex_dir.xyz));
+    jump_vertex = x + radius * (turn * record.vertex.xyz);
+    jump_vertex_direction = normalize(turn * record.vertex_dir.xyz);
+    jump_vertex_weight = n * throughput_v / mean3(r_u_v);
   }
   path_throughput *= sphere_jump_throughput(n, record.exit.w / sigma_hero, sigma_s, sigma_t, sigma_hero);
   path_r_u *= sphere_jump_ratio(n, record.exit.w / sigma_hero, sigma_t, sigma_hero);
@@ -414,11 +373,22 @@ bool sphere_jump(vec3 x) {
   return true;
 }
 
-// A scattering vertex at x: next-event estimation, then a sphere jump or the hero band's phase sampling.
+// A scattering vertex at x: next-event estimation, then a sphere jump (with the estimate at the collision its record
+// represents) or the hero band's phase sampling. The estimates share one call (the shader compiler inlines each).
 bool scatter(vec3 x) {
-  path_add(medium_next_event(path_medium, x, path_direction));
-  if (method.limits.z > 0 && ++path_scatterings >= method.limits.z) return false;
-  if (sphere_jump(x)) return roulette();
+  vec3 nee_x = x, nee_direction = path_direction, nee_weight = path_weight();
+  bool jumped = false;
+  // loop bound: checked; 2 (the vertex, then a jump's collision) (each iteration counted in loop_count, budgeted by random_walk.cpp)
+  for (int k = 0; k < 2; ++k) {
+    ++loop_count;
+    path_radiance += nee_weight * medium_next_event(path_medium, nee_x, nee_direction);
+    if (k == 1) break;
+    if (method.limits.z > 0 && ++path_scatterings >= method.limits.z) return false;
+    jumped = sphere_jump(x);
+    if (!jumped || max3(jump_vertex_weight) <= 0.0f) break;
+    nee_x = jump_vertex, nee_direction = jump_vertex_direction, nee_weight = jump_vertex_weight;
+  }
+  if (jumped) return roulette();
   vec3 g = walk_objects[path_medium].g.xyz;
   vec3 next = sample_hg(path_direction, g[path_hero], rnd(), rnd());
   vec3 phase = hg_phase_bands(dot(next, path_direction), g);
@@ -472,34 +442,36 @@ int delta_track(float boundary_t, out vec3 x) {
   return 0;  // the step bound: the path ends (a bias below any measurable level; see the method's doc)
 }
 
+// A free flight in the medium (delta tracking when heterogeneous): scatter, be absorbed, or reach the boundary. One
+// trace and one scatter call (the shader compiler inlines every call).
 bool medium_step() {
   int object = path_medium;
   ++path_steps;
-  if (heterogeneous(object)) {
-    Hit boundary = trace(path_origin, path_direction, 1e30f, 0.0f);
-    if (boundary.object < 0) return false;
-    vec3 x;
-    int flight = delta_track(boundary.t, x);
-    if (flight == 0) return false;
-    if (flight == 1) return scatter(x);
-    return leave_or_reflect(boundary);
-  }
+  bool field = heterogeneous(object);
   vec3 sigma_t = sigma_t_of(object);
-  float t = free_flight(sigma_t[path_hero], rnd());
+  float t = field ? 1e30f : free_flight(sigma_t[path_hero], rnd());
   Hit boundary = trace(path_origin, path_direction, t, 0.0f);
-  if (boundary.object < 0) {
-    vec3 x = path_origin + t * path_direction;
+  vec3 x = path_origin + t * path_direction;
+  int flight;  // 0 absorbed, 1 scattered at x, 2 reached the boundary
+  if (field) {
+    if (boundary.object < 0) return false;
+    flight = delta_track(boundary.t, x);
+  } else if (boundary.object < 0) {
     WalkObjectGPU o = walk_objects[object];
     if (isinf(t) || any(lessThan(x, o.mesh_lower.xyz)) || any(greaterThan(x, o.mesh_upper.xyz))) return false;
     vec3 attenuation = exp(-sigma_t * t);
     vec3 pdf = sigma_t * attenuation;
     path_throughput *= sigma_s_of(object) * attenuation / pdf[path_hero];
     path_r_u *= pdf / pdf[path_hero];
-    return scatter(x);
+    flight = 1;
+  } else {
+    vec3 attenuation = exp(-sigma_t * boundary.t);
+    path_throughput *= attenuation / attenuation[path_hero];
+    path_r_u *= attenuation / attenuation[path_hero];
+    flight = 2;
   }
-  vec3 attenuation = exp(-sigma_t * boundary.t);
-  path_throughput *= attenuation / attenuation[path_hero];
-  path_r_u *= attenuation / attenuation[path_hero];
+  if (flight == 0) return false;
+  if (flight == 1) return scatter(x);
   return leave_or_reflect(boundary);
 }
 
