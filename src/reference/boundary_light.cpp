@@ -249,13 +249,30 @@ struct SurfaceRoot {
   bool found = false;
   int reflections = 0;
   glm::dvec3 vertex{0.0};
-  double size = 0.0;  // of the vertex's triangle
-  SurfacePoint point;  // the exit point e
+  double size = 0.0;         // of the vertex's triangle
+  double uncertainty = 0.0;  // how far the vertex may lie from the exact solution: the Newton step left there [mm]
+  SurfacePoint point;        // the exit point e
 };
 
+// Two solutions are one chain when their first vertices lie within a small fraction of a triangle, or within what
+// their solves leave uncertain (near a caustic the miss at x hardly moves with the vertex, so a converged miss leaves
+// the vertex loose: a duplicate counted as a new chain would be weighted by its recount).
 bool same_chain(const SurfaceRoot& a, const SurfaceRoot& b) {
   return a.found && b.found && a.reflections == b.reflections &&
-         glm::length(a.vertex - b.vertex) < kSameChain * std::max(a.size, b.size);
+         glm::length(a.vertex - b.vertex) < std::max(kSameChain * std::max(a.size, b.size),
+                                                      4.0 * (a.uncertainty + b.uncertainty));
+}
+
+// The length of the Newton step that remains at a converged evaluation, in the plane of the chain's first vertex.
+double newton_step_left(const SurfaceEvaluation& v, int reflections) {
+  constexpr double kUnbounded = 1e300;
+  if (reflections == 0) {
+    const shader::ChainStep2 step = shader::chain_newton_step2(v.r_a, v.a_e_u, v.a_e_v, kUnbounded);
+    return step.ok ? glm::length(step.step) : 0.0;
+  }
+  const shader::ChainStep4 step = shader::chain_newton_step4(v.r_a, v.r_b, v.a_e_u, v.a_e_v, v.a_r_u, v.a_r_v, v.b_e_u,
+                                                             v.b_e_v, v.b_r_u, v.b_r_v, kUnbounded);
+  return step.ok ? glm::length(step.step_q) : 0.0;
 }
 
 // The chains found from deterministic seeds (at most two, each counted once).
@@ -288,7 +305,8 @@ SurfaceRoot solve(const ReferenceScene& s, int object, glm::dvec3 x, SurfacePoin
     if (counts) ++counts->evaluations;
     newton = shader::chain_newton_judge(newton, v.valid, v.relative, kSurfaceTolerance);
     if (newton.converged)
-      return {true, reflections, v.first_vertex, triangle_size(o, reflections == 0 ? e.triangle : r.triangle), e};
+      return {true, reflections, v.first_vertex, triangle_size(o, reflections == 0 ? e.triangle : r.triangle),
+              newton_step_left(v, reflections), e};
     if (newton.failed) return {};
     if (newton.accepted) {
       good_e = e, good_r = r, basis_e = v.basis_e, basis_r = v.basis_r;

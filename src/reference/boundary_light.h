@@ -6,14 +6,16 @@
 // the specular chains that connect it to the vertex (shared/specular_chain.h): the light refracts in at an exit
 // point e of the chain and reaches x after m internal reflections (m = 0 or 1). Every chain is weighted by the
 // exact generalized geometry term of the interpolated-normal surface, which holds the focusing of a curved boundary.
-//  - The primary chain: Newton's method on the direction leaving x, started from the direction toward the light
-//    after one fixed-point step (the light refracted where that ray meets the boundary, traced back).
-//  - Every other chain (further refracted paths in the caustic behind a convex boundary, light reflected once inside
-//    first) by specular manifold sampling (Zeltner, Georgiev and Jakob 2020): Newton from a random seed on the
-//    object's surface finds a chain Z with some probability p_Z; the number of further seeds drawn until Z is found
-//    again is geometric with mean 1 / p_Z, so f(Z) times that count is an unbiased estimate of the sum over chains.
-//    The primary chain, found again, counts nothing. These estimates run with a fixed probability each (Russian
-//    roulette) and are divided by it.
+//  - Known chains: Newton's method on the chain's boundary points (e; with a reflection also r), walking across the
+//    mesh's edges, from deterministic seeds: where the straight line from x toward the light leaves the object, the
+//    rim of the light's silhouette (the caustic behind a convex boundary), each large flat face that faces the light,
+//    and for one reflection where the light of each unreflected chain would leave past x. Each solution is made
+//    exact from x in the direction parametrization (whose Jacobian is the chain's factor) and counted once.
+//  - Every other chain by specular manifold sampling (Zeltner, Georgiev and Jakob 2020): Newton from a random seed on
+//    the object's surface finds a chain Z with some probability p_Z; the number of further seeds drawn until Z is
+//    found again is geometric with mean 1 / p_Z, so f(Z) times that count is an unbiased estimate of the sum over
+//    chains. A known chain found again counts nothing. It runs with a fixed probability (Russian roulette), the
+//    reflected chains with one that follows the transmittance to the far side and back, each divided by it.
 // At eta = 1 nothing bends the light: the straight ray to the light, through index-matched media, as before.
 #pragma once
 #include <cstdint>

@@ -15,9 +15,10 @@
 // with T the Fresnel transmittance at the exit vertex, F the internal reflectances, det taken between the
 // tangent planes of w and o. It is the delta of the light's direction pulled back through the chain to the
 // directions of x, i.e. the convention in which a camera path samples the same boundary (refraction about the
-// interpolated normal, radiance scaled by eta^2 across it). On a flat boundary it reduces to T cos_i / cos_t (and to
-// refracted_point_irradiance for point lights); behind a curved one it holds the focusing that the flat factor
-// misses. The derivation and its checks: docs/references.md, "volpath: delta lights behind refracting boundaries".
+// interpolated normal, radiance scaled by eta^2 across it). On a flat boundary it reduces to T cos_i / cos_t (and for a
+// point light to the flux through its refracted pencil; tested against a ray bundle); behind a curved one it holds the
+// focusing that the flat factor misses. The derivation and its checks: docs/references.md, "volpath: delta lights
+// behind refracting boundaries".
 //
 // Vertices come from triangles with per-vertex normals: the normal field n(y) = normalize(sum b_i n_i) is smooth
 // on each triangle, so d n / d y is exact there (chain_vertex_on_triangle).

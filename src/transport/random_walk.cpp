@@ -69,10 +69,4 @@ bool russian_roulette(Rng& rng, double& weight, double threshold, double surviva
   return true;
 }
 
-double refracted_point_irradiance(double D, double d, double cos_i, double cos_t, double eta) {
-  // Footprint rho(theta_i) = D tan(theta_i) + d tan(theta_t) on the plane at depth d; E_h = I sin(theta_i)
-  // d theta_i / (rho d rho); E_perp = E_h / cos(theta_t), with d theta_t / d theta_i = cos_i / (eta cos_t).
-  return 1.0 / (cos_t * (D / cos_i + d / (eta * cos_t)) * (D / (cos_i * cos_i) + d * cos_i / (eta * cos_t * cos_t * cos_t)));
-}
-
 }  // namespace lucent::reference

@@ -23,11 +23,6 @@ glm::dvec3 henyey_greenstein_pdf_bands(double cos_theta, const glm::dvec3& g);
 // (either orientation) passing from relative index 1 into eta_ratio = n_other_side / n_this_side.
 double dielectric_reflectance(const glm::dvec3& direction, const glm::dvec3& normal, double eta_ratio);
 glm::dvec3 reflect(const glm::dvec3& direction, const glm::dvec3& normal);
-// A point light's pencil refracted by a flat boundary: the light at height D above the plane, the receiver at
-// depth d below it, incidence cos_i and refraction cos_t. Returns E_perp(receiver) / (T12 I): the irradiance
-// on a surface facing the refracted ray per unit intensity and unit transmittance (flux conservation in the
-// pencil; 1 / (D + d / eta)^2 at normal incidence).
-double refracted_point_irradiance(double D, double d, double cos_i, double cos_t, double eta);
 // Refracted direction; requires no total internal reflection (dielectric_reflectance < 1).
 glm::dvec3 refract(const glm::dvec3& direction, const glm::dvec3& normal, double eta_ratio);
 

@@ -16,6 +16,7 @@
 #include "reference/embree_scene.h"
 #include "transport/estimate.h"
 #include "reference/integrators.h"
+#include "shared/specular_chain.h"
 #include "transport/random_walk.h"
 #include "transport/slab.h"
 
@@ -283,17 +284,32 @@ double bundle_irradiance(double D, double d, double theta_i, double eta, std::ui
   return E_horizontal / -t_axis.y;  // on a surface facing the refracted ray
 }
 
+// The chain factor volpath and the walk weigh a point light's light with (shared/specular_chain.h: per unit of I /
+// r^2, r from the exit point to the light) on a flat boundary, against the bundle.
 TEST(Volpath, PointLightIrradianceThroughFlatBoundaryMatchesRayBundle) {
   // Tolerance 2%: about 4e4 rays land in the counting disk (0.5% noise) and the footprint's density varies
   // linearly across it; the normal-incidence image formula 1 / (D + d / eta)^2 alone is off by 20-40% at 40-60
   // degrees, so a wrong footprint cannot pass.
-  const double eta = 1.4;
+  const double eta = 1.4, D = 1.0, d = 0.5;
+  const glm::dvec3 up(0.0, 1.0, 0.0);
   for (double theta_deg : {0.0, 25.0, 40.0, 60.0}) {
-    double theta = glm::radians(theta_deg);
-    double cos_t = std::sqrt(1.0 - std::pow(std::sin(theta) / eta, 2.0));
-    double formula = refracted_point_irradiance(1.0, 0.5, std::cos(theta), cos_t, eta);
-    double brute = bundle_irradiance(1.0, 0.5, theta, eta, 17 + static_cast<std::uint64_t>(theta_deg));
-    EXPECT_NEAR(brute / formula, 1.0, 0.02) << theta_deg << " degrees: formula " << formula << ", bundle " << brute;
+    const double theta = glm::radians(theta_deg);
+    const glm::dvec3 light(0.0, D, 0.0), axis(std::sin(theta), -std::cos(theta), 0.0);
+    const glm::dvec3 y = light + axis * (D / std::cos(theta)), t = refract(axis, up, eta);
+    const glm::dvec3 x = y + t * (d / -t.y);
+    // The chain from x back along the refracted ray, out through the plane y = 0 (one large flat triangle).
+    const glm::dvec3 p0(-100.0, 0.0, -100.0), p1(100.0, 0.0, -100.0), p2(0.0, 0.0, 100.0);
+    shader::ChainState chain = shader::chain_start(x, -t);
+    const shader::ChainVertex vertex = shader::chain_vertex_on_triangle(x, -t, p0, p1, p2, up, up, up);
+    chain = shader::chain_advance(chain, vertex);
+    const shader::ChainExit exit = shader::chain_refract_out(chain, vertex, eta);
+    const shader::ChainConstraint c = shader::chain_constraint_point(exit, light);
+    ASSERT_TRUE(c.refracts);
+    ASSERT_LT(glm::length(c.residual), 1e-12);
+    const double r = glm::length(light - exit.e);
+    const double factor = shader::chain_radiance_factor(exit, c, eta) / (exit.transmittance * r * r);
+    const double brute = bundle_irradiance(D, d, theta, eta, 17 + static_cast<std::uint64_t>(theta_deg));
+    EXPECT_NEAR(brute / factor, 1.0, 0.02) << theta_deg << " degrees: chain " << factor << ", bundle " << brute;
   }
 }
 

@@ -17,7 +17,8 @@ layout(std430, binding = LUCENT_BINDING_WALK_AREAS) readonly buffer AreaBlock { 
 layout(std430, binding = LUCENT_BINDING_WALK_FACES) readonly buffer FaceBlock { vec4 flat_faces[]; };
 
 // In float: a solution is converged when x misses it by this fraction of its distance, or the chain's way out
-// misses the light by this angle; two solutions are one chain within a thousandth of a triangle (or float rounding).
+// misses the light by this angle; two solutions are one chain within a hundredth of a triangle, float rounding, or
+// what their solves leave uncertain.
 const int kChainMaxEvaluations = 16;
 const int kChainMaxPolish = 3;
 const int kChainMaxWalkHops = 8;
@@ -249,7 +250,8 @@ struct SurfaceRoot {
   bool found;
   int reflections;
   vec3 vertex;  // the chain's first vertex seen from x
-  float size;   // of its triangle
+  float size;         // of its triangle
+  float uncertainty;  // how far the vertex may lie from the exact solution: the Newton step left there
   SurfacePoint point;  // the exit point e
 };
 
@@ -259,13 +261,16 @@ SurfaceRoot no_root() {
   z.reflections = 0;
   z.vertex = vec3(0.0f);
   z.size = 0.0f;
+  z.uncertainty = 0.0f;
   z.point.triangle = -1;
   z.point.position = vec3(0.0f);
   return z;
 }
 
+// As volpath's: within a fraction of a triangle, float rounding, or what the solves leave uncertain.
 bool same_chain(SurfaceRoot a, SurfaceRoot b) {
-  float tolerance = max(kChainSame * max(a.size, b.size), 8.0f * offset_at(a.vertex));
+  float tolerance = max(max(kChainSame * max(a.size, b.size), 8.0f * offset_at(a.vertex)),
+                        4.0f * (a.uncertainty + b.uncertainty));
   return a.found && b.found && a.reflections == b.reflections && length(a.vertex - b.vertex) < tolerance;
 }
 
@@ -298,6 +303,15 @@ SurfaceRoot solve(int object, vec3 x, SurfacePoint e, SurfacePoint r, int reflec
         z.reflections = reflections;
         z.vertex = v.first_vertex;
         z.size = chain_triangle(reflections == 0 ? e.triangle : r.triangle).size;
+        z.uncertainty = 0.0f;
+        if (reflections == 0) {
+          ChainStep2 left = chain_newton_step2(v.r_a, v.a_e_u, v.a_e_v, 1e30f);
+          if (left.ok) z.uncertainty = length(left.step);
+        } else {
+          ChainStep4 left = chain_newton_step4(v.r_a, v.r_b, v.a_e_u, v.a_e_v, v.a_r_u, v.a_r_v, v.b_e_u, v.b_e_v,
+                                               v.b_r_u, v.b_r_v, 1e30f);
+          if (left.ok) z.uncertainty = length(left.step_q);
+        }
         z.point = e;
         return z;
       }

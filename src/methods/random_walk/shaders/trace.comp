@@ -31,7 +31,6 @@ layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { Counters
 const int kMaxShadowCrossings = 64;       // index-matched media a shadow ray crosses at most (as volpath)
 const int kMaxTraversalSteps = 60000;     // BVH nodes one ray visits at most (under llvmpipe's 65,535 iterations)
 const int kMaxRatioTrackingSteps = 60000; // tentative collisions of one transmittance estimate at most
-const float kRefractionTolerance = 1e-6f; // fixed-point refraction: converged when the direction moves less [rad]
 // Self-intersection offsets relative to the largest coordinate involved (volpath: 1e-6 in double; the GPU
 // intersects and rebuilds hit points in float, a few rounding steps of 6e-8 each).
 const float kRelativeOffset = 2e-6f;
