@@ -39,12 +39,28 @@ struct Leg {
   double throughput = 0.0;    // T at entry times the internal reflectances so far
 };
 
+// The ray of impact parameter b from the light (plane coordinates: the light travels along +x; a point light sits
+// at (-D, 0)): its direction, and where it meets the sphere.
+struct Incoming {
+  glm::dvec2 direction, entry;
+};
+
+Incoming incoming(const AnalyticSphere& s, double b) {
+  const double R = s.radius;
+  if (s.point_distance <= 0.0) return {glm::dvec2(1.0, 0.0), glm::dvec2(-std::sqrt(std::max(0.0, R * R - b * b)), b)};
+  const double D = s.point_distance, sin_a = b / D;
+  const glm::dvec2 o(-D, 0.0), d(std::sqrt(1.0 - sin_a * sin_a), sin_a);
+  const double od = glm::dot(o, d), t = -od - std::sqrt(std::max(0.0, od * od - (D * D - R * R)));
+  return {d, o + t * d};
+}
+
 Leg leg(const AnalyticSphere& s, double b, int m) {
   const double R = s.radius;
   Leg l;
-  glm::dvec2 p(-std::sqrt(std::max(0.0, R * R - b * b)), b), n = p / R;
-  glm::dvec2 w = refraction(glm::dvec2(1.0, 0.0), n, s.eta);
-  l.throughput = 1.0 - fresnel(s.eta, -n.x);
+  const Incoming in = incoming(s, b);
+  glm::dvec2 p = in.entry, n = p / R;
+  glm::dvec2 w = refraction(in.direction, n, s.eta);
+  l.throughput = 1.0 - fresnel(s.eta, -glm::dot(in.direction, n));
   for (int j = 0; j < m; ++j) {
     const double t = -2.0 * glm::dot(p, w);
     p += t * w;
@@ -67,7 +83,7 @@ double signed_distance(const AnalyticSphere& s, double b, int m, const glm::dvec
 
 // The legs at the bracketing grid's impact parameters, per number of reflections (built once per sphere).
 struct SphereLegTable {
-  double radius = 0.0, eta = 0.0;
+  double radius = 0.0, eta = 0.0, point_distance = -1.0;
   int grid = 0, max_reflections = -1;
   std::vector<double> impact;
   std::vector<Leg> legs;
@@ -76,9 +92,10 @@ struct SphereLegTable {
 const SphereLegTable& leg_table(const AnalyticSphere& s) {
   thread_local SphereLegTable table;
   if (table.radius == s.radius && table.eta == s.eta && table.grid == s.grid &&
-      table.max_reflections == s.max_reflections)
+      table.max_reflections == s.max_reflections && table.point_distance == s.point_distance)
     return table;
   table.radius = s.radius, table.eta = s.eta, table.grid = s.grid, table.max_reflections = s.max_reflections;
+  table.point_distance = s.point_distance;
   table.impact.resize(static_cast<std::size_t>(s.grid + 1));
   for (int i = 0; i <= s.grid; ++i)
     table.impact[static_cast<std::size_t>(i)] = s.radius * std::sin(M_PI * ((i + 0.5) / (s.grid + 1) - 0.5));
@@ -114,6 +131,7 @@ double analytic_sphere_next_event(const AnalyticSphere& s, const glm::dvec3& x, 
   if (by_reflections)
     for (int m = 0; m <= s.max_reflections; ++m) by_reflections[m] = 0.0;
   const glm::dvec3 l = s.light_direction;
+  const bool point = s.point_distance > 0.0;
   const double z = glm::dot(x, l);
   const glm::dvec3 across = x - z * l;
   const double rho = glm::length(across);
@@ -150,7 +168,11 @@ double analytic_sphere_next_event(const AnalyticSphere& s, const glm::dvec3& x, 
       if (along < 0.0 || along > leg_root.length) continue;  // x is on the line but not on this leg
       const double h = 1e-7 * s.radius;
       const double slope = (signed_distance(s, root + h, m, X) - signed_distance(s, root - h, m, X)) / (2.0 * h);
-      const double fluence = s.irradiance * leg_root.throughput * std::abs(root) / (rho * std::abs(slope)) *
+      // A point light: its intensity over D^2 cos(alpha), alpha = asin(b / D) (the header's derivation).
+      const double spread =
+          point ? s.point_distance * s.point_distance * std::sqrt(1.0 - root * root / (s.point_distance * s.point_distance))
+                : 1.0;
+      const double fluence = s.irradiance * leg_root.throughput * std::abs(root) / (rho * std::abs(slope) * spread) *
                              std::exp(-sigma_t * (leg_root.before + along));
       const glm::dvec3 w = leg_root.direction.x * l + leg_root.direction.y * e_rho;  // the light's way at x
       const double part = fluence * phase(glm::dot(w, -path_dir), s.g);

@@ -22,6 +22,9 @@ constexpr double kMaxStepOfRadius = 0.25;     // longest step on the boundary, i
 // Two solutions are one chain when their first vertices seen from x are closer than this many sizes of the
 // vertex's triangle (distinct chains come that close only where two merge, at a caustic's fold).
 constexpr double kSameChain = 1e-4;
+// A solution is confirmed from x when the polished chain's first vertex lies within this many sizes of its triangle
+// (or the solve's uncertainty) of the solution's: distinct chains lie triangles apart except at a caustic's fold.
+constexpr double kConfirmed = 0.5;
 constexpr int kMaxTrials = 1024;          // seeds drawn to find a chain again: (1 - p_Z)^1024 of 1 / p_Z is cut
 constexpr int kFacingTries = 8;           // surface samples a seed may take to face the light
 // The probability with which a vertex estimates the unreflected chains beyond those its deterministic seeds find, and
@@ -188,6 +191,8 @@ struct SurfaceEvaluation {
   glm::dvec2 a_e_u{0.0}, a_e_v{0.0}, a_r_u{0.0}, a_r_v{0.0}, b_e_u{0.0}, b_e_v{0.0}, b_r_u{0.0}, b_r_v{0.0};
   double relative = 0.0;
   glm::dvec3 first_vertex{0.0};
+  glm::dvec3 arrival{0.0};  // the way the light travels when it reaches x
+  int orientation = 0;      // unreflected: the sign of the Jacobian's determinant (0: not taken)
   shader::ChainBasis basis_e{}, basis_r{};
 };
 
@@ -203,6 +208,9 @@ SurfaceEvaluation unreflected_chain(const ObjectData& o, const SurfacePoint& e, 
   v.r_a = miss.residual, v.a_e_u = miss.j_u, v.a_e_v = miss.j_v;
   v.relative = glm::length(miss.residual) / std::max(miss.distance, 1e-300);
   v.first_vertex = e.position;
+  v.arrival = entry.state.d;
+  const double det = miss.j_u.x * miss.j_v.y - miss.j_v.x * miss.j_u.y;
+  v.orientation = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
   return v;
 }
 
@@ -241,6 +249,7 @@ SurfaceEvaluation reflected_chain(const ObjectData& o, const SurfacePoint& e, co
   v.relative = glm::length(a_e.residual) / std::max(a_e.distance, 1e-300) +
                glm::length(b_e.residual) / std::max(b_e.distance, 1e-300);
   v.first_vertex = r.position;
+  v.arrival = by_e.d;
   return v;
 }
 
@@ -252,13 +261,17 @@ struct SurfaceRoot {
   double size = 0.0;         // of the vertex's triangle
   double uncertainty = 0.0;  // how far the vertex may lie from the exact solution: the Newton step left there [mm]
   SurfacePoint point;        // the exit point e
+  glm::dvec3 w{0.0};         // the way the chain leaves x: against the light's last leg (exact however far x is)
+  int orientation = 0;       // unreflected: the sign of the Jacobian's determinant (0: not taken)
 };
 
 // Two solutions are one chain when their first vertices lie within a small fraction of a triangle, or within what
 // their solves leave uncertain (near a caustic the miss at x hardly moves with the vertex, so a converged miss leaves
-// the vertex loose: a duplicate counted as a new chain would be weighted by its recount).
+// the vertex loose: a duplicate counted as a new chain would be weighted by its recount), and, unreflected, turn
+// the same way: the two chains that meet at a caustic's fold have Jacobians of opposite sign.
 bool same_chain(const SurfaceRoot& a, const SurfaceRoot& b) {
   return a.found && b.found && a.reflections == b.reflections &&
+         (a.orientation == 0 || b.orientation == 0 || a.orientation == b.orientation) &&
          glm::length(a.vertex - b.vertex) < std::max(kSameChain * std::max(a.size, b.size),
                                                       4.0 * (a.uncertainty + b.uncertainty));
 }
@@ -275,7 +288,7 @@ double newton_step_left(const SurfaceEvaluation& v, int reflections) {
   return step.ok ? glm::length(step.step_q) : 0.0;
 }
 
-// The chains found from deterministic seeds (at most two, each counted once).
+// The chains found from deterministic seeds (at most kMaxKnownChains, each counted once).
 constexpr int kMaxKnownChains = 8;
 struct KnownChains {
   std::array<SurfaceRoot, kMaxKnownChains> roots{};
@@ -305,8 +318,14 @@ SurfaceRoot solve(const ReferenceScene& s, int object, glm::dvec3 x, SurfacePoin
     if (counts) ++counts->evaluations;
     newton = shader::chain_newton_judge(newton, v.valid, v.relative, kSurfaceTolerance);
     if (newton.converged)
-      return {true, reflections, v.first_vertex, triangle_size(o, reflections == 0 ? e.triangle : r.triangle),
-              newton_step_left(v, reflections), e};
+      return {true,
+              reflections,
+              v.first_vertex,
+              triangle_size(o, reflections == 0 ? e.triangle : r.triangle),
+              newton_step_left(v, reflections),
+              e,
+              -glm::normalize(v.arrival),
+              v.orientation};
     if (newton.failed) return {};
     if (newton.accepted) {
       good_e = e, good_r = r, basis_e = v.basis_e, basis_r = v.basis_r;
@@ -443,13 +462,17 @@ glm::dvec3 chain_light(const ReferenceScene& s, int object, const MediumCoeffici
   return radiance * factor * outside * inside * phase;
 }
 
-// The light of a solution, once it is made exact from x (polish): 0 when the chain from x does not confirm it.
+// The light of a solution, once it is made exact from x (polish, from the way the solution's light arrives): 0 when
+// the chain from x does not confirm it, i.e. meets the boundary first elsewhere (a part of the object between x and the
+// solution) or converges to another chain (counted as itself already).
 glm::dvec3 root_light(const ReferenceScene& s, int object, const MediumCoefficients& k, glm::dvec3 x,
                       glm::dvec3 path_dir, const SurfaceRoot& z, const LightTarget& light,
                       const glm::dvec3& light_radiance, const PointLight* point_light, Rng& rng,
                       BoundaryLightCounts* counts) {
-  const Root root = polish(s, object, x, glm::normalize(z.vertex - x), z.reflections, light, counts);
+  const Root root = polish(s, object, x, z.w, z.reflections, light, counts);
   if (!root.found) return glm::dvec3(0.0);
+  const double confirmed = std::max(kConfirmed * z.size, 4.0 * z.uncertainty);
+  if (glm::length(root.chain.points[1] - z.vertex) > confirmed) return glm::dvec3(0.0);
   return chain_light(s, object, k, path_dir, root, light, light_radiance, point_light, rng);
 }
 

@@ -293,8 +293,8 @@ LUCENT_INLINE ChainEntry chain_refract_in(ChainState s, ChainVertex vertex, crea
   creal3 dn_u = chain_normal_change(vertex, s.dy_u), dn_v = chain_normal_change(vertex, s.dy_v);
   creal ratio = LUCENT_CREAL(1.0) / eta;
   creal cos_i = -dot(s.d, n);
-  entry.refracts = cos_i > LUCENT_CREAL(0.0);
   creal sin2_t = ratio * ratio * (LUCENT_CREAL(1.0) - cos_i * cos_i);
+  entry.refracts = cos_i > LUCENT_CREAL(0.0) && sin2_t < LUCENT_CREAL(1.0);  // (eta < 1 reflects some totally)
   creal cos_t = sqrt(max(LUCENT_CREAL(0.0), LUCENT_CREAL(1.0) - sin2_t));
   creal dcos_i_u = -(dot(s.dd_u, n) + dot(s.d, dn_u)), dcos_i_v = -(dot(s.dd_v, n) + dot(s.d, dn_v));
   creal safe_cos_t = max(cos_t, LUCENT_CREAL(1e-12));

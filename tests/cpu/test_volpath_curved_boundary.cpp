@@ -1,8 +1,8 @@
 // test_volpath_curved_boundary.cpp: volpath's light through a curved refracting boundary against an independent
 // estimate (analytic_sphere_transport.h: an exact sphere, every refracted path enumerated in closed form), where the
 // boundary's curvature matters most: spheres of 1 and 10 mean free paths' radius (sigma_s 1, sigma_a 0.01 mm^-1,
-// g 0) lit from the side and from behind, eta 1.3, 1.4 and 1.5, on a finely tessellated sphere mesh (256 x 512
-// quads). A next-event estimate that assumes a flat boundary (one refracted path, its beam compressed as by a plane)
+// g 0) lit from the side and from behind, eta 1.3, 1.4 and 1.5, by a directional light and by a point light two or
+// three radii from the centre, on a finely tessellated sphere mesh (256 x 512 quads). A next-event estimate that assumes a flat boundary (one refracted path, its beam compressed as by a plane)
 // was 8-16% too dark on the large sphere and 42-50% on the small one.
 //
 // Two kinds of check:
@@ -43,16 +43,19 @@ struct SphereCase {
   bool back_lit;
   double eta;
   int volpath_samples = 64, independent_samples = 32;  // per pixel
+  double point_distance = 0.0;  // > 0: a point light this many radii from the centre instead of the directional one
 };
 
 void PrintTo(const SphereCase& c, std::ostream* os) {
   *os << "radius " << c.radius << " mm, " << (c.back_lit ? "back-lit" : "side-lit") << ", eta " << c.eta;
+  if (c.point_distance > 0.0) *os << ", a point light " << c.point_distance << " radii from the centre";
 }
 
 std::string case_name(const ::testing::TestParamInfo<SphereCase>& case_info) {
-  return fmt::format("Radius{}{}Eta{}", static_cast<int>(case_info.param.radius),
+  return fmt::format("Radius{}{}Eta{}{}", static_cast<int>(case_info.param.radius),
                      case_info.param.back_lit ? "Back" : "Side",
-                     static_cast<int>(std::lround(10.0 * case_info.param.eta)));
+                     static_cast<int>(std::lround(10.0 * case_info.param.eta)),
+                     case_info.param.point_distance > 0.0 ? "PointLight" : "");
 }
 
 constexpr int kResolution = 16;
@@ -62,14 +65,19 @@ glm::dvec3 light_direction(const SphereCase& c) {
   return c.back_lit ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0);  // the camera looks along -z
 }
 
+// A point light of intensity 1e-6 W/sr gives 1 / d^2 with d in mm (scale_mm 1): the exact sphere's intensity 1.
 Scene sphere_scene(const SphereCase& c) {
-  const glm::dvec3 l = light_direction(c);
+  const glm::dvec3 l = light_direction(c), p = -c.point_distance * c.radius * l;
+  const std::string light =
+      c.point_distance > 0.0
+          ? fmt::format(R"({{ "type": "point", "position": [{}, {}, {}], "intensity": [1e-6, 1e-6, 1e-6] }})", p.x, p.y, p.z)
+          : fmt::format(R"({{ "direction": [{}, {}, {}], "radiance": [1, 1, 1] }})", l.x, l.y, l.z);
   return parse_scene(fmt::format(R"({{
     "scale_mm": 1,
-    "lights": [{{ "direction": [{}, {}, {}], "radiance": [1, 1, 1] }}],
+    "lights": [{}],
     "objects": [{{ "shape": "sphere", "radius": {}, "segments": {},
                   "material": {{ "sigma_a": [0.01, 0.01, 0.01], "sigma_s": [1, 1, 1], "g": 0, "eta": {} }} }}] }})",
-                                 l.x, l.y, l.z, c.radius, kSegments, c.eta),
+                                 light, c.radius, kSegments, c.eta),
                      "sphere", ".");
 }
 
@@ -78,14 +86,18 @@ test::AnalyticSphere analytic_sphere(const SphereCase& c) {
   sphere.radius = c.radius;
   sphere.eta = c.eta;
   sphere.light_direction = light_direction(c);
+  sphere.point_distance = c.point_distance * c.radius;
   return sphere;
 }
 
 // ---- the next-event estimate at points ------------------------------------------------------------------------
+// A point counts as an outlier beyond 3 standard errors. Once-reflected chains of point lights have small basins
+// that the chain search finds in a fraction of its trials, so a handful of repeats can miss one entirely (an
+// estimate of 0 with a standard error of 0): the sanitizer run, which checks the code paths, allows for that.
 #if defined(LUCENT_TEST_ASAN)
-constexpr int kPoints = 40, kRepeats = 32;  // the code paths, under the sanitizers
+constexpr int kPoints = 40, kRepeats = 32, kOutliers = 5;  // the code paths, under the sanitizers
 #else
-constexpr int kPoints = 200, kRepeats = 256;
+constexpr int kPoints = 200, kRepeats = 256, kOutliers = 5;
 #endif
 
 class CurvedBoundaryNextEvent : public ::testing::TestWithParam<SphereCase> {};
@@ -143,12 +155,14 @@ TEST_P(CurvedBoundaryNextEvent, AtPointsMatchesEveryRefractedPath) {
               static_cast<double>(counts.trials) / std::max<double>(1.0, static_cast<double>(counts.extra_roots)),
               static_cast<long long>(counts.capped));
   EXPECT_LT(std::abs(sum_estimate - sum_exact), 3.0 * std::sqrt(sum_variance) + 5e-3 * sum_exact);
-  EXPECT_LE(outliers, kPoints / 40);
+  EXPECT_LE(outliers, kOutliers);
 }
 
 INSTANTIATE_TEST_SUITE_P(Volpath, CurvedBoundaryNextEvent,
                          ::testing::Values(SphereCase{1.0, false, 1.4}, SphereCase{1.0, true, 1.4},
-                                           SphereCase{10.0, false, 1.4}, SphereCase{1.0, false, 1.5}),
+                                           SphereCase{10.0, false, 1.4}, SphereCase{1.0, false, 1.5},
+                                           SphereCase{1.0, false, 1.4, 64, 32, 3.0},
+                                           SphereCase{10.0, true, 1.4, 64, 32, 2.0}),
                          case_name);
 
 // ---- images -----------------------------------------------------------------------------------------------------
@@ -228,7 +242,9 @@ INSTANTIATE_TEST_SUITE_P(Volpath, CurvedBoundary,
                          case_name);
 #else
 INSTANTIATE_TEST_SUITE_P(Volpath, CurvedBoundary,
-                         ::testing::Values(SphereCase{1.0, false, 1.4}, SphereCase{1.0, true, 1.4}), case_name);
+                         ::testing::Values(SphereCase{1.0, false, 1.4}, SphereCase{1.0, true, 1.4},
+                                           SphereCase{1.0, true, 1.4, 64, 32, 3.0}),
+                         case_name);
 #endif
 
 // The `accuracy` label: all twelve cases, at samples that resolve a few percent on the large sphere.

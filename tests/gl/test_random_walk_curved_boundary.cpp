@@ -3,8 +3,10 @@
 // in closed form), per pixel, where the boundary's curvature matters most: spheres of 1 and 10 mean free paths'
 // radius (sigma_s 1, sigma_a 0.01 mm^-1, g 0) lit from the side and from behind, on a 256 x 512 quad mesh. The image
 // means within 3 combined standard errors (the walk's from the spread of independent frames), the RMS difference per
-// pixel within 1.25 times the combined noise. The small sphere at eta 1.4 runs with every test; all twelve cases (eta
-// 1.3, 1.4, 1.5) at more samples under the `accuracy` label (docs/references.md has their numbers).
+// pixel within 1.2 times the combined noise, and no path cut by llvmpipe's loop cap. The small sphere at eta 1.4 runs
+// with every test (lit from the side, and from behind 100 radii from the origin, where float rounding leaves a solve
+// loose near the surface); all twelve cases (eta 1.3, 1.4, 1.5) at more samples under the `accuracy` label
+// (docs/references.md has their numbers).
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -26,16 +28,19 @@ struct SphereCase {
   bool back_lit;
   double eta;
   int frames = 16, samples_per_frame = 4, independent_samples = 64;
+  double offset = 0.0;  // the sphere and the camera moved along x by this many radii (float rounding grows with it)
 };
 
 void PrintTo(const SphereCase& c, std::ostream* os) {
   *os << "radius " << c.radius << " mm, " << (c.back_lit ? "back-lit" : "side-lit") << ", eta " << c.eta;
+  if (c.offset != 0.0) *os << ", " << c.offset << " radii from the origin";
 }
 
 std::string case_name(const ::testing::TestParamInfo<SphereCase>& case_info) {
-  return fmt::format("Radius{}{}Eta{}", static_cast<int>(case_info.param.radius),
+  return fmt::format("Radius{}{}Eta{}{}", static_cast<int>(case_info.param.radius),
                      case_info.param.back_lit ? "Back" : "Side",
-                     static_cast<int>(std::lround(10.0 * case_info.param.eta)));
+                     static_cast<int>(std::lround(10.0 * case_info.param.eta)),
+                     case_info.param.offset != 0.0 ? "FarFromTheOrigin" : "");
 }
 
 constexpr int kSize = 16;
@@ -45,13 +50,14 @@ lucent::Scene sphere_scene(const SphereCase& c) {
   const double fov_y = 2.0 * glm::degrees(std::atan(1.05 * std::tan(std::asin(0.25))));
   return lucent::parse_scene(fmt::format(R"({{
     "scale_mm": 1,
-    "camera": {{ "eye": [0, 0, {}], "target": [0, 0, 0], "fov_y_deg": {} }},
+    "camera": {{ "eye": [{}, 0, {}], "target": [{}, 0, 0], "fov_y_deg": {} }},
     "lights": [{{ "direction": [{}, {}, {}], "radiance": [1, 1, 1] }}],
-    "objects": [{{ "shape": "sphere", "radius": {}, "segments": 512,
+    "objects": [{{ "shape": "sphere", "radius": {}, "segments": 512, "translate": [{}, 0, 0],
                   "material": {{ "sigma_a": [0.01, 0.01, 0.01], "sigma_s": [1, 1, 1], "g": 0, "eta": {} }} }}],
     "method": {{ "name": "random-walk", "samples_per_frame": {} }},
     "render": {{ "width": {}, "height": {}, "frames": 1, "background": [0, 0, 0] }} }})",
-                                         4.0 * c.radius, fov_y, l.x, l.y, l.z, c.radius, c.eta, c.samples_per_frame,
+                                         c.offset * c.radius, 4.0 * c.radius, c.offset * c.radius, fov_y, l.x, l.y,
+                                         l.z, c.radius, c.offset * c.radius, c.eta, c.samples_per_frame,
                                          kSize, kSize),
                              "random-walk curved boundary", ".");
 }
@@ -77,6 +83,7 @@ void expect_agreement(const SphereCase& c) {
     glm::dvec3 origin, direction;
     lucent::reference::camera_ray(scene.camera, kSize, kSize, static_cast<double>(p % kSize) + 0.5,
                                   static_cast<double>(p / kSize) + 0.5, origin, direction);
+    origin.x -= c.offset * c.radius;  // the exact sphere is centred at the origin
     const double miss = glm::length(origin - glm::dot(origin, direction) * direction);
     if (miss >= 0.95 * c.radius) continue;
     lucent::reference::Accumulator a;
@@ -87,8 +94,11 @@ void expect_agreement(const SphereCase& c) {
     interior.push_back(p);
     independent.push_back(a.estimate());
   }
+  double loop_limited = 0.0, replayed = 0.0;  // paths llvmpipe's loop cap ended (dropped); events it cut (replayed)
   for (int f = 0; f < c.frames; ++f) {
     renderer.render(scene.camera, {framebuffer.id(), kSize, kSize});
+    for (const lucent::FrameTimings& t : renderer.finished_frames(true))
+      loop_limited += t.stat("loop_limited_paths"), replayed += t.stat("replayed_events");
     const lucent::ImageRGBA32F image = renderer.read_radiance();
     double frame_sum = 0.0;
     for (std::size_t i : interior) {
@@ -118,13 +128,14 @@ void expect_agreement(const SphereCase& c) {
   const double mean_error = std::sqrt(walk_mean_error * walk_mean_error + independent_var / (n * n));
   const double rmse = std::sqrt(squared / n), combined_noise = std::sqrt(noise / n);
   std::printf("random-walk, radius %4.1f mm %-4s eta %.1f: %.5f, independent %.5f, ratio %.4f +- %.4f (walk %.4f, "
-              "independent %.4f), z %+.2f, RMSE / noise %.2f (%d pixels)\n",
+              "independent %.4f), z %+.2f, RMSE / noise %.2f (%d pixels, %.0f paths cut, %.0f events replayed)\n",
               c.radius, c.back_lit ? "back" : "side", c.eta, walk_mean, independent_mean, walk_mean / independent_mean,
               mean_error / independent_mean, walk_mean_error / independent_mean,
               std::sqrt(independent_var) / n / independent_mean, (difference / n) / mean_error, rmse / combined_noise,
-              static_cast<int>(n));
+              static_cast<int>(n), loop_limited, replayed);
+  EXPECT_EQ(loop_limited, 0.0);
   EXPECT_LE(std::fabs(difference / n), 3.0 * mean_error);
-  EXPECT_LE(rmse, 1.25 * combined_noise);
+  EXPECT_LE(rmse, 1.2 * combined_noise);
 }
 
 class RandomWalkCurvedBoundary : public ::testing::TestWithParam<SphereCase> {};
@@ -132,7 +143,7 @@ class RandomWalkCurvedBoundary : public ::testing::TestWithParam<SphereCase> {};
 TEST_P(RandomWalkCurvedBoundary, AgreesWithEveryRefractedPathOfTheExactSphere) { expect_agreement(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(RandomWalk, RandomWalkCurvedBoundary,
-                         ::testing::Values(SphereCase{1.0, false, 1.4}, SphereCase{1.0, true, 1.4, 16, 8}),
+                         ::testing::Values(SphereCase{1.0, false, 1.4}, SphereCase{1.0, true, 1.4, 16, 8, 64, 100.0}),
                          case_name);
 
 // The `accuracy` label: all twelve cases at more samples.

@@ -301,6 +301,7 @@ class RandomWalk final : public Method {
     out.push_back({"paths_per_second", ms > 0.0 ? paths / (ms * 1e-3) : 0.0, "1/s"});
     out.push_back({"steps_per_second", ms > 0.0 ? paths * steps_per_path / (ms * 1e-3) : 0.0, "1/s"});
     out.push_back({"loop_limited_paths", static_cast<double>(last_counters_.loop_limited), ""});
+    out.push_back({"replayed_events", static_cast<double>(last_counters_.replayed), ""});
   }
 
   bool update_live_params(const Scene& scene) override {

@@ -31,7 +31,8 @@ constexpr StatDecl kStats[] = {
     {"steps_per_path", "", "mean walk steps per path (free flights, null collisions and sphere jumps in media)"},
     {"paths_per_second", "1/s", "paths traced per second of the trace pass"},
     {"steps_per_second", "1/s", "walk steps per second of the trace pass"},
-    {"loop_limited_paths", "", "paths dropped this frame because one event ran past the driver's loop cap (llvmpipe)"},
+    {"loop_limited_paths", "", "paths dropped this frame: an event the driver's loop cap (llvmpipe) cut at a dispatch's start"},
+    {"replayed_events", "", "events the driver's loop cap cut, undone and replayed in the next dispatch (llvmpipe)"},
 };
 
 }  // namespace

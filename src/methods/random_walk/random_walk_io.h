@@ -78,9 +78,11 @@ struct WalkPathGPU {
 // What the dispatches of a frame count (std430), zeroed each frame; `active` each dispatch.
 struct WalkCountersGPU {
   uint active_pixels; // pixels with paths left after the dispatch
-  uint loop_limited;  // paths that ran past the driver's loop cap (their value is unreliable)
+  uint loop_limited;  // paths dropped: an event the driver's loop cap cut as a dispatch's first
   uint paths;         // finished paths of the pixels the statistics count
   uint steps;         // their walk steps
+  uint replayed;      // events the driver's loop cap cut, undone and replayed in the next dispatch
+  uint pad0, pad1, pad2;
 };
 
 struct RandomWalkGPU {
@@ -119,7 +121,7 @@ static_assert(offsetof(lucent::shader::TriangleGPU, n2) == 80);
 static_assert(sizeof(lucent::shader::WalkObjectGPU) == 160);
 static_assert(sizeof(lucent::shader::RandomWalkGPU) == 240 + 4 * LUCENT_MAX_LIGHTS);
 static_assert(sizeof(lucent::shader::WalkPathGPU) == 128);
-static_assert(sizeof(lucent::shader::WalkCountersGPU) == 16);
+static_assert(sizeof(lucent::shader::WalkCountersGPU) == 32);
 static_assert(LUCENT_BINDING_WALK_NODES >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_WALK_FACES <= LUCENT_METHOD_STORAGE_LAST);
 static_assert(LUCENT_IMAGE_WALK_SUM >= LUCENT_METHOD_IMAGE_FIRST && LUCENT_IMAGE_WALK_SUM <= LUCENT_METHOD_IMAGE_LAST);
 static_assert(LUCENT_TEX_WALK_DISTANCE >= LUCENT_METHOD_TEX_FIRST && LUCENT_TEX_WALK_DISTANCE <= LUCENT_METHOD_TEX_LAST);

@@ -24,7 +24,7 @@ WalkBoundary build_walk_boundary(const Scene& scene, std::span<const shader::Tri
     const std::uint32_t original = triangle_original_index(triangles[k]);
     if (original < position_of.size()) position_of[original] = static_cast<std::int32_t>(k);
   }
-  boundary.neighbours.assign(triangles.size(), glm::ivec4(-1, -1, -1, 0));
+  boundary.neighbours.assign(triangles.size(), glm::ivec4(-1, -1, -1, -1));
   boundary.ranges.assign(scene.objects.size(), glm::ivec2(0));
   boundary.face_ranges.assign(scene.objects.size(), glm::ivec2(0));
   // The gathered order: each mesh object's triangles in its index order (gather_scene_triangles).

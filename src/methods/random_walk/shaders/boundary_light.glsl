@@ -26,7 +26,9 @@ const float kChainLongStep = 4.0f;
 const float kChainSurfaceTolerance = 2e-6f;
 const float kChainDirectionTolerance = 2e-5f;
 const float kChainMaxStepOfRadius = 0.25f;
+const float kChainRounding = 4.0f;  // the floors of those tolerances, in self-intersection offsets (offset_at)
 const float kChainSame = 1e-2f;
+const float kChainConfirmed = 0.5f;
 const int kChainMaxTrials = 128;  // seeds drawn to find a chain again, at most (the CPU's 1024: docs/references.md)
 const int kChainFacingTries = 8;
 const float kChainOtherProbability = 0.1f;
@@ -162,7 +164,14 @@ Root polish(int object, vec3 x, vec3 w, int reflections, LightTarget light) {
   for (int i = 0; i < kChainMaxPolish; ++i) {
     ++loop_count;
     Chain chain = trace_chain(object, x, w, reflections, light);
-    newton = chain_newton_judge(newton, chain.valid, length(chain.constraint.residual), kChainDirectionTolerance);
+    // In float the way out cannot be resolved below what the rounding of the exit point's coordinates turns it by.
+    float tolerance = kChainDirectionTolerance;
+    if (chain.valid) {
+      float turns = (length(chain.exit.do_u) + length(chain.exit.do_v)) /
+                    max(length(chain.exit.de_u) + length(chain.exit.de_v), 1e-30f);
+      tolerance = max(tolerance, kChainRounding * offset_at(chain.exit.e) * turns);
+    }
+    newton = chain_newton_judge(newton, chain.valid, length(chain.constraint.residual), tolerance);
     if (newton.converged) {
       root.found = true;
       root.w = w;
@@ -198,6 +207,8 @@ struct SurfaceEvaluation {
   vec2 a_e_u, a_e_v, a_r_u, a_r_v, b_e_u, b_e_v, b_r_u, b_r_v;
   float relative;
   vec3 first_vertex;
+  vec3 arrival;     // the way the light travels when it reaches x
+  int orientation;  // unreflected: the sign of the Jacobian's determinant (0: not taken)
   ChainBasis basis_e, basis_r;
 };
 
@@ -208,6 +219,8 @@ SurfaceEvaluation surface_evaluation(int object, SurfacePoint e, SurfacePoint r,
   v.r_a = v.r_b = v.a_e_u = v.a_e_v = v.a_r_u = v.a_r_v = v.b_e_u = v.b_e_v = v.b_r_u = v.b_r_v = vec2(0.0f);
   v.relative = 0.0f;
   v.first_vertex = e.position;
+  v.arrival = vec3(0.0f, 0.0f, 1.0f);
+  v.orientation = 0;
   float eta = eta_of(object);
   ChainTriangle tri_e = chain_triangle(e.triangle);
   v.basis_e = chain_plane_basis(tri_e.p0, tri_e.p1, tri_e.p2);
@@ -219,6 +232,9 @@ SurfaceEvaluation surface_evaluation(int object, SurfacePoint e, SurfacePoint r,
     v.valid = miss.along > 0.0f;
     v.r_a = miss.residual, v.a_e_u = miss.j_u, v.a_e_v = miss.j_v;
     v.relative = length(miss.residual) / max(miss.distance, 1e-30f);
+    v.arrival = entry.state.d;
+    float det = miss.j_u.x * miss.j_v.y - miss.j_v.x * miss.j_u.y;
+    v.orientation = det > 0.0f ? 1 : (det < 0.0f ? -1 : 0);
     return v;
   }
   ChainTriangle tri_r = chain_triangle(r.triangle);
@@ -243,6 +259,7 @@ SurfaceEvaluation surface_evaluation(int object, SurfacePoint e, SurfacePoint r,
   v.b_e_u = b_e.j_u, v.b_e_v = b_e.j_v, v.b_r_u = b_r.j_u, v.b_r_v = b_r.j_v;
   v.relative = length(a_e.residual) / max(a_e.distance, 1e-30f) + length(b_e.residual) / max(b_e.distance, 1e-30f);
   v.first_vertex = r.position;
+  v.arrival = by_e.d;
   return v;
 }
 
@@ -253,6 +270,8 @@ struct SurfaceRoot {
   float size;         // of its triangle
   float uncertainty;  // how far the vertex may lie from the exact solution: the Newton step left there
   SurfacePoint point;  // the exit point e
+  vec3 w;              // the way the chain leaves x: against the light's last leg (exact however far x is)
+  int orientation;     // unreflected: the sign of the Jacobian's determinant (0: not taken)
 };
 
 SurfaceRoot no_root() {
@@ -262,16 +281,26 @@ SurfaceRoot no_root() {
   z.vertex = vec3(0.0f);
   z.size = 0.0f;
   z.uncertainty = 0.0f;
+  z.w = vec3(0.0f, 0.0f, 1.0f);
+  z.orientation = 0;
   z.point.triangle = -1;
   z.point.position = vec3(0.0f);
   return z;
 }
 
-// As volpath's: within a fraction of a triangle, float rounding, or what the solves leave uncertain.
+// As volpath's: within a fraction of a triangle, float rounding, or what the solves leave uncertain, and turning the
+// same way (the two chains at a caustic's fold have Jacobians of opposite sign).
 bool same_chain(SurfaceRoot a, SurfaceRoot b) {
   float tolerance = max(max(kChainSame * max(a.size, b.size), 8.0f * offset_at(a.vertex)),
                         4.0f * (a.uncertainty + b.uncertainty));
-  return a.found && b.found && a.reflections == b.reflections && length(a.vertex - b.vertex) < tolerance;
+  return a.found && b.found && a.reflections == b.reflections &&
+         (a.orientation == 0 || b.orientation == 0 || a.orientation == b.orientation) &&
+         length(a.vertex - b.vertex) < tolerance;
+}
+
+// How close to a solution's first vertex its chain polished from x must lie to confirm it (volpath's kConfirmed).
+float confirmed_distance(SurfaceRoot z) {
+  return max(max(kChainConfirmed * z.size, 8.0f * offset_at(z.vertex)), 4.0f * z.uncertainty);
 }
 
 // ---- the estimate: one call of each solver, ray and evaluation (the shader compiler inlines every call) ---------
@@ -295,7 +324,8 @@ SurfaceRoot solve(int object, vec3 x, SurfacePoint e, SurfacePoint r, int reflec
     if (pending == 0) {
       SurfaceEvaluation v = surface_evaluation(object, e, r, reflections, light, x);
       // In float the miss cannot fall below the rounding of the points' coordinates: near x that is the larger part.
-      float tolerance = max(kChainSurfaceTolerance, 16.0f * offset_at(v.first_vertex) / max(length(v.first_vertex - x), 1e-30f));
+      float tolerance = max(kChainSurfaceTolerance,
+                            kChainRounding * offset_at(v.first_vertex) / max(length(v.first_vertex - x), 1e-30f));
       newton = chain_newton_judge(newton, v.valid, v.relative, tolerance);
       if (newton.converged) {
         SurfaceRoot z;
@@ -313,6 +343,8 @@ SurfaceRoot solve(int object, vec3 x, SurfacePoint e, SurfacePoint r, int reflec
           if (left.ok) z.uncertainty = length(left.step_q);
         }
         z.point = e;
+        z.w = -normalize(v.arrival);
+        z.orientation = v.orientation;
         return z;
       }
       if (newton.failed || newton.evaluations >= kChainMaxEvaluations) break;
@@ -338,9 +370,10 @@ SurfaceRoot solve(int object, vec3 x, SurfacePoint e, SurfacePoint r, int reflec
     vec2 d2 = newton.fraction * (reflection ? step_r : step_e);
     vec3 delta = reflection ? d2.x * basis_r.u + d2.y * basis_r.v : d2.x * basis_e.u + d2.y * basis_e.v;
     SurfacePoint p = reflection ? good_r : good_e;
+    vec3 target = p.position + delta;  // before walk(), which moves p part of the way when it fails
     bool moved = length(delta) <= kChainLongStep * chain_triangle(p.triangle).size && walk(p, delta);
     if (!moved) {
-      vec3 from = reflection || reflections == 0 ? x : r.position, target = p.position + delta;
+      vec3 from = reflection || reflections == 0 ? x : r.position;
       p = reflection ? good_r : good_e;
       moved = first_point(object, from, normalize(target - from), offset_at(from), true, p);
     }
@@ -438,12 +471,14 @@ bool random_facing_point(int object, LightTarget light, out SurfacePoint e) {
   return false;
 }
 
-// The light a chain found from x along w brings to x (polished there first), scattered toward -path_dir.
-vec3 root_light(int object, vec3 x, vec3 path_dir, vec3 w, int reflections, LightTarget light, vec3 light_radiance,
-                LightGPU gpu_light) {
+// The light a chain found from x along w brings to x (polished there first), scattered toward -path_dir: 0 when the
+// polished chain's first vertex is not within `confirm` of the solution's (volpath's root_light).
+vec3 root_light(int object, vec3 x, vec3 path_dir, vec3 w, int reflections, vec3 vertex, float confirm,
+                LightTarget light, vec3 light_radiance, LightGPU gpu_light) {
   Root root = polish(object, x, w, reflections, light);
   if (!root.found) return vec3(0.0f);
   Chain chain = root.chain;
+  if (length(chain.points[1] - vertex) > confirm) return vec3(0.0f);
   float factor = chain_radiance_factor(chain.exit, chain.constraint, eta_of(object));
   if (!(factor > 0.0f) || isinf(factor)) return vec3(0.0f);
   vec3 e = chain.exit.e;
@@ -473,8 +508,8 @@ vec3 root_light(int object, vec3 x, vec3 path_dir, vec3 w, int reflections, Ligh
 
 // The estimate's solutions, each with its weight: the known chains (found from deterministic seeds, each counted
 // once), and a chain found by specular manifold sampling times its count of trials over its probability.
-const int kChainMaxSolutions = 16;
 const int kChainMaxKnown = 8;  // known chains (found from deterministic seeds) of one number of reflections
+const int kChainMaxSolutions = 2 * kChainMaxKnown + 2;  // the known ones and one sampled, of 0 and 1 reflections
 
 // The light's direction inside after refraction through a face of normal n (at the side the light meets).
 vec3 refracted_inside(vec3 travel, vec3 n, float eta) {
@@ -505,15 +540,17 @@ vec3 light_through_boundary(int object, vec3 x, vec3 path_dir, int l) {
   light.position = gpu_light.position.xyz;
   vec3 radiance = light.point ? vec3(0.0f) : gpu_light.power.rgb;
 
-  vec3 solution_w[kChainMaxSolutions];
+  vec3 solution_w[kChainMaxSolutions], solution_vertex[kChainMaxSolutions];
   int solution_reflections[kChainMaxSolutions];
-  float solution_weight[kChainMaxSolutions];
+  float solution_weight[kChainMaxSolutions], solution_confirm[kChainMaxSolutions];
   int solutions = 0;
   if (eta_of(object) == 1.0f) {
     solution_w[0] = light_toward_from(light, x), solution_reflections[0] = 0, solution_weight[0] = 1.0f;
+    solution_vertex[0] = x, solution_confirm[0] = 1e30f;
     solutions = 1;
   } else {
     ivec4 faces = walk_objects[object].faces;
+    faces.y = min(faces.y, 16);  // walk_boundary.cpp uploads 16 at most; the loop's bound counts on it
     float eta = eta_of(object);
     SurfaceRoot unreflected[kChainMaxKnown], once[kChainMaxKnown], sampled = no_root();
     int unreflected_count = 0, once_count = 0;
@@ -523,6 +560,9 @@ vec3 light_through_boundary(int object, vec3 x, vec3 path_dir, int l) {
     bool has_toward = false;
     float reflected = 1.0f;
     int phase = 0, index = 0, face = -1, trials = 0;
+    // A recount ends after a dispatch's budget of loop iterations (llvmpipe: its loop cap would end the path; the
+    // count is then cut like one that reaches kChainMaxTrials).
+    uint recount_end = 0u;
     // loop bound: checked; the deterministic seeds (2 + faces, then kChainMaxKnown x (1 + faces), faces at most 16)
     // and two manifold samplings of at most 1 + kChainMaxTrials solves each, every iteration counted in loop_count
     // (budgeted by random_walk.cpp)
@@ -546,7 +586,8 @@ vec3 light_through_boundary(int object, vec3 x, vec3 path_dir, int l) {
           else ray = seed_ray_refracted(object, e, light);
         }
       }
-      SurfacePoint entry = unreflected_count > 0 ? unreflected[min(index, kChainMaxKnown - 1)].point : toward;
+      SurfacePoint entry =
+          unreflected_count > 0 ? unreflected[clamp(index, 0, min(unreflected_count, kChainMaxKnown) - 1)].point : toward;
       vec3 w = unreflected_count > 0 ? normalize(x - entry.position) : -light_toward_from(light, x);  // the light's way
       if (phase == 4) ray = seed_ray_along(x, w), solving = false;
       if (phase == 5) {
@@ -596,7 +637,9 @@ vec3 light_through_boundary(int object, vec3 x, vec3 path_dir, int l) {
           for (int k = 0; k < kChainMaxKnown; ++k) {
             ++loop_count;
             if (k >= (m == 0 ? unreflected_count : once_count) || solutions >= kChainMaxSolutions) break;
-            solution_w[solutions] = normalize((m == 0 ? unreflected[k] : once[k]).vertex - x);
+            SurfaceRoot known_root = m == 0 ? unreflected[k] : once[k];
+            solution_w[solutions] = known_root.w, solution_vertex[solutions] = known_root.vertex;
+            solution_confirm[solutions] = confirmed_distance(known_root);
             solution_reflections[solutions] = m;
             solution_weight[solutions++] = m == 0 ? 1.0f : 1.0f / reflected;
           }
@@ -610,14 +653,16 @@ vec3 light_through_boundary(int object, vec3 x, vec3 path_dir, int l) {
       } else if (trials == 0) {  // phases 3 and 6: the first trial
         if (z.found && !known) {
           sampled = z, trials = 1;
+          recount_end = loop_count + method.dispatch.y / 4u;
         } else {
           phase = phase == 3 && has_toward ? 4 : 7;
         }
-      } else if (!same_chain(z, sampled) && trials < kChainMaxTrials) {  // recounting until found again
-        ++trials;
+      } else if (!same_chain(z, sampled) && trials < kChainMaxTrials && loop_count < recount_end) {
+        ++trials;  // recounting until found again
       } else {
         if (solutions < kChainMaxSolutions) {
-          solution_w[solutions] = normalize(sampled.vertex - x), solution_reflections[solutions] = m;
+          solution_w[solutions] = sampled.w, solution_reflections[solutions] = m;
+          solution_vertex[solutions] = sampled.vertex, solution_confirm[solutions] = confirmed_distance(sampled);
           solution_weight[solutions++] = float(trials) / (kChainOtherProbability * (m == 0 ? 1.0f : reflected));
         }
         phase = phase == 3 && has_toward ? 4 : 7;
@@ -628,7 +673,8 @@ vec3 light_through_boundary(int object, vec3 x, vec3 path_dir, int l) {
   // loop bound: checked; kChainMaxSolutions (16) (each iteration counted in loop_count, budgeted by random_walk.cpp)
   for (int k = 0; k < solutions && k < kChainMaxSolutions; ++k) {
     ++loop_count;
-    L += solution_weight[k] * root_light(object, x, path_dir, solution_w[k], solution_reflections[k], light, radiance, gpu_light);
+    L += solution_weight[k] * root_light(object, x, path_dir, solution_w[k], solution_reflections[k], solution_vertex[k],
+                                         solution_confirm[k], light, radiance, gpu_light);
   }
   return L;
 }

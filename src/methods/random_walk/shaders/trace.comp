@@ -524,17 +524,8 @@ void start_path(uint pixel_index, uint sample_index) {
   path_jump_start = pcg_hash(rng_key ^ 0x6a09e667u), path_jumps = 0u;
 }
 
-void load_path(uint index) {
-  WalkPathGPU p = paths[index];
-  path_origin = p.origin.xyz, path_bounce = int(p.origin.w);
-  path_direction = p.direction.xyz, path_throughput = p.throughput.xyz, path_r_u = p.r_u.xyz;
-  path_radiance = p.radiance.xyz;
-  path_hero = p.info.x, path_medium = p.info.y, path_events = p.info.z, path_scatterings = p.info.w;
-  rng_key = p.state.x, rng_count = p.state.y, path_steps = p.state.z, path_samples_left = p.state.w;
-  path_jump_start = p.jumps.x, path_jumps = p.jumps.y;
-}
-
-void store_path(uint index) {
+// The path's state as stored between dispatches (and kept before each event, to replay one the loop cap cut).
+WalkPathGPU packed_path() {
   WalkPathGPU p;
   p.origin = vec4(path_origin, float(path_bounce));
   p.direction = vec4(path_direction, 0.0f);
@@ -544,7 +535,16 @@ void store_path(uint index) {
   p.info = ivec4(path_hero, path_medium, path_events, path_scatterings);
   p.state = uvec4(rng_key, rng_count, path_steps, path_samples_left);
   p.jumps = uvec4(path_jump_start, path_jumps, 0u, 0u);
-  paths[index] = p;
+  return p;
+}
+
+void unpack_path(WalkPathGPU p) {
+  path_origin = p.origin.xyz, path_bounce = int(p.origin.w);
+  path_direction = p.direction.xyz, path_throughput = p.throughput.xyz, path_r_u = p.r_u.xyz;
+  path_radiance = p.radiance.xyz;
+  path_hero = p.info.x, path_medium = p.info.y, path_events = p.info.z, path_scatterings = p.info.w;
+  rng_key = p.state.x, rng_count = p.state.y, path_steps = p.state.z, path_samples_left = p.state.w;
+  path_jump_start = p.jumps.x, path_jumps = p.jumps.y;
 }
 
 // One event of the path: a medium step or a surface interaction. False when the path ended.
@@ -577,7 +577,7 @@ void main() {
       atomicAdd(counters.covered_pixels, 1u);
     }
   } else {
-    load_path(index);
+    unpack_path(paths[index]);
     if (path_samples_left == 0u) return;
   }
   bool counted = pixel.x % method.jump_info.y == 0 && pixel.y % method.jump_info.y == 0;
@@ -586,8 +586,20 @@ void main() {
   // loop bound: checked; events end once loop_count reaches method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
   for (int event = 0; event < 1000000 && loop_count < method.dispatch.y; ++event) {
     ++loop_count;
+    // The driver's counter runs over the SIMD group (8 or 16 invocations), so a budget on this invocation's own
+    // count cannot rule the cap out. An event the cap cut is undone and replayed, with the same random numbers, at
+    // the start of the next dispatch: the path is the one it would have been. Only an event that the cap cuts even
+    // as a dispatch's first is dropped (counted as loop_limited).
+    WalkPathGPU before = packed_path();
     bool alive = path_event();
-    if (method.dispatch.z != 0u && loops_were_cut()) limited = true;
+    if (method.dispatch.z != 0u && loops_were_cut()) {
+      if (event > 0) {
+        unpack_path(before);
+        atomicAdd(walk_counters.replayed, 1u);
+        break;
+      }
+      limited = true;
+    }
     if (alive && !limited) continue;
     vec4 sum = frame.seeds.z != 0u && path_samples_left == samples ? vec4(0.0f) : imageLoad(accumulated, pixel);
     bool finite = all(greaterThanEqual(path_radiance, vec3(0.0f))) && all(lessThan(path_radiance, vec3(1e30f)));
@@ -604,12 +616,9 @@ void main() {
       imageStore(hdr, pixel, vec4(sum.rgb / max(sum.a, 1.0f), camera_hit.object >= 0 ? 1.0f : 0.0f));
       break;
     }
-    if (limited) {  // the cap ended every loop of this invocation: the next path starts in the next dispatch
-      start_path(pixel_index, method.samples.y + samples - path_samples_left);
-      break;
-    }
     start_path(pixel_index, method.samples.y + samples - path_samples_left);
+    if (limited) break;  // the cap ended every loop of this invocation: the next path starts in the next dispatch
   }
-  store_path(index);
+  paths[index] = packed_path();
   if (path_samples_left > 0u) atomicAdd(walk_counters.active_pixels, 1u);
 }
