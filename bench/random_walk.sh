@@ -1,41 +1,37 @@
 #!/usr/bin/env bash
-# random_walk.sh: the random-walk method's throughput with sphere jumps on and off (paths/s, walk steps/s, steps per
-# path, the pass times, medians of frames 2..F), and the time to a volpath reference of the same image on the GPU
-# (`lucent reference --device gpu`) and on the CPU. Prints the device and markdown rows (docs/performance.md).
+# random_walk.sh: the random-walk method's throughput, frame by frame in one run, with sphere jumps on and off,
+# beside CPU volpath on the same image (one core and all cores). Per frame: the trace pass's time, dispatches (and
+# those with under a tenth of the pool busy), read-backs, paths finished and their walk steps (every pixel's),
+# traversals per step and per next-event estimate, node visits per step. Then the totals over frames 2..F (frame 1
+# compiles the shaders) and the ratio of CPU volpath's paths per second per core to the walk's. Prints the device
+# and markdown (docs/performance.md).
 #   bash bench/random_walk.sh [SCENE] [WIDTH] [HEIGHT] [FRAMES] [REFERENCE_SPP]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 lucent=${LUCENT:-build/lucent}
 scene=${1:-scenes/bunny_marble.json}
-width=${2:-160}
-height=${3:-120}
-frames=${4:-5}
-spp=${5:-64}
+width=${2:-64}
+height=${3:-48}
+frames=${4:-24}
+spp=${5:-16}
 mkdir -p out/bench
 date -u +"date: %Y-%m-%d %H:%M UTC"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+cores=$(nproc)
+echo "machine: $cores cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "scene: $scene, ${width}x${height}, $frames frames of 1 path per pixel"
-echo "| sphere jumps | sphere_walks ms | trace ms | paths/s | steps/s | steps/path |"
-echo "|---|---|---|---|---|---|"
-for jumps in true false; do
+for jumps in on off; do
+  flag=$([[ $jumps == on ]] && echo true || echo false)
   json=out/bench/random_walk_$jumps.json
-  log=$("$lucent" render "$scene" --set "method={\"name\": \"random-walk\", \"sphere_jumps\": $jumps}" \
+  start=$(date +%s.%N)
+  log=$("$lucent" render "$scene" --set "method={\"name\": \"random-walk\", \"sphere_jumps\": $flag}" \
     --set "render.width=$width" --set "render.height=$height" --frames "$frames" \
     -o "out/bench/random_walk_$jumps.png" --timings-json "$json" 2>&1)
-  [[ $jumps == true ]] && echo "$log" | grep -m1 "GPU time per frame" | sed 's/.*, on /device: /; s/:$//'
-  python3 - "$json" "$jumps" <<'PY'
-import json, statistics, sys
-frames = json.load(open(sys.argv[1]))["frames"][1:]
-def median(key, where):
-    return statistics.median(f[where].get(key, 0.0) for f in frames)
-print(f"| {sys.argv[2]} | {median('sphere_walks', 'passes'):.1f} | {median('trace', 'passes'):.1f} | "
-      f"{median('paths_per_second', 'stats'):.4g} | {median('steps_per_second', 'stats'):.4g} | "
-      f"{median('steps_per_path', 'stats'):.2f} |")
-PY
+  wall=$(echo "$(date +%s.%N) - $start" | bc)
+  [[ $jumps == on ]] && echo "$log" | grep -m1 "GPU time per frame" | sed 's/.*, on /device: /; s/:$//'
+  for threads in 1 0; do
+    "$lucent" reference "$scene" --spp "$spp" --threads "$threads" --sphere-jumps "$jumps" \
+      --set "render.width=$width" --set "render.height=$height" -q -o "out/bench/random_walk_volpath_${jumps}_$threads.exr"
+  done
+  python3 bench/random_walk_report.py "$json" "$jumps" "$wall" "$cores" out/bench/random_walk_volpath_${jumps}_1.meta.json \
+    out/bench/random_walk_volpath_${jumps}_0.meta.json
 done
-for device in gpu cpu; do
-  "$lucent" reference "$scene" --device "$device" --spp "$spp" --set "render.width=$width" \
-    --set "render.height=$height" -q -o "out/bench/random_walk_reference_$device.exr"
-  python3 -c "import json,sys; m=json.load(open('out/bench/random_walk_reference_$device.meta.json')); print(f\"reference --device $device: {m['samples_per_pixel']} spp in {m['samples_per_pixel'] * m['width'] * m['height'] / m['camera_paths_per_second']:.1f} s ({m['camera_paths_per_second']:.4g} camera paths/s, {m['steps_per_path']:.2f} steps/path)\")"
-done
-"$lucent" compare out/bench/random_walk_reference_gpu.exr out/bench/random_walk_reference_cpu.exr | grep -E "linear|noise"

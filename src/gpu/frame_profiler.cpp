@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "platform/gl_capabilities.h"
+
 namespace lucent::gpu {
 
 FrameProfiler::Pass::Pass(FrameProfiler* profiler, std::string_view name) : profiler_(profiler), group_(name) {
@@ -13,7 +15,7 @@ FrameProfiler::Pass::~Pass() {
   if (profiler_) profiler_->end_pass();
 }
 
-FrameProfiler::FrameProfiler() {
+FrameProfiler::FrameProfiler() : flush_timestamps_(platform::timestamps_need_flush(platform::current_capabilities())) {
   for (Slot& slot : slots_) {
     glCreateBuffers(1, &slot.counters);
     glNamedBufferStorage(slot.counters, sizeof(shader::CountersGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -67,6 +69,7 @@ void FrameProfiler::begin_pass(std::string_view name) {
   Slot& slot = slots_[static_cast<std::size_t>(current_)];
   slot.queries.push_back({std::string(name), next_query(slot), 0});
   glQueryCounter(slot.queries.back().begin, GL_TIMESTAMP);
+  if (flush_timestamps_) glFlush();
 }
 
 void FrameProfiler::end_pass() {
@@ -74,6 +77,7 @@ void FrameProfiler::end_pass() {
   Slot& slot = slots_[static_cast<std::size_t>(current_)];
   slot.queries.back().end = next_query(slot);
   glQueryCounter(slot.queries.back().end, GL_TIMESTAMP);
+  if (flush_timestamps_) glFlush();
 }
 
 bool FrameProfiler::ready(Slot& slot, bool wait) {

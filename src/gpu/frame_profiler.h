@@ -78,6 +78,7 @@ class FrameProfiler {
   ProfiledFrame read(Slot& slot);
 
   std::array<Slot, kFramesInFlight> slots_;
+  bool flush_timestamps_ = false;  // platform::timestamps_need_flush: each query is flushed to be stamped in place
   int current_ = -1;
   bool in_frame_ = false;
   std::vector<ProfiledFrame> finished_;  // collected when their slot was reused, not yet handed out

@@ -42,12 +42,14 @@ struct FrameContext {
   gpu::FrameProfiler& profiler;
   bool restart;  // something other than the camera changed: drop accumulated results
   double time_seconds = 0.0;  // animated scenes: the instant the shared geometry was brought to
+  std::uint64_t frame = 0;    // the frame's number (FrameRecord::frame when its statistics are read)
 };
 
 // One finished frame as the method's statistics() sees it: its pass times and counters.
 struct FrameRecord {
   const std::vector<PassTiming>& passes;
   const shader::CountersGPU& counters;
+  std::uint64_t frame = 0;  // FrameContext::frame of the frame rendered (read a few frames later)
   double pass_ms(std::string_view name) const {
     for (const PassTiming& p : passes)
       if (p.name == name) return p.ms;

@@ -17,7 +17,9 @@ struct GLCapabilities {
 };
 
 // Mesa's llvmpipe ends every loop of a shader invocation, silently, once the loops' iterations together reach
-// this many (one counter per invocation, decremented by each iteration of any loop and never reset). Shaders
+// this many (one counter, decremented by each iteration of any loop and never reset; it counts the iterations of
+// the SIMD loop over 8 or 16 invocations at once, so divergent invocations run it down faster than any one of
+// them counts: random-walk saw it fire at a per-invocation count of 7,162). Shaders
 // whose loop counts come from data bound them below it, or split their work over dispatches (the random-walk
 // method counts its iterations and starts another event only well under it). Every shader loop whose count comes
 // from data states its bound in a `// loop bound: ...` comment, checked against this cap by a scan of the embedded
@@ -30,6 +32,11 @@ inline constexpr unsigned kLlvmpipeLoopIterations = 65535;
 // ran out at about half. The voxel-paths triangle loop, by contrast, lost its columns only past the full 65,535.
 // Why the counter runs faster in some loop nests is not known; the budget covers the worst case seen.
 inline constexpr unsigned kLlvmpipeLoopBudget = 32000;
+
+// Mesa's llvmpipe stamps a GL_TIMESTAMP query when it next flushes its queue, not where the query was issued
+// (a compute dispatch runs at once, so the stamp after it came only with the next pass's flush: a 1,289 ms trace
+// dispatch was charged to the pass before it). The frame profiler flushes after each timestamp where this holds.
+inline bool timestamps_need_flush(const GLCapabilities& caps) { return caps.is_llvmpipe; }
 
 // Queries the current context and throws lucent::Error naming the missing version or limit.
 GLCapabilities check_capabilities();

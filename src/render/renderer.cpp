@@ -311,7 +311,7 @@ struct Renderer::Impl {
     t.stats.push_back({"translucent_pixels", static_cast<double>(c.translucent_pixels), ""});
     t.stats.push_back({"coverage", c.translucent_pixels > 0 ? static_cast<double>(c.covered_pixels) / c.translucent_pixels : 1.0, ""});
     t.stats.push_back({"gpu_memory", static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0), "MiB"});
-    method->statistics({t.passes, c}, t.stats);
+    method->statistics({t.passes, c, profiled.frame}, t.stats);
     return t;
   }
 
@@ -337,7 +337,8 @@ struct Renderer::Impl {
     scene_gpu->bind_buffers();
     if (environment) environment->bind();
     camera_gbuffer_pass();
-    method->render({method_scene(), *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0, time_seconds});
+    method->render({method_scene(), *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0, time_seconds,
+                    frame_counter});
     tonemap_pass();
     glBlitNamedFramebuffer(output.ldr_framebuffer, target.framebuffer, 0, 0, output.width, output.height, 0, 0,
                            target.width, target.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

@@ -25,7 +25,7 @@ struct WalkEstimate {
   // share the frame's sphere-walk records, so their errors are correlated and the per-pixel errors do not add up to
   // the image mean's.
   double image_mean = 0.0, image_mean_error = 0.0;
-  double steps_per_path = 0.0;
+  double steps_per_path = 0.0, steps_per_path_error = 0.0;  // over the frames' own paths; from the frames' spread
 };
 
 // `batches` frames of `samples` paths per pixel (each frame draws fresh random numbers and sphere-walk records; the
@@ -39,6 +39,8 @@ WalkEstimate render_walk(lucent::Scene scene, int batches, int samples, std::uin
   scene.method_params.set("samples_per_frame", static_cast<double>(samples));
   lucent::OffscreenFramebuffer framebuffer(width, height);
   lucent::Renderer renderer(scene);
+  double steps = 0.0, paths = 0.0;  // of every frame's paths
+  std::vector<double> frame_steps;
   for (int b = 0; b < batches; ++b) {
     renderer.render(scene.camera, {framebuffer.id(), width, height});
     const lucent::ImageRGBA32F image = renderer.read_radiance();
@@ -51,7 +53,17 @@ WalkEstimate render_walk(lucent::Scene scene, int batches, int samples, std::uin
         sum[3 * p + c] += v, sum2[3 * p + c] += v * v, image_sum += v;
       }
     batch_means.push_back(image_sum / static_cast<double>(n));
-    out.steps_per_path += renderer.last_frame_timings().stat("steps_per_path", 0.0) / batches;
+    for (const lucent::FrameTimings& t : renderer.finished_frames(true)) {
+      steps += t.stat("walk_steps", 0.0), paths += t.stat("walk_paths", 0.0);
+      if (t.stat("walk_paths", 0.0) > 0.0) frame_steps.push_back(t.stat("walk_steps", 0.0) / t.stat("walk_paths", 0.0));
+    }
+  }
+  out.steps_per_path = paths > 0.0 ? steps / paths : 0.0;
+  if (frame_steps.size() > 1) {
+    double m = 0.0, m2 = 0.0, k = static_cast<double>(frame_steps.size());
+    for (double s : frame_steps) m += s / k;
+    for (double s : frame_steps) m2 += (s - m) * (s - m);
+    out.steps_per_path_error = std::sqrt(m2 / (k - 1.0) / k);
   }
   EXPECT_EQ(renderer.accumulated_frames(), batches);
   out.mean.resize(n), out.standard_error.resize(n);
@@ -139,6 +151,26 @@ TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromTheFront) {
 TEST(RandomWalk, AgreesWithVolpathOnASphereLitFromBehind) {
   expect_agreement("sphere lit from behind",
                    walk_sphere(kGreyMedium, R"({ "direction": [0.2, 0.1, 1], "radiance": [1, 1, 1] })"), 16, 8, 128);
+}
+
+// One definition of a walk step (free flights, tentative collisions, sphere jumps) for both: with jumps off on both,
+// the walk's mean steps per path (over the frames' own paths of pixels that hit something) is volpath's.
+TEST(RandomWalk, StepsPerPathAreVolpaths) {
+  lucent::test::ensure_gl_context();
+  lucent::Scene scene = walk_sphere(R"({ "sigma_a": [0.02, 0.02, 0.02], "sigma_s": [6, 6, 6], "g": 0.5, "eta": 1.4 })",
+                                    R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })");
+  scene.method_params.set("sphere_jumps", false);
+  const WalkEstimate gpu = render_walk(scene, 8, 2);
+  lucent::reference::ReferenceSettings settings;
+  settings.samples_per_pixel = 16;
+  settings.sphere_jumps = false;
+  const lucent::reference::ReferenceImage cpu = lucent::reference::render_reference(scene, settings);
+  const double se = std::hypot(gpu.steps_per_path_error, cpu.steps_per_path_standard_error);
+  fmt::print("steps per path: walk {:.3f} +- {:.3f}, volpath {:.3f} +- {:.3f} (z {:+.2f})\n", gpu.steps_per_path,
+             gpu.steps_per_path_error, cpu.steps_per_path, cpu.steps_per_path_standard_error,
+             (gpu.steps_per_path - cpu.steps_per_path) / se);
+  EXPECT_GT(cpu.steps_per_path, 10.0);
+  EXPECT_LE(std::fabs(gpu.steps_per_path - cpu.steps_per_path), 3.0 * se);
 }
 
 TEST(RandomWalk, AgreesWithVolpathOnAChromaticForwardScatteringMediumUnderAPointLight) {

@@ -7,6 +7,7 @@
 #include "methods/method.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstddef>
@@ -32,9 +33,17 @@
 namespace lucent::methods {
 namespace {
 
-// Pixel stride (both axes) of the paths whose walk steps the statistics count: 1 in 16 pixels keeps the 32-bit
-// counters from overflowing at 1080p with thousands of steps per path.
-constexpr int kStatisticsStride = 4;
+// Slots in the pool of paths in flight at most: 2^18 paths (32 MiB) keep a large GPU full (an H100 holds 270,336
+// threads), and llvmpipe's storage blocks (128 MiB) bind them.
+constexpr std::size_t kPoolSlots = std::size_t{1} << 18;
+// The results of the frames in flight at most (16 bytes per path): 64 MiB, 4 frames of 1080p at one path per pixel.
+constexpr std::size_t kResultBytes = std::size_t{64} << 20;
+// Frames in flight: the current one and the next. Deeper rings (up to LUCENT_WALK_MAX_REGIONS) were measured on
+// llvmpipe with the marble bunny: at 64 x 48 and 160 x 120 they raised paths per second (6,000 and 13,000 against
+// about 2,500 and 4,000 with one frame), but at 320 x 240 three frames took over 300 s against 19 s per frame alone:
+// every dispatch ran the whole pool of later frames' paths while the current frame's longest path advanced one
+// budget per dispatch. One frame ahead keeps that cost under one frame's work.
+constexpr std::size_t kRingFrames = 2;
 constexpr int kMaxSurfaceBounces = 64;  // as volpath
 constexpr int kRouletteAfter = 8;       // as volpath
 // Events of one path at most (a path spans dispatches, so llvmpipe's loop cap does not bound it): far beyond any
@@ -129,10 +138,21 @@ std::vector<shader::WalkObjectGPU> walk_objects(const Scene& scene, std::span<co
 }
 
 class RandomWalk final : public Method {
+  // A frame's counts over every path of every batch, kept for the frames whose statistics are not read yet.
+  struct FrameStats {
+    std::uint64_t frame = 0;
+    double paths = 0, steps = 0, traversals = 0, node_visits = 0, next_events = 0, next_event_traversals = 0;
+    double dispatches = 0, sparse_dispatches = 0, read_backs = 0, loop_limited = 0, replayed = 0;
+    double frame_paths = 0, frame_steps = 0;  // the frame's own paths (steps_per_path)
+    double traversals_per_next_event() const { return next_event_traversals / next_events; }
+  };
+
  public:
   RandomWalk(const Scene& scene, const render::SceneGpu& scene_gpu)
       : scene_(scene), params_(scene.method_params),
-        program_(gpu::ShaderProgram::compute("methods/random_walk/shaders/trace.comp")) {
+        program_(gpu::ShaderProgram::compute("methods/random_walk/shaders/trace.comp")),
+        control_program_(gpu::ShaderProgram::compute("methods/random_walk/shaders/pool_control.comp")),
+        resolve_program_(gpu::ShaderProgram::compute("methods/random_walk/shaders/resolve.comp")) {
     check_representable(scene);
     const render::LightViews light_views =
         render::build_light_views(scene, scene_gpu.translucent_bounds(), scene_gpu.scene_bounds(), 16);
@@ -165,7 +185,7 @@ class RandomWalk final : public Method {
       while (levels_used_ < shader::kSphereJumpLevelCount &&
              shader::sphere_jump_level_radius(levels_used_) <= largest_distance * densest)
         ++levels_used_;
-      const std::size_t bytes = jump_banks_.size() * shader::kSphereJumpLevelCount *
+      const std::size_t bytes = LUCENT_WALK_MAX_REGIONS * jump_banks_.size() * shader::kSphereJumpLevelCount *
                                 static_cast<std::size_t>(records_per_level_) * sizeof(shader::SphereWalkGPU);
       glCreateBuffers(1, &spheres_);
       glNamedBufferStorage(spheres_, static_cast<GLsizeiptr>(bytes), nullptr, 0);
@@ -193,6 +213,7 @@ class RandomWalk final : public Method {
   ~RandomWalk() override {
     glDeleteBuffers(1, &block_buffer_);
     glDeleteBuffers(1, &paths_);
+    glDeleteBuffers(1, &results_);
     glDeleteBuffers(1, &counters_);
     glDeleteBuffers(1, &nodes_);
     glDeleteBuffers(1, &triangles_);
@@ -210,14 +231,18 @@ class RandomWalk final : public Method {
     frame.light_counts = glm::ivec4(static_cast<int>(lights_.size()), 0, 0, 0);
     std::copy(lights_.begin(), lights_.end(), frame.lights);
     if (restart) samples_done_ = 0;
-    samples_this_frame_ = static_cast<unsigned>(params_.integer("samples_per_frame"));
+    const unsigned samples = static_cast<unsigned>(params_.integer("samples_per_frame"));
+    // Paths of the next frame already under way were started for this frame's first sample and count: anything
+    // else starts the pool afresh.
+    if (restart || samples != samples_this_frame_) pool_reset_ = true;
+    samples_this_frame_ = samples;
 
     shader::RandomWalkGPU block{};
     set_camera(frame, block);
     block.samples = glm::uvec4(samples_this_frame_, samples_done_, frame.seeds.x,
                                params_.boolean("sphere_jumps") ? LUCENT_WALK_SPHERE_JUMPS : 0u);
     block.limits = glm::ivec4(kMaxSurfaceBounces, kRouletteAfter, params_.integer("max_scatter"), kMaxPathEvents);
-    block.jump_info = glm::ivec4(static_cast<int>(jump_banks_.size()), kStatisticsStride, 0, 0);
+    block.jump_info = glm::ivec4(static_cast<int>(jump_banks_.size()), 0, 0, 0);
     block.distance_lower = glm::vec4(grid_.origin, grid_.cell_size);
     block.distance_size = glm::ivec4(grid_.cells, records_per_level_);
     for (std::size_t b = 0; b < jump_banks_.size(); ++b) block.jump_g[static_cast<int>(b)] = jump_banks_[b];
@@ -231,27 +256,99 @@ class RandomWalk final : public Method {
 
   void render(const FrameContext& context) override {
     if (context.scene_gpu.animated() && context.time_seconds != geometry_time_) follow_animation(context);
-    glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
-    if (spheres_ != 0 && levels_used_ > 0 && params_.boolean("sphere_jumps")) {
-      auto pass = context.profiler.pass("sphere_walks");
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_SPHERES, spheres_);
-      glUseProgram(sphere_program_.id());
-      glDispatchCompute(static_cast<GLuint>((records_per_level_ + 63) / 64), static_cast<GLuint>(levels_used_),
-                        static_cast<GLuint>(jump_banks_.size()));
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    auto pass = context.profiler.pass("trace");
-    // The image in tiles of rows whose paths in flight fit the driver's largest storage buffer (llvmpipe: 128 MiB,
-    // 1,048,576 paths; one tile up to 1920 x 546).
-    const int width = accumulated_.width(), height = accumulated_.height();
+    // The frame's paths in batches of whole samples whose results fit the driver's largest storage buffer
+    // (llvmpipe: 128 MiB, 8.4 million paths), each traced by the pool of slots. Where the whole frame fits in a
+    // results region, more than once, and nothing moves (the usual case), it is one batch, and slots the frame's
+    // paths no longer need start the next frames' paths in the ring's other regions: a frame does not wait idle
+    // for its longest path (a path in marble can take 100 times the mean).
+    const std::size_t pixels = static_cast<std::size_t>(accumulated_.width()) * accumulated_.height();
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    const std::size_t row_bytes = static_cast<std::size_t>(width) * sizeof(shader::WalkPathGPU);
-    const int tile_rows = static_cast<int>(std::clamp<std::size_t>(
-        max_block > 0 ? static_cast<std::size_t>(max_block) / row_bytes : static_cast<std::size_t>(height), 1,
-        static_cast<std::size_t>(height)));
-    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(tile_rows);
-    if (pixels != path_capacity_) allocate_paths(pixels);
+    const std::size_t block_bytes = max_block > 0 ? static_cast<std::size_t>(max_block) : std::size_t{1} << 31;
+    check_storage_block(pixels * sizeof(glm::vec4), fmt::format("the results of one path per pixel ({} pixels)", pixels),
+                        "render fewer pixels (render.width x render.height)");
+    const std::size_t frame_paths = pixels * samples_this_frame_;
+    const std::size_t result_budget = std::min(block_bytes, kResultBytes);
+    const std::size_t ring =
+        context.scene_gpu.animated() ? 1
+                                     : std::clamp<std::size_t>(result_budget / (frame_paths * sizeof(glm::vec4)), 1,
+                                                               kRingFrames);
+    // A path's index in its region has LUCENT_WALK_REGION_SHIFT bits (67 million paths).
+    const std::size_t most_paths = std::min(block_bytes / sizeof(glm::vec4), (std::size_t{1} << LUCENT_WALK_REGION_SHIFT) - 1);
+    if (pixels > most_paths)
+      throw Error(fmt::format("method 'random-walk': {} x {} pixels; the results of one path per pixel must fit {} "
+                              "paths (render fewer pixels: render.width x render.height)",
+                              accumulated_.width(), accumulated_.height(), most_paths));
+    const std::size_t batch_samples =
+        ring > 1 ? samples_this_frame_ : std::clamp<std::size_t>(most_paths / pixels, 1, samples_this_frame_);
+    const std::size_t batch_paths = batch_samples * pixels;
+    const std::size_t slots = std::min({batch_paths, kPoolSlots, block_bytes / sizeof(shader::WalkPathGPU)});
+    if (ring != ring_ || slots != path_capacity_ || ring * batch_paths > result_capacity_) pool_reset_ = true;
+    if (slots != path_capacity_ || ring * batch_paths > result_capacity_) allocate_pool(slots, ring * batch_paths);
+    if (pool_reset_) region_ = 0;
+    ring_ = ring;
+    const bool jumps = spheres_ != 0 && levels_used_ > 0 && params_.boolean("sphere_jumps");
+    FrameStats& stats = frame_stats_[context.frame % frame_stats_.size()];
+    stats = FrameStats{};
+    stats.frame = context.frame;
+    bind_trace_resources(context);
+    for (std::size_t first = 0; first < samples_this_frame_; first += batch_samples) {
+      const std::size_t samples = std::min<std::size_t>(batch_samples, samples_this_frame_ - first);
+      const bool last = first + samples >= samples_this_frame_;
+      const bool reset = pool_reset_;
+      shader::RandomWalkGPU block{};
+      block.pool = glm::uvec4(static_cast<unsigned>(slots), static_cast<unsigned>(samples * pixels), region_,
+                              static_cast<unsigned>(pixels));
+      // The sphere-walk banks made now: every region's after a reset, else the region the frame after the last
+      // one in flight takes (the one the previous frame left).
+      const unsigned regions = static_cast<unsigned>(ring);
+      unsigned banks_first = 0, banks = 0;
+      if (reset && first == 0) banks = regions;
+      else if (!reset) banks_first = (region_ + regions - 1) % regions, banks = 1;
+      block.ring = glm::uvec4(regions,
+                              (first == 0 ? LUCENT_WALK_POOL_FIRST : 0u) | (last ? LUCENT_WALK_POOL_LAST : 0u),
+                              banks_first, banks);
+      // Region (current + k)'s paths: frame k after this one, whose samples follow this frame's.
+      const unsigned current_first = samples_done_ - samples_this_frame_ + static_cast<unsigned>(first);
+      for (unsigned k = 0; k < ring; ++k) {
+        const unsigned r = (region_ + k) % static_cast<unsigned>(ring);
+        block.region_first[r / 4][static_cast<int>(r % 4)] = current_first + k * samples_this_frame_;
+      }
+      glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, pool),
+                           offsetof(shader::RandomWalkGPU, distance_lower) - offsetof(shader::RandomWalkGPU, pool),
+                           &block.pool);
+      if (jumps && banks != 0) {
+        auto pass = context.profiler.pass("sphere_walks");
+        glUseProgram(sphere_program_.id());
+        glDispatchCompute(static_cast<GLuint>((records_per_level_ + 63) / 64), static_cast<GLuint>(levels_used_),
+                          static_cast<GLuint>(ring * jump_banks_.size()));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      }
+      auto pass = context.profiler.pass("trace");
+      if (reset) {
+        glClearNamedBufferData(counters_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      } else {
+        glClearNamedBufferSubData(counters_, GL_R32UI, offsetof(shader::WalkCountersGPU, busy),
+                                  sizeof(shader::WalkCountersGPU) - offsetof(shader::WalkCountersGPU, busy),
+                                  GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      }
+      trace_batch(slots, reset, stats);
+      if (ring > 1) {  // the current region is free: the frame ring - 1 after the next starts in it
+        const std::size_t offset = region_ * sizeof(unsigned);
+        glClearNamedBufferSubData(counters_, GL_R32UI, offsetof(shader::WalkCountersGPU, next_path) + offset,
+                                  sizeof(unsigned), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        glClearNamedBufferSubData(counters_, GL_R32UI, offsetof(shader::WalkCountersGPU, finished) + offset,
+                                  sizeof(unsigned), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        region_ = (region_ + 1) % static_cast<unsigned>(ring);
+        pool_reset_ = false;
+      } else {
+        pool_reset_ = true;
+      }
+    }
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  }
+
+  void bind_trace_resources(const FrameContext& context) {
     glBindBufferBase(GL_UNIFORM_BUFFER, LUCENT_BINDING_METHOD, block_buffer_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_NODES, nodes_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_TRIANGLES, triangles_);
@@ -260,48 +357,36 @@ class RandomWalk final : public Method {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_AREAS, areas_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_FACES, faces_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_PATHS, paths_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_RESULTS, results_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_COUNTERS, counters_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LUCENT_BINDING_WALK_SPHERES, spheres_ != 0 ? spheres_ : objects_);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_);
     glBindTextureUnit(LUCENT_TEX_WALK_DISTANCE, distance_texture_);
     accumulated_.bind(LUCENT_IMAGE_WALK_SUM);
     glBindImageTexture(LUCENT_IMAGE_HDR, context.hdr_image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glUseProgram(program_.id());
-    glClearNamedBufferData(counters_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    shader::WalkCountersGPU totals{};
-    // A tile's paths advance over dispatches until every pixel of it has finished its paths: each invocation runs
-    // events only while its loop iterations stay under the budget (llvmpipe's cap, platform/gl_capabilities.h).
-    for (int first_row = 0; first_row < height; first_row += tile_rows) {
-      const int rows = std::min(tile_rows, height - first_row);
-      const glm::uvec4 tile(static_cast<unsigned>(first_row), static_cast<unsigned>(rows), 0u, 0u);
-      glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, tile), sizeof(tile), &tile);
-      for (unsigned dispatch = 0;; ++dispatch) {
-        const glm::uvec4 control(dispatch == 0 ? 1u : 0u, loop_budget_, loop_cap_, 2u);
-        glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, dispatch), sizeof(control), &control);
-        glClearNamedBufferSubData(counters_, GL_R32UI, 0, sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT,
-                                  nullptr);
-        glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((rows + 7) / 8), 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                        GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        glGetNamedBufferSubData(counters_, 0, sizeof(totals), &totals);
-        if (totals.active_pixels == 0) break;
-      }
-    }
-    last_counters_ = totals;
   }
 
   int accumulated_frames() const override { return accumulated_.frames(); }
 
   void statistics(const FrameRecord& record, std::vector<FrameStatistic>& out) const override {
     (void)record.counters;
-    const double counted_paths = last_counters_.paths, counted_steps = last_counters_.steps;
-    const double steps_per_path = counted_paths > 0.0 ? counted_steps / counted_paths : 0.0;
-    const double paths = static_cast<double>(accumulated_.width()) * accumulated_.height() * samples_this_frame_;
-    const double ms = record.pass_ms("trace");
-    out.push_back({"steps_per_path", steps_per_path, ""});
+    static const FrameStats kNone{};
+    const FrameStats& kept = frame_stats_[record.frame % frame_stats_.size()];
+    const FrameStats& f = kept.frame == record.frame ? kept : kNone;
+    const double ms = record.pass_ms("trace"), paths = f.paths, steps = f.steps;
+    out.push_back({"steps_per_path", f.frame_paths > 0.0 ? f.frame_steps / f.frame_paths : 0.0, ""});
+    out.push_back({"walk_steps", f.frame_steps, ""});
+    out.push_back({"walk_paths", f.frame_paths, ""});
     out.push_back({"paths_per_second", ms > 0.0 ? paths / (ms * 1e-3) : 0.0, "1/s"});
-    out.push_back({"steps_per_second", ms > 0.0 ? paths * steps_per_path / (ms * 1e-3) : 0.0, "1/s"});
-    out.push_back({"loop_limited_paths", static_cast<double>(last_counters_.loop_limited), ""});
-    out.push_back({"replayed_events", static_cast<double>(last_counters_.replayed), ""});
+    out.push_back({"steps_per_second", ms > 0.0 ? steps / (ms * 1e-3) : 0.0, "1/s"});
+    out.push_back({"traversals_per_step", steps > 0.0 ? f.traversals / steps : 0.0, ""});
+    out.push_back({"traversals_per_next_event", f.next_events > 0.0 ? f.traversals_per_next_event() : 0.0, ""});
+    out.push_back({"node_visits_per_step", steps > 0.0 ? f.node_visits / steps : 0.0, ""});
+    out.push_back({"dispatches", f.dispatches, ""});
+    out.push_back({"sparse_dispatches", f.sparse_dispatches, ""});
+    out.push_back({"read_backs", f.read_backs, ""});
+    out.push_back({"loop_limited_paths", f.loop_limited, ""});
+    out.push_back({"replayed_events", f.replayed, ""});
   }
 
   bool update_live_params(const Scene& scene) override {
@@ -314,7 +399,7 @@ class RandomWalk final : public Method {
     return true;
   }
   std::size_t gpu_memory_bytes() const override {
-    return accumulated_.gpu_memory_bytes() + sphere_bytes_ + grid_.distances.size() * sizeof(float) + path_capacity_ * sizeof(shader::WalkPathGPU) + bvh_.nodes.size() * sizeof(shader::BvhNodeGPU) +
+    return accumulated_.gpu_memory_bytes() + sphere_bytes_ + grid_.distances.size() * sizeof(float) + path_capacity_ * sizeof(shader::WalkPathGPU) + result_capacity_ * sizeof(glm::vec4) + bvh_.nodes.size() * sizeof(shader::BvhNodeGPU) +
            bvh_.triangles.size() * sizeof(shader::TriangleGPU) + scene_.objects.size() * sizeof(shader::WalkObjectGPU) +
            boundary_.neighbours.size() * sizeof(glm::ivec4) + boundary_.areas.size() * sizeof(glm::vec2) +
            boundary_.faces.size() * sizeof(glm::vec4);
@@ -357,16 +442,68 @@ class RandomWalk final : public Method {
     gpu::label_object(GL_TEXTURE, distance_texture_, "random-walk distance grid");
   }
 
-  void allocate_paths(std::size_t pixels) {
+  void allocate_pool(std::size_t slots, std::size_t results) {
     glDeleteBuffers(1, &paths_);
-    check_storage_block(pixels * sizeof(shader::WalkPathGPU), fmt::format("the paths in flight of {} pixels", pixels),
-                        "render fewer pixels (render.width x render.height)");
-    platform::require_device_memory(pixels * sizeof(shader::WalkPathGPU),
-                                    fmt::format("random-walk: the paths in flight of {} pixels", pixels));
+    glDeleteBuffers(1, &results_);
+    const std::size_t bytes = slots * sizeof(shader::WalkPathGPU) + results * sizeof(glm::vec4);
+    platform::require_device_memory(bytes, fmt::format("random-walk: {} paths in flight and {} results", slots, results));
     glCreateBuffers(1, &paths_);
-    glNamedBufferStorage(paths_, static_cast<GLsizeiptr>(pixels * sizeof(shader::WalkPathGPU)), nullptr, 0);
+    glNamedBufferStorage(paths_, static_cast<GLsizeiptr>(slots * sizeof(shader::WalkPathGPU)), nullptr, 0);
     gpu::label_object(GL_BUFFER, paths_, "random-walk paths in flight");
-    path_capacity_ = pixels;
+    glCreateBuffers(1, &results_);
+    glNamedBufferStorage(results_, static_cast<GLsizeiptr>(results * sizeof(glm::vec4)), nullptr, 0);
+    gpu::label_object(GL_BUFFER, results_, "random-walk path results");
+    path_capacity_ = slots, result_capacity_ = results;
+  }
+
+  // One batch: the first dispatch starts a path in every slot; each control pass after a dispatch sets the next
+  // one's work groups (none once the batch is done), so the host issues rounds of indirect dispatches and reads
+  // the counters back once per round, the first round as long as the last batch needed (one read-back per batch
+  // when the frames are alike).
+  void trace_batch(std::size_t slots, bool reset, FrameStats& f) {
+    const GLuint groups = static_cast<GLuint>((slots + LUCENT_WALK_POOL_GROUP - 1) / LUCENT_WALK_POOL_GROUP);
+    constexpr GLbitfield kBarrier = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
+    auto set_dispatch = [&](unsigned first) {
+      const glm::uvec4 control(first, loop_budget_, loop_cap_, 2u);
+      glNamedBufferSubData(block_buffer_, offsetof(shader::RandomWalkGPU, dispatch), sizeof(control), &control);
+    };
+    auto control = [&] {
+      glUseProgram(control_program_.id());
+      glDispatchCompute(1, 1, 1);
+      glMemoryBarrier(kBarrier);
+    };
+    set_dispatch(reset ? 1u : 0u);
+    glUseProgram(program_.id());
+    glDispatchCompute(groups, 1, 1);
+    glMemoryBarrier(kBarrier);
+    control();
+    set_dispatch(0u);
+    shader::WalkCountersGPU totals{};
+    unsigned round = std::max(1u, dispatch_estimate_);
+    for (;;) {
+      for (unsigned d = 0; d < round; ++d) {
+        glUseProgram(program_.id());
+        glDispatchComputeIndirect(static_cast<GLintptr>(offsetof(shader::WalkCountersGPU, groups)));
+        glMemoryBarrier(kBarrier);
+        control();
+      }
+      // The frame's paths into the image, if they have all finished (no work groups otherwise).
+      glUseProgram(resolve_program_.id());
+      glDispatchComputeIndirect(static_cast<GLintptr>(offsetof(shader::WalkCountersGPU, resolve_groups)));
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      glGetNamedBufferSubData(counters_, 0, sizeof(totals), &totals);
+      ++f.read_backs;
+      if (totals.groups.x == 0) break;
+      round = std::max(round, 4u);  // not done: rounds of at least 4, few read-backs in the tail
+    }
+    dispatch_estimate_ = std::max(1u, totals.dispatches);
+    auto wide = [](glm::uvec2 v) { return static_cast<double>(v.x) + 4294967296.0 * static_cast<double>(v.y); };
+    f.paths += totals.paths, f.steps += wide(totals.steps), f.traversals += wide(totals.traversals);
+    f.node_visits += wide(totals.node_visits), f.next_events += wide(totals.next_events);
+    f.next_event_traversals += wide(totals.next_event_traversals);
+    f.dispatches += 1 + totals.dispatches, f.sparse_dispatches += totals.sparse_dispatches;
+    f.frame_paths += totals.frame_paths, f.frame_steps += wide(totals.frame_steps);
+    f.loop_limited += totals.loop_limited, f.replayed += totals.replayed;
   }
 
   // The pinhole camera of the frame's projection: the ray through normalized device coordinates (x, y) is
@@ -450,11 +587,16 @@ class RandomWalk final : public Method {
   std::vector<shader::LightGPU> lights_;
   std::vector<int> light_media_;
   render::ViewAccumulator accumulated_{"random-walk accumulated radiance"};
-  GLuint block_buffer_ = 0, nodes_ = 0, triangles_ = 0, objects_ = 0, paths_ = 0, counters_ = 0;
+  gpu::ShaderProgram control_program_, resolve_program_;
+  GLuint block_buffer_ = 0, nodes_ = 0, triangles_ = 0, objects_ = 0, paths_ = 0, results_ = 0, counters_ = 0;
   GLuint neighbours_ = 0, areas_ = 0, faces_ = 0;  // the surfaces the chain solvers walk on (walk_boundary.h)
-  std::size_t path_capacity_ = 0;
+  std::size_t path_capacity_ = 0, result_capacity_ = 0;
   unsigned loop_cap_ = 0, loop_budget_ = 0;
-  shader::WalkCountersGPU last_counters_{};
+  unsigned dispatch_estimate_ = 8;
+  bool pool_reset_ = true;  // the next frame starts with every slot free
+  unsigned region_ = 0;     // the results region of the current frame's paths (the next frames': the following)
+  std::size_t ring_ = 1;    // regions in the ring: frames in flight at most  // indirect dispatches the last batch had work for after its first
+  std::array<FrameStats, 8> frame_stats_{};
   random_walk::TriangleBvh bvh_;
   random_walk::WalkBoundary boundary_;
   std::vector<shader::TriangleGPU> rest_triangles_;  // as gathered at time 0, in the scene's order

@@ -28,9 +28,18 @@ constexpr PassDecl kPasses[] = {
 };
 
 constexpr StatDecl kStats[] = {
-    {"steps_per_path", "", "mean walk steps per path (free flights, null collisions and sphere jumps in media)"},
-    {"paths_per_second", "1/s", "paths traced per second of the trace pass"},
-    {"steps_per_second", "1/s", "walk steps per second of the trace pass"},
+    {"steps_per_path", "", "mean walk steps per path of the frame's pixels that hit something (free flights, "
+     "tentative collisions of delta tracking and sphere jumps in media, as volpath counts them)"},
+    {"walk_steps", "", "the walk steps of the frame's paths"},
+    {"walk_paths", "", "the frame's paths of pixels that hit something (volpath counts those)"},
+    {"paths_per_second", "1/s", "paths finished per second of the trace pass (of this frame and the next ones in flight)"},
+    {"steps_per_second", "1/s", "their walk steps per second of the trace pass"},
+    {"traversals_per_step", "", "rays traced through the bounding volume hierarchy per walk step"},
+    {"traversals_per_next_event", "", "of them, those of next-event estimates, per estimate at a medium vertex"},
+    {"node_visits_per_step", "", "hierarchy nodes visited per walk step"},
+    {"dispatches", "", "trace dispatches with work this frame"},
+    {"sparse_dispatches", "", "of them, those with under a tenth of the pool's slots busy (the tail of long paths)"},
+    {"read_backs", "", "blocking reads of the walk's counters this frame (one per round of indirect dispatches)"},
     {"loop_limited_paths", "", "paths dropped this frame: an event the driver's loop cap (llvmpipe) cut at a dispatch's start"},
     {"replayed_events", "", "events the driver's loop cap cut, undone and replayed in the next dispatch (llvmpipe)"},
 };

@@ -16,7 +16,7 @@
 #include "shared/volume_walk.h"
 #include "methods/random_walk/random_walk_io.h"
 
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(local_size_x = LUCENT_WALK_POOL_GROUP, local_size_y = 1, local_size_z = 1) in;
 
 layout(std140, binding = LUCENT_BINDING_METHOD) uniform MethodBlock { RandomWalkGPU method; };
 layout(std430, binding = LUCENT_BINDING_WALK_NODES) readonly buffer NodeBlock { BvhNodeGPU nodes[]; };
@@ -24,9 +24,6 @@ layout(std430, binding = LUCENT_BINDING_WALK_TRIANGLES) readonly buffer Triangle
 layout(std430, binding = LUCENT_BINDING_WALK_OBJECTS) readonly buffer WalkObjectBlock { WalkObjectGPU walk_objects[]; };
 layout(std430, binding = LUCENT_BINDING_WALK_SPHERES) readonly buffer SphereBlock { SphereWalkGPU spheres[]; };
 layout(binding = LUCENT_TEX_WALK_DISTANCE) uniform sampler3D distance_grid;
-layout(rgba32f, binding = LUCENT_IMAGE_WALK_SUM) uniform image2D accumulated;
-layout(rgba32f, binding = LUCENT_IMAGE_HDR) uniform writeonly image2D hdr;
-layout(std430, binding = LUCENT_BINDING_COUNTERS) buffer CounterBlock { CountersGPU counters; };
 
 const int kMaxShadowCrossings = 64;       // index-matched media a shadow ray crosses at most (as volpath)
 const int kMaxTraversalSteps = 60000;     // BVH nodes one ray visits at most (under llvmpipe's 65,535 iterations)
@@ -34,6 +31,9 @@ const int kMaxRatioTrackingSteps = 60000; // tentative collisions of one transmi
 // Self-intersection offsets relative to the largest coordinate involved (volpath: 1e-6 in double; the GPU
 // intersects and rebuilds hit points in float, a few rounding steps of 6e-8 each).
 const float kRelativeOffset = 2e-6f;
+// Optical depth (to the nearest surface) under which every next-event estimate traces the light through the boundary;
+// deeper, it runs with probability e^(kNextEventFullDepth - depth) (medium_next_event).
+const float kNextEventFullDepth = 3.0f;
 
 // ---- random numbers: one counter-based stream per (seed, pixel, sample) ---------------------------------------
 uint rng_key = 0u, rng_count = 0u;
@@ -46,6 +46,8 @@ float rnd() {
 // together pass 65,535 (one counter per invocation, never reset), so an invocation starts another event only
 // well under that, and a path that went past it is counted as unreliable.
 uint loop_count = 0u;
+// This invocation's work in the dispatch, added to the batch's counters at its end.
+uint stat_traversals = 0u, stat_node_visits = 0u, stat_next_events = 0u, stat_next_event_traversals = 0u;
 
 // Whether the driver's loop cap has ended this invocation's loops: a loop of dispatch.w (2) iterations, a count the
 // compiler cannot unroll, then runs one at most. (The per-lane loop_count undercounts the driver's counter, which
@@ -91,10 +93,12 @@ Hit trace(vec3 origin, vec3 direction, float t_max, float t_min) {
   vec2 best_uv = vec2(0.0f);
   int stack[64];
   int depth = 0, node = 0;
+  ++stat_traversals;
   if (box_entry(nodes[0].lower.xyz, nodes[0].upper.xyz, origin, inv_direction, t_max) < 0.0f) return hit;
   // loop bound: checked; every iteration counts in loop_count, and an invocation starts another event only while loop_count stays under method.dispatch.y (random_walk.cpp budgets it well under kLlvmpipeLoopIterations)
   for (int step = 0; step < kMaxTraversalSteps; ++step) {
     ++loop_count;
+    ++stat_node_visits;
     BvhNodeGPU n = nodes[node];
     int count = floatBitsToInt(n.upper.w);
     if (count > 0) {
@@ -218,17 +222,42 @@ vec3 point_intensity(LightGPU light, vec3 direction) {
   return I;
 }
 
+// ---- the distance bound (sphere jumps, short flights, deep next-event estimates) --------------------------------
+// A lower bound of the distance from x to every surface: the distance grid's value at the nearest cell centre
+// minus the distance to it (the distance is 1-Lipschitz), minus how far the surfaces moved since the grid was built.
+float surface_distance_bound(vec3 x) {
+  vec3 cells = vec3(method.distance_size.xyz);
+  vec3 u = (x - method.distance_lower.xyz) / method.distance_lower.w;
+  ivec3 cell = ivec3(clamp(floor(u), vec3(0.0f), cells - 1.0f));
+  vec3 centre = method.distance_lower.xyz + (vec3(cell) + 0.5f) * method.distance_lower.w;
+  return texelFetch(distance_grid, cell, 0).r - length(x - centre) - method.jump_bound.x;
+}
+
 #include "methods/random_walk/shaders/boundary_light.glsl"
 
 // Light in-scattered at medium vertex x of `object` toward -path_dir (phase functions per band): a point light inside
 // this medium straight through it, every light outside it through the boundary (boundary_light.glsl).
 vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
+  ++stat_next_events;
+  uint traversals_before = stat_traversals;
   vec3 g = walk_objects[object].g.xyz;
-  vec3 L = vec3(0.0f);
+  vec3 L = vec3(0.0f), L_outside = vec3(0.0f);
   // Its own random numbers: the path's do not depend on how many the estimate draws.
   uint path_key = rng_key, path_count = rng_count;
   rng_key = pcg_hash(rng_key ^ pcg_hash(rng_count ^ 0x2545f491u));
   rng_count = 0u;
+  // Light from outside the medium crosses at least the distance to the nearest surface inside it, so in a
+  // homogeneous medium its transmittance is at most e^-depth, depth that distance (the grid's bound) times the
+  // smallest extinction. Deeper than kNextEventFullDepth the estimate through the boundary runs with probability
+  // e^(kNextEventFullDepth - depth) and counts divided by it (Russian roulette: unbiased, the weighted estimate stays
+  // under e^-kNextEventFullDepth of an unattenuated one).
+  float survival = 1.0f;
+  if (method.jump_bound.y > 0.5f && !heterogeneous(object)) {
+    vec3 sigma_t = sigma_t_of(object);
+    float depth = min(sigma_t.x, min(sigma_t.y, sigma_t.z)) * surface_distance_bound(x);
+    if (depth > kNextEventFullDepth) survival = exp(kNextEventFullDepth - depth);
+  }
+  bool through_boundary = survival >= 1.0f || rnd() < survival;
   // loop bound: checked; at most LUCENT_MAX_LIGHTS lights per call, each counted in loop_count (budgeted by random_walk.cpp)
   for (int l = 0; l < frame.light_counts.x; ++l) {
     ++loop_count;
@@ -248,9 +277,11 @@ vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
       }
       if (medium >= 0) continue;  // inside another medium
     }
-    L += light_through_boundary(object, x, path_dir, l);
+    if (through_boundary) L_outside += light_through_boundary(object, x, path_dir, l);
   }
+  L += L_outside / survival;
   rng_key = path_key, rng_count = path_count;
+  stat_next_event_traversals += stat_traversals - traversals_before;
   return L;
 }
 
@@ -280,6 +311,7 @@ vec3 lambertian_next_event(Hit hit, vec3 n, vec3 albedo) {
 vec3 path_origin, path_direction, path_throughput, path_r_u, path_radiance;
 int path_hero, path_medium, path_events, path_scatterings;
 uint path_steps;
+uint path_region;  // its results region (0 or 1): its frame's, whose sphere-walk banks it reads
 uint path_jump_start, path_jumps;
 
 vec3 path_weight() { return path_throughput / mean3(path_r_u); }
@@ -310,17 +342,8 @@ bool leave_or_reflect(Hit boundary) {
   return roulette();
 }
 
-// ---- sphere jumps (docs/methods/random-walk.md) -----------------------------------------------------------------
-// A lower bound of the distance from x to every surface: the distance grid's value at the nearest cell centre
-// minus the distance to it (the distance is 1-Lipschitz), minus how far the surfaces moved since the grid was built.
-float surface_distance_bound(vec3 x) {
-  vec3 cells = vec3(method.distance_size.xyz);
-  vec3 u = (x - method.distance_lower.xyz) / method.distance_lower.w;
-  ivec3 cell = ivec3(clamp(floor(u), vec3(0.0f), cells - 1.0f));
-  vec3 centre = method.distance_lower.xyz + (vec3(cell) + 0.5f) * method.distance_lower.w;
-  return texelFetch(distance_grid, cell, 0).r - length(x - centre) - method.jump_bound.x;
-}
 
+// ---- sphere jumps (docs/methods/random-walk.md) -----------------------------------------------------------------
 // The collision a jump's record represents, for its next-event estimate (n times the weight after it).
 vec3 jump_vertex, jump_vertex_direction, jump_vertex_weight;
 
@@ -345,7 +368,8 @@ bool sphere_jump(vec3 x) {
   }
   if (level < 0) return false;
   uint count = uint(method.jump_records[level / 4][level % 4]);
-  SphereWalkGPU record = spheres[(bank * kSphereJumpLevelCount + level) * method.distance_size.w +
+  SphereWalkGPU record = spheres[((int(path_region) * method.jump_info.x + bank) * kSphereJumpLevelCount + level) *
+                                     method.distance_size.w +
                                  int((path_jump_start + path_jumps) % count)];
   ++path_jumps;
   ++path_steps;
@@ -449,7 +473,14 @@ bool medium_step() {
   bool field = heterogeneous(object);
   vec3 sigma_t = sigma_t_of(object);
   float t = field ? 1e30f : free_flight(sigma_t[path_hero], rnd());
-  Hit boundary = trace(path_origin, path_direction, t, 0.0f);
+  // A flight shorter than the distance grid's bound on the nearest surface cannot reach the boundary: no ray.
+  Hit boundary;
+  if (!field && method.jump_bound.y > 0.5f && t < surface_distance_bound(path_origin)) {
+    boundary.object = -1;
+    boundary.t = t;
+  } else {
+    boundary = trace(path_origin, path_direction, t, 0.0f);
+  }
   vec3 x = path_origin + t * path_direction;
   int flight;  // 0 absorbed, 1 scattered at x, 2 reached the boundary
   if (field) {
@@ -508,20 +539,31 @@ bool surface_step(int bounce, Hit hit) {
 layout(std430, binding = LUCENT_BINDING_WALK_PATHS) buffer PathBlock { WalkPathGPU paths[]; };
 layout(std430, binding = LUCENT_BINDING_WALK_COUNTERS) buffer WalkCounterBlock { WalkCountersGPU walk_counters; };
 
-int path_bounce;
-uint path_samples_left;
-vec3 camera_origin, camera_direction;
-Hit camera_hit;
+layout(std430, binding = LUCENT_BINDING_WALK_RESULTS) writeonly buffer ResultBlock { vec4 results[]; };
 
-void start_path(uint pixel_index, uint sample_index) {
+int path_bounce;
+uint path_index;  // in its region's frame (LUCENT_WALK_NO_PATH: none)
+uint path_flags;  // LUCENT_WALK_RESULT_* of its camera ray
+
+// Path `index` of region `region`: sample index / pixels from the region's first, pixel index % pixels (row 0 the
+// top one, as the references' images), from the camera through the pixel's centre.
+void start_path(uint index, uint region) {
+  uint pixels = method.pool.w, pixel_index = index % pixels;
+  uint sample_index = method.region_first[region / 4u][region % 4u] + index / pixels;
+  ivec2 size = frame.output_size.xy;
+  ivec2 pixel = ivec2(int(pixel_index) % size.x, size.y - 1 - int(pixel_index) / size.x);
+  float sx = (2.0f * (float(pixel.x) + 0.5f) / float(size.x) - 1.0f) * method.forward.w * method.right.w;
+  float sy = (2.0f * (float(pixel.y) + 0.5f) / float(size.y) - 1.0f) * method.forward.w;
   rng_key = seed_from(method.samples.z, pixel_index, sample_index, 0x5157a1u);
   rng_count = 0u;
-  path_origin = camera_origin, path_direction = camera_direction;
+  path_origin = method.eye.xyz;
+  path_direction = normalize(method.forward.xyz + sx * method.right.xyz + sy * method.up.xyz);
   path_throughput = vec3(1.0f), path_r_u = vec3(1.0f), path_radiance = vec3(0.0f);
   path_hero = min(2, int(rnd() * 3.0f));
   path_medium = -1, path_events = 0, path_scatterings = 0, path_bounce = 0;
   path_steps = 0u;
   path_jump_start = pcg_hash(rng_key ^ 0x6a09e667u), path_jumps = 0u;
+  path_index = index, path_region = region, path_flags = 0u;
 }
 
 // The path's state as stored between dispatches (and kept before each event, to replay one the loop cap cut).
@@ -533,8 +575,9 @@ WalkPathGPU packed_path() {
   p.r_u = vec4(path_r_u, 0.0f);
   p.radiance = vec4(path_radiance, 0.0f);
   p.info = ivec4(path_hero, path_medium, path_events, path_scatterings);
-  p.state = uvec4(rng_key, rng_count, path_steps, path_samples_left);
-  p.jumps = uvec4(path_jump_start, path_jumps, 0u, 0u);
+  p.state = uvec4(rng_key, rng_count, path_steps,
+                  path_index == LUCENT_WALK_NO_PATH ? path_index : path_index | (path_region << LUCENT_WALK_REGION_SHIFT));
+  p.jumps = uvec4(path_jump_start, path_jumps, path_flags, 0u);
   return p;
 }
 
@@ -543,8 +586,11 @@ void unpack_path(WalkPathGPU p) {
   path_direction = p.direction.xyz, path_throughput = p.throughput.xyz, path_r_u = p.r_u.xyz;
   path_radiance = p.radiance.xyz;
   path_hero = p.info.x, path_medium = p.info.y, path_events = p.info.z, path_scatterings = p.info.w;
-  rng_key = p.state.x, rng_count = p.state.y, path_steps = p.state.z, path_samples_left = p.state.w;
-  path_jump_start = p.jumps.x, path_jumps = p.jumps.y;
+  rng_key = p.state.x, rng_count = p.state.y, path_steps = p.state.z;
+  bool none = p.state.w == LUCENT_WALK_NO_PATH;
+  path_index = none ? p.state.w : p.state.w & ((1u << LUCENT_WALK_REGION_SHIFT) - 1u);
+  path_region = none ? 0u : p.state.w >> LUCENT_WALK_REGION_SHIFT;
+  path_jump_start = p.jumps.x, path_jumps = p.jumps.y, path_flags = p.jumps.z;
 }
 
 // One event of the path: a medium step or a surface interaction. False when the path ended.
@@ -552,46 +598,58 @@ bool path_event() {
   if (path_events >= method.limits.w) return false;  // never reached by a physical path (see the method's doc)
   if (path_medium >= 0) return medium_step();
   if (path_bounce >= method.limits.x) return false;
-  Hit hit = path_bounce == 0 ? camera_hit : trace_from_surface(path_origin, path_direction, 1e30f);
+  Hit hit = trace_from_surface(path_origin, path_direction, 1e30f);
+  if (path_bounce == 0 && hit.object >= 0)
+    path_flags = LUCENT_WALK_RESULT_COVERED | (translucent(hit.object) ? LUCENT_WALK_RESULT_TRANSLUCENT : 0u);
   return surface_step(path_bounce++, hit);
 }
 
+// Adds v to the 64-bit counter (low, high) of walk_counters named by `which`.
+void add_count(uint which, uint v) {
+  if (v == 0u) return;
+  uint low = 0u;
+  if (which == 0u) low = atomicAdd(walk_counters.steps.x, v);
+  else if (which == 1u) low = atomicAdd(walk_counters.traversals.x, v);
+  else if (which == 2u) low = atomicAdd(walk_counters.node_visits.x, v);
+  else if (which == 3u) low = atomicAdd(walk_counters.next_events.x, v);
+  else low = atomicAdd(walk_counters.next_event_traversals.x, v);
+  if (low + v >= low) return;  // no carry
+  if (which == 0u) atomicAdd(walk_counters.steps.y, 1u);
+  else if (which == 1u) atomicAdd(walk_counters.traversals.y, 1u);
+  else if (which == 2u) atomicAdd(walk_counters.node_visits.y, 1u);
+  else if (which == 3u) atomicAdd(walk_counters.next_events.y, 1u);
+  else atomicAdd(walk_counters.next_event_traversals.y, 1u);
+}
+
+// One slot of the pool: its path advances event by event while the invocation's loop iterations stay under the
+// budget; when it ends, its result goes to the batch's results and the slot takes the batch's next path.
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, int(method.tile.x));
-  ivec2 size = frame.output_size.xy;
-  if (pixel.x >= size.x || pixel.y >= size.y || gl_GlobalInvocationID.y >= method.tile.y) return;
-  uint index = uint(int(gl_GlobalInvocationID.y) * size.x + pixel.x);
-  // The ray through the pixel's centre (row 0 of the image is the bottom one, of the references the top one).
-  float sx = (2.0f * (float(pixel.x) + 0.5f) / float(size.x) - 1.0f) * method.forward.w * method.right.w;
-  float sy = (2.0f * (float(pixel.y) + 0.5f) / float(size.y) - 1.0f) * method.forward.w;
-  camera_origin = method.eye.xyz;
-  camera_direction = normalize(method.forward.xyz + sx * method.right.xyz + sy * method.up.xyz);
-  camera_hit = trace_from_surface(camera_origin, camera_direction, 1e30f);
-  uint pixel_index = uint((size.y - 1 - pixel.y) * size.x + pixel.x);
-  uint samples = method.samples.x;
-  if (method.dispatch.x != 0u) {
-    path_samples_left = samples;
-    start_path(pixel_index, method.samples.y);
-    if (camera_hit.object >= 0 && translucent(camera_hit.object)) {
-      atomicAdd(counters.translucent_pixels, 1u);
-      atomicAdd(counters.covered_pixels, 1u);
-    }
-  } else {
-    unpack_path(paths[index]);
-    if (path_samples_left == 0u) return;
-  }
-  bool counted = pixel.x % method.jump_info.y == 0 && pixel.y % method.jump_info.y == 0;
-  bool limited = false;
-  // Events while the loop iterations stay under the budget (each event stays far below the cap minus it).
+  uint slot = gl_GlobalInvocationID.x;
+  if (slot >= method.pool.x) return;
+  uint region_paths = method.pool.y, current = method.pool.z, regions = method.ring.x;
+  if (method.dispatch.x != 0u) path_index = LUCENT_WALK_NO_PATH;
+  else unpack_path(paths[slot]);
+  uint steps_done = 0u, finished = 0u;
   // loop bound: checked; events end once loop_count reaches method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
   for (int event = 0; event < 1000000 && loop_count < method.dispatch.y; ++event) {
     ++loop_count;
+    if (path_index == LUCENT_WALK_NO_PATH) {  // the current frame's next path, else the next frames' in turn
+      uint index = region_paths, region = current;
+      for (uint k = 0u; k < LUCENT_WALK_MAX_REGIONS && k < regions && index >= region_paths; ++k) {
+        ++loop_count;
+        region = (current + k) % regions;
+        if (walk_counters.next_path[region] < region_paths) index = atomicAdd(walk_counters.next_path[region], 1u);
+      }
+      if (index >= region_paths) break;
+      start_path(index, region);
+    }
     // The driver's counter runs over the SIMD group (8 or 16 invocations), so a budget on this invocation's own
     // count cannot rule the cap out. An event the cap cut is undone and replayed, with the same random numbers, at
     // the start of the next dispatch: the path is the one it would have been. Only an event that the cap cuts even
     // as a dispatch's first is dropped (counted as loop_limited).
     WalkPathGPU before = packed_path();
     bool alive = path_event();
+    bool limited = false;
     if (method.dispatch.z != 0u && loops_were_cut()) {
       if (event > 0) {
         unpack_path(before);
@@ -601,24 +659,24 @@ void main() {
       limited = true;
     }
     if (alive && !limited) continue;
-    vec4 sum = frame.seeds.z != 0u && path_samples_left == samples ? vec4(0.0f) : imageLoad(accumulated, pixel);
-    bool finite = all(greaterThanEqual(path_radiance, vec3(0.0f))) && all(lessThan(path_radiance, vec3(1e30f)));
     // A path past the loop cap is dropped and counted (the loop_limited_paths statistic); a non-finite one (never
     // expected) counts as black.
+    bool finite = all(greaterThanEqual(path_radiance, vec3(0.0f))) && all(lessThan(path_radiance, vec3(1e30f)));
     if (limited) atomicAdd(walk_counters.loop_limited, 1u);
-    else sum += vec4(finite ? path_radiance : vec3(0.0f), 1.0f);
-    imageStore(accumulated, pixel, sum);
-    if (counted) {
-      atomicAdd(walk_counters.paths, 1u);
-      atomicAdd(walk_counters.steps, path_steps);
-    }
-    if (--path_samples_left == 0u) {
-      imageStore(hdr, pixel, vec4(sum.rgb / max(sum.a, 1.0f), camera_hit.object >= 0 ? 1.0f : 0.0f));
-      break;
-    }
-    start_path(pixel_index, method.samples.y + samples - path_samples_left);
+    uint bits = path_flags | (limited ? 0u : LUCENT_WALK_RESULT_VALID);
+    bits |= min(path_steps, (1u << 21u) - 1u) << 3u;
+    results[path_region * region_paths + path_index] = vec4(finite && !limited ? path_radiance : vec3(0.0f), float(bits));
+    atomicAdd(walk_counters.finished[path_region], 1u);
+    steps_done += path_steps, ++finished;
+    path_index = LUCENT_WALK_NO_PATH;
     if (limited) break;  // the cap ended every loop of this invocation: the next path starts in the next dispatch
   }
-  paths[index] = packed_path();
-  if (path_samples_left > 0u) atomicAdd(walk_counters.active_pixels, 1u);
+  paths[slot] = packed_path();
+  if (path_index != LUCENT_WALK_NO_PATH) atomicAdd(walk_counters.busy, 1u);
+  if (finished > 0u) atomicAdd(walk_counters.paths, finished);
+  add_count(0u, steps_done);
+  add_count(1u, stat_traversals);
+  add_count(2u, stat_node_visits);
+  add_count(3u, stat_next_events);
+  add_count(4u, stat_next_event_traversals);
 }
