@@ -166,6 +166,7 @@ void run(ReferenceOptions o) {
                              {"height", scene.render.height},
                              {"camera_paths_per_second", paths / image.seconds},
                              {"steps_per_path", image.steps_per_path},
+                             {"steps_per_path_standard_error", image.steps_per_path_standard_error},
                              {"overrides", o.sets}};
   // A merged reference resumed: its samples are those of its seeds and now this one's too (what a later merge
   // checks), and it keeps the list of its inputs.

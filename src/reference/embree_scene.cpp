@@ -274,6 +274,45 @@ bool closest_triangle_callback(RTCPointQueryFunctionArguments* args) {
 
 }  // namespace
 
+struct WithinQuery {
+  const EmbreeScene* scene;
+  const std::vector<int>* object_of_geometry;
+  glm::dvec3 point;
+  double reach;  // the radius plus the float slack
+  bool found;
+  double distance;
+};
+
+// The first triangle within reach ends the query: the sphere shrinks to nothing.
+bool within_callback(RTCPointQueryFunctionArguments* args) {
+  auto* q = static_cast<WithinQuery*>(args->userPtr);
+  if (q->found) return false;
+  const int object = (*q->object_of_geometry)[args->geomID];
+  const ObjectData::Corners& c = q->scene->object(object).corners[args->primID];
+  const double d = glm::length(closest_point_on_triangle(q->point, glm::dvec3(c.position[0]), glm::dvec3(c.position[1]),
+                                                         glm::dvec3(c.position[2])) -
+                               q->point);
+  if (!(d < q->reach)) return false;
+  q->found = true;
+  q->distance = d;
+  args->query->radius = 0.0f;
+  return true;
+}
+
+bool EmbreeScene::surface_within(const glm::dvec3& p, double radius, double& found_distance) const {
+  const double slack = 4.0 * offset_at(p);
+  RTCPointQuery query{};
+  query.x = static_cast<float>(p.x), query.y = static_cast<float>(p.y), query.z = static_cast<float>(p.z);
+  query.time = 0.0f;
+  query.radius = std::nextafter(static_cast<float>(radius + slack), std::numeric_limits<float>::max());
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  WithinQuery q{this, &object_of_geometry_, p, radius + slack, false, 0.0};
+  rtcPointQuery(scene_, &query, &context, within_callback, &q);
+  found_distance = q.distance;
+  return q.found;
+}
+
 double EmbreeScene::closest_surface_distance(const glm::dvec3& p, double max_radius) const {
   // Embree culls around p in float: a triangle nearer to p than some distance is nearer to that point than the
   // distance plus theirs, which the slack covers (and subtracted from the result, keeps it a lower bound).

@@ -118,6 +118,10 @@ class EmbreeScene {
   // radius visits fewer BVH nodes). The triangles are Embree's own (float corners); the result is lowered by a few
   // float rounding steps of p's coordinates, so that a ball of that radius about p touches no surface.
   double closest_surface_distance(const glm::dvec3& p, double max_radius) const;
+  // Whether some surface may lie within `radius` of p (true also within float rounding of it: a conservative
+  // answer), and then the distance to the first such triangle found (not the nearest: an upper bound of the
+  // distance). Stops at the first triangle within reach: far cheaper than the nearest's distance in a fine mesh.
+  bool surface_within(const glm::dvec3& p, double radius, double& found_distance) const;
 
   // The translucent object whose closed surface encloses point light `light` (an index into Scene::point_lights),
   // or -1 when it is in air.

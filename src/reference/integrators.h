@@ -56,7 +56,7 @@ struct ReferenceScene {
 // What a path tells besides its radiance, and the sample index it belongs to.
 struct PathRecord {
   int sample = 0;           // the sample index (selects the sphere-jump bank)
-  std::int64_t steps = 0;   // out: volpath's free flights in media plus sphere jumps
+  std::int64_t steps = 0;   // out: volpath's walk steps: free flights in media, tentative collisions, sphere jumps
 };
 
 // `first_hit`, when given, is the hit of the ray (origin, direction) already traced: a pixel's camera rays through

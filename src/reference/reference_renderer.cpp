@@ -62,7 +62,8 @@ using RadianceFunction = glm::dvec3 (*)(const ReferenceScene&, glm::dvec3, glm::
                                         PathRecord*);
 
 struct PixelWork {
-  std::int64_t paths = 0, steps = 0;  // paths traced (none for a background pixel); their free flights and jumps
+  std::int64_t paths = 0, steps = 0;  // paths traced (none for a background pixel); their walk steps
+  double steps_squared = 0.0;         // the sum of each path's steps squared
 };
 
 // Samples [s0, s1) of pixel (x, y) added to its sums. Without jitter every
@@ -87,6 +88,7 @@ PixelWork render_pixel_samples(const ReferenceScene& rs, const ReferenceSettings
     }
   }
   std::int64_t steps = 0;
+  double steps_squared = 0.0;
   for (int sample = s0; sample < s1; ++sample) {
     Rng rng = Rng::for_path(settings.seed, pixel, static_cast<std::uint64_t>(sample));
     glm::dvec3 L;
@@ -101,11 +103,12 @@ PixelWork render_pixel_samples(const ReferenceScene& rs, const ReferenceSettings
       L = radiance(rs, centre_origin, centre_direction, rng, &centre_hit, &record);
     }
     steps += record.steps;
+    steps_squared += static_cast<double>(record.steps) * static_cast<double>(record.steps);
     if (!std::isfinite(L.x + L.y + L.z)) L = glm::dvec3(0.0);
     sum += L;
     sum2 += L * L;
   }
-  return {s1 - s0, steps};
+  return {s1 - s0, steps, steps_squared};
 }
 
 }  // namespace
@@ -128,6 +131,7 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
   rs.sphere_jumps = settings.sphere_jumps;
   if (settings.sphere_jumps) rs.jump_bank = &jump_bank;
   std::atomic<std::int64_t> total_steps{0}, total_paths{0};
+  std::atomic<double> total_steps_squared{0.0};
   std::size_t pixels = static_cast<std::size_t>(width) * height;
   PixelSums sums = previous ? sums_from(*previous) : PixelSums{std::vector<glm::dvec3>(pixels), std::vector<glm::dvec3>(pixels)};
   const int first_sample = previous ? previous->samples_per_pixel : 0;
@@ -163,7 +167,12 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
           const auto pixel = static_cast<std::size_t>(index);
           const PixelWork work = render_pixel_samples(rs, settings, radiance, index % width, index / width, s0, s1,
                                                       sums.sum[pixel], sums.sum2[pixel]);
-          if (work.paths > 0) total_steps += work.steps, total_paths += work.paths;
+          if (work.paths > 0) {
+            total_steps += work.steps, total_paths += work.paths;
+            for (double seen = total_steps_squared.load();
+                 !total_steps_squared.compare_exchange_weak(seen, seen + work.steps_squared);) {
+            }
+          }
         });
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - chunk_start).count();
         if (seconds < 0.5 * kChunkSeconds && batch < (1 << 20)) batch *= 2;
@@ -201,6 +210,11 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
     out.mean.pixels[4 * i + 3] = 1.0f;
   }
   out.steps_per_path = total_paths > 0 ? static_cast<double>(total_steps) / static_cast<double>(total_paths) : 0.0;
+  if (total_paths > 1) {
+    const double paths = static_cast<double>(total_paths);
+    const double variance = std::max(0.0, total_steps_squared.load() / paths - out.steps_per_path * out.steps_per_path);
+    out.steps_per_path_standard_error = std::sqrt(variance / (paths - 1.0));
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -60,7 +60,8 @@ struct ReferenceImage {
   ImageRGBA32F standard_error;  // per channel standard error of the mean; alpha = 0
   int samples_per_pixel = 0;
   double seconds = 0.0;
-  double steps_per_path = 0.0;  // volpath: mean free flights in media plus sphere jumps per path of this run
+  double steps_per_path = 0.0;  // volpath: mean walk steps per path of this run (paths of pixels that hit something)
+  double steps_per_path_standard_error = 0.0;  // its standard error (paths independent)
 };
 
 // Renders `settings.samples_per_pixel` samples; with `previous`, adds them to its samples (sample indices
