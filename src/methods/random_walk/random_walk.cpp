@@ -496,7 +496,10 @@ class RandomWalk final : public Method {
       if (totals.groups.x == 0) break;
       round = std::max(round, 4u);  // not done: rounds of at least 4, few read-backs in the tail
     }
-    dispatch_estimate_ = std::max(1u, totals.dispatches);
+    // The next first round: as long as this batch needed, or 7/8 of the last round when that was longer (a frame of
+    // short paths between two with long ones would otherwise cost the next long one several read-backs; a dispatch
+    // with no work groups costs next to nothing).
+    dispatch_estimate_ = std::max({1u, totals.dispatches, dispatch_estimate_ - dispatch_estimate_ / 8});
     auto wide = [](glm::uvec2 v) { return static_cast<double>(v.x) + 4294967296.0 * static_cast<double>(v.y); };
     f.paths += totals.paths, f.steps += wide(totals.steps), f.traversals += wide(totals.traversals);
     f.node_visits += wide(totals.node_visits), f.next_events += wide(totals.next_events);
