@@ -91,13 +91,18 @@ test::AnalyticSphere analytic_sphere(const SphereCase& c) {
 }
 
 // ---- the next-event estimate at points ------------------------------------------------------------------------
-// A point counts as an outlier beyond 3 standard errors. Once-reflected chains of point lights have small basins
-// that the chain search finds in a fraction of its trials, so a handful of repeats can miss one entirely (an
-// estimate of 0 with a standard error of 0): the sanitizer run, which checks the code paths, allows for that.
+// A point counts as an outlier beyond 3 standard errors. A chain that the deterministic seeds miss is found only by
+// manifold sampling, which runs in a tenth of the estimates and finds a small basin in a fraction of its trials; a
+// handful of repeats can then miss it entirely (an estimate with a standard error of 0). Which chains the seeds
+// find depends on float rounding: the sanitizer build (clang -O1) misses some that the release build (GCC -O3)
+// finds, 1.5% of the sum at eta 1.5. So the sanitizer run, 32 repeats, checks the code paths with wide margins;
+// the release run, 256 repeats, checks the estimate.
 #if defined(LUCENT_TEST_ASAN)
-constexpr int kPoints = 40, kRepeats = 32, kOutliers = 5;  // the code paths, under the sanitizers
+constexpr int kPoints = 40, kRepeats = 32, kOutliers = 10;  // the code paths, under the sanitizers
+constexpr double kSumTolerance = 0.03;
 #else
 constexpr int kPoints = 200, kRepeats = 256, kOutliers = 5;
+constexpr double kSumTolerance = 5e-3;
 #endif
 
 class CurvedBoundaryNextEvent : public ::testing::TestWithParam<SphereCase> {};
@@ -154,7 +159,7 @@ TEST_P(CurvedBoundaryNextEvent, AtPointsMatchesEveryRefractedPath) {
               per_estimate(counts.polished), per_estimate(counts.extra_roots),
               static_cast<double>(counts.trials) / std::max<double>(1.0, static_cast<double>(counts.extra_roots)),
               static_cast<long long>(counts.capped));
-  EXPECT_LT(std::abs(sum_estimate - sum_exact), 3.0 * std::sqrt(sum_variance) + 5e-3 * sum_exact);
+  EXPECT_LT(std::abs(sum_estimate - sum_exact), 3.0 * std::sqrt(sum_variance) + kSumTolerance * sum_exact);
   EXPECT_LE(outliers, kOutliers);
 }
 
