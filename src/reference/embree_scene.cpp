@@ -274,6 +274,8 @@ bool closest_triangle_callback(RTCPointQueryFunctionArguments* args) {
 
 }  // namespace
 
+namespace {
+
 struct WithinQuery {
   const EmbreeScene* scene;
   const std::vector<int>* object_of_geometry;
@@ -299,16 +301,23 @@ bool within_callback(RTCPointQueryFunctionArguments* args) {
   return true;
 }
 
-bool EmbreeScene::surface_within(const glm::dvec3& p, double radius, double& found_distance) const {
-  const double slack = 4.0 * offset_at(p);
+// Embree's point query about p's float copy, out to `reach` (rounded up in float), calling `callback` with `data`.
+void point_query(RTCScene scene, const glm::dvec3& p, double reach, RTCPointQueryFunction callback, void* data) {
   RTCPointQuery query{};
   query.x = static_cast<float>(p.x), query.y = static_cast<float>(p.y), query.z = static_cast<float>(p.z);
   query.time = 0.0f;
-  query.radius = std::nextafter(static_cast<float>(radius + slack), std::numeric_limits<float>::max());
+  query.radius = std::nextafter(static_cast<float>(reach), std::numeric_limits<float>::max());
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
+  rtcPointQuery(scene, &query, &context, callback, data);
+}
+
+}  // namespace
+
+bool EmbreeScene::surface_within(const glm::dvec3& p, double radius, double& found_distance) const {
+  const double slack = 4.0 * offset_at(p);
   WithinQuery q{this, &object_of_geometry_, p, radius + slack, false, 0.0};
-  rtcPointQuery(scene_, &query, &context, within_callback, &q);
+  point_query(scene_, p, radius + slack, within_callback, &q);
   found_distance = q.distance;
   return q.found;
 }
@@ -317,14 +326,8 @@ double EmbreeScene::closest_surface_distance(const glm::dvec3& p, double max_rad
   // Embree culls around p in float: a triangle nearer to p than some distance is nearer to that point than the
   // distance plus theirs, which the slack covers (and subtracted from the result, keeps it a lower bound).
   const double slack = 4.0 * offset_at(p);
-  RTCPointQuery query{};
-  query.x = static_cast<float>(p.x), query.y = static_cast<float>(p.y), query.z = static_cast<float>(p.z);
-  query.time = 0.0f;
-  query.radius = std::nextafter(static_cast<float>(max_radius + slack), std::numeric_limits<float>::max());
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
   ClosestQuery q{this, &object_of_geometry_, p, max_radius + slack, slack};
-  rtcPointQuery(scene_, &query, &context, closest_triangle_callback, &q);
+  point_query(scene_, p, max_radius + slack, closest_triangle_callback, &q);
   return std::clamp(q.distance - slack, 0.0, max_radius);
 }
 
