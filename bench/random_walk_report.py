@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """The random-walk method's frames against CPU volpath on the same image (bench/random_walk.sh writes the inputs).
 
-  python3 bench/random_walk_report.py TIMINGS.json JUMPS WALL_SECONDS CORES VOLPATH_1_CORE.meta.json VOLPATH_ALL.meta.json
+  python3 bench/random_walk_report.py TIMINGS.json JUMPS WALL_SECONDS CORES VOLPATH_1_CORE.meta.json VOLPATH_ALL.meta.json \
+      [TIMED.json]
+
+TIMED.json: the same frames rendered with the method's time_dispatches on (each dispatch waited for and timed by
+wall clock): the share of the trace time spent in sparse dispatches.
 
 Per frame: the trace pass's time, dispatches (and those with under a tenth of the pool busy), read-backs, paths
 finished in the frame's dispatches and their walk steps, traversals per step and per next-event estimate, node visits
@@ -50,3 +54,10 @@ for name, m in (("1 core", one), (f"{cores} cores", every)):
           f"{m['steps_per_path']:.2f} +- {m.get('steps_per_path_standard_error', 0.0):.2f} steps/path")
 print(f"volpath paths/s over the walk's (both on the same {cores} cores on llvmpipe; per core alike): "
       f"{every['camera_paths_per_second'] / walk_rate:.2f}x")
+if len(sys.argv) > 7:
+    timed = [f for f in json.load(open(sys.argv[7]))["frames"] if f["frame"] >= 2]
+    shares = [(f["stats"].get("sparse_time_share", 0.0), f["passes"].get("trace", 0.0)) for f in timed]
+    total = sum(ms for _, ms in shares)
+    print("share of the trace time in sparse dispatches (timed run, frames 2..; per frame: "
+          + ", ".join(f"{share:.0%}" for share, _ in shares) + "): "
+          + (f"{sum(share * ms for share, ms in shares) / total:.0%}" if total > 0 else "n/a"))

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -144,6 +145,7 @@ class RandomWalk final : public Method {
     double paths = 0, steps = 0, traversals = 0, node_visits = 0, next_events = 0, next_event_traversals = 0;
     double dispatches = 0, sparse_dispatches = 0, read_backs = 0, loop_limited = 0, replayed = 0;
     double frame_paths = 0, frame_steps = 0;  // the frame's own paths (steps_per_path)
+    double dispatch_ms = 0, sparse_ms = 0;    // time_dispatches: wall time of the dispatches, of the sparse ones
     double traversals_per_next_event() const { return next_event_traversals / next_events; }
   };
 
@@ -384,6 +386,7 @@ class RandomWalk final : public Method {
     out.push_back({"node_visits_per_step", steps > 0.0 ? f.node_visits / steps : 0.0, ""});
     out.push_back({"dispatches", f.dispatches, ""});
     out.push_back({"sparse_dispatches", f.sparse_dispatches, ""});
+    if (f.dispatch_ms > 0.0) out.push_back({"sparse_time_share", f.sparse_ms / f.dispatch_ms, ""});
     out.push_back({"read_backs", f.read_backs, ""});
     out.push_back({"loop_limited_paths", f.loop_limited, ""});
     out.push_back({"replayed_events", f.replayed, ""});
@@ -472,20 +475,37 @@ class RandomWalk final : public Method {
       glDispatchCompute(1, 1, 1);
       glMemoryBarrier(kBarrier);
     };
+    // Measurement only: each dispatch waited for and timed by wall clock (where the work runs, on any driver), and
+    // called sparse when the control pass after it counted it so.
+    const bool timed = params_.boolean("time_dispatches");
+    shader::WalkCountersGPU totals{};
+    auto now = [&] { return timed ? (glFinish(), std::chrono::steady_clock::now()) : std::chrono::steady_clock::time_point{}; };
+    auto since = [&](std::chrono::steady_clock::time_point start) {
+      return std::chrono::duration<double, std::milli>(now() - start).count();
+    };
     set_dispatch(reset ? 1u : 0u);
+    const auto first_start = now();
     glUseProgram(program_.id());
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(kBarrier);
     control();
+    if (timed) f.dispatch_ms += since(first_start);
     set_dispatch(0u);
-    shader::WalkCountersGPU totals{};
-    unsigned round = std::max(1u, dispatch_estimate_);
+    unsigned round = timed ? 1u : std::max(1u, dispatch_estimate_);
+    unsigned sparse_seen = 0;
     for (;;) {
       for (unsigned d = 0; d < round; ++d) {
+        const auto start = now();
         glUseProgram(program_.id());
         glDispatchComputeIndirect(static_cast<GLintptr>(offsetof(shader::WalkCountersGPU, groups)));
         glMemoryBarrier(kBarrier);
         control();
+        if (timed) {
+          const double ms = since(start);
+          glGetNamedBufferSubData(counters_, 0, sizeof(totals), &totals);
+          f.dispatch_ms += ms;
+          if (totals.sparse_dispatches != sparse_seen) f.sparse_ms += ms, sparse_seen = totals.sparse_dispatches;
+        }
       }
       // The frame's paths into the image, if they have all finished (no work groups otherwise).
       glUseProgram(resolve_program_.id());

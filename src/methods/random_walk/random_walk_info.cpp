@@ -19,6 +19,9 @@ constexpr ParamDecl kParams[] = {
      kLive},
     {"distance_grid", ParamType::Int, "64", "cells/axis", 8, 256, "",
      "resolution of the distance field that bounds the sphere jumps (cells along the longest axis)"},
+    {"time_dispatches", ParamType::Bool, "false", "", 0, 1, "",
+     "measurement: wait for each trace dispatch and time it by wall clock, reading the counters after each (slower: "
+     "a read-back per dispatch), to report the share of the trace time spent in sparse dispatches"},
 };
 
 constexpr PassDecl kPasses[] = {
@@ -39,6 +42,7 @@ constexpr StatDecl kStats[] = {
     {"node_visits_per_step", "", "hierarchy nodes visited per walk step"},
     {"dispatches", "", "trace dispatches with work this frame"},
     {"sparse_dispatches", "", "of them, those with under a tenth of the pool's slots busy (the tail of long paths)"},
+    {"sparse_time_share", "", "the share of the measured dispatch time spent in sparse dispatches (time_dispatches only)"},
     {"read_backs", "", "blocking reads of the walk's counters this frame (one per round of indirect dispatches)"},
     {"loop_limited_paths", "", "paths dropped this frame: an event the driver's loop cap (llvmpipe) cut at a dispatch's start"},
     {"replayed_events", "", "events the driver's loop cap cut, undone and replayed in the next dispatch (llvmpipe)"},
