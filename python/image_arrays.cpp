@@ -6,7 +6,9 @@
 #include "arguments.h"
 #include "bindings.h"
 #include "image/image_metrics.h"
+#include "io/file_path_check.h"
 #include "lucent/error.h"
+#include "lucent/output_file.h"
 #include "params/argument_ranges.h"
 
 namespace lucent::python {
@@ -41,16 +43,31 @@ ImageRGBA32F from_array(const pybind11::handle& object, const std::string& what)
   return image;
 }
 
+namespace {
+
+// A file written by write_exr or write_png: a name that can be a file's (no NUL byte) and says the format written
+// ("x.png" does not get EXR bytes), as the command line checks its outputs.
+void check_image_output(const std::string& path, std::string_view extension) {
+  check_file_path(path);
+  check_outputs({{path, "path", {extension}}}, {});
+}
+
+}  // namespace
+
 void bind_images(py::module_& m) {
   m.def("read_exr", [](const std::string& path) { return to_array(read_exr(path)); }, py::arg("path"),
         "Linear RGB of an EXR file as float32 (height, width, 3); alpha is dropped.");
   m.def(
       "write_exr",
-      [](const std::string& path, const py::handle& image) { write_exr(path, from_array(image, "image")); },
+      [](const std::string& path, const py::handle& image) {
+        check_image_output(path, ".exr");
+        write_exr(path, from_array(image, "image"));
+      },
       py::arg("path"), py::arg("image"), "Writes (height, width, 3 or 4) linear values as an RGBA float EXR.");
   m.def(
       "write_png",
       [](const std::string& path, const py::handle& image, const py::handle& exposure) {
+        check_image_output(path, ".png");
         const double stops = number_argument(exposure, argument_ranges::kExposureStops, "exposure");
         write_png(path, to_display(from_array(image, "image"), static_cast<float>(stops)));
       },

@@ -10,6 +10,7 @@
 #include "arguments.h"
 #include "bindings.h"
 #include "image_arrays.h"
+#include "image/image_metrics.h"
 #include "params/argument_ranges.h"
 #include "shared/tonemap.h"
 
@@ -31,6 +32,7 @@ py::array tonemap(const py::handle& image_array, const py::handle& exposure_stop
   const int op = operator_of(operator_name);
   const auto stops = static_cast<float>(number_argument(exposure_stops, argument_ranges::kExposureStops, "exposure"));
   const ImageRGBA32F image = from_array(image_array, "image");
+  check_displayable(image, "image");  // a NaN has no display value: not 0, not NaN in silence
   const float scale = std::exp2(stops);
   // The curves square their input: past about 1e19 float overflows; 1e6 after exposure is white already.
   const float largest = 1e6f / scale;
@@ -43,7 +45,7 @@ py::array tonemap(const py::handle& image_array, const py::handle& exposure_stop
       const float* p = image.at(x, y);
       const glm::vec3 v = shader::tonemap(glm::min(glm::vec3(p[0], p[1], p[2]), glm::vec3(largest)), scale, op);
       for (int c = 0; c < 3; ++c) {
-        f(y, x, c) = v[c];  // NaN stays NaN
+        f(y, x, c) = v[c];
         b(y, x, c) = static_cast<std::uint8_t>(std::lround(std::clamp(v[c], 0.0f, 1.0f) * 255.0f));
       }
     }

@@ -1,5 +1,6 @@
 // scene.h: a scene in memory and how to load one. Scene files are JSON (see docs/scene-format.md).
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -91,7 +92,7 @@ struct RenderSettings {
   int width = 640;
   int height = 480;
   int frames = 1;               // frames accumulated by `lucent render`
-  unsigned seed = 1;
+  std::uint64_t seed = 1;       // render.seed and --seed take 32 bits; the GPU reference all 64 of its --seed
   float exposure = 0.0f;        // [stops]
   ToneMapOperator tonemap = ToneMapOperator::Aces;
   glm::vec3 background{0.0f};   // radiance behind the scene

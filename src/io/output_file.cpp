@@ -22,6 +22,7 @@
 
 #include <fmt/format.h>
 
+#include "io/file_path_check.h"
 #include "io/interruption.h"
 #include "lucent/error.h"
 
@@ -169,6 +170,7 @@ std::string lowercase_extension(const std::string& path) {
 }
 
 void write_file(const std::string& path, std::string_view bytes) {
+  check_file_path(path);  // a NUL byte would cut the name handed to the system: another file would be written
   const PendingFile pending = write_pending(path, bytes);
   const DeferredInterruption renaming;  // a signal here ends the process after the rename
   install(pending, path);

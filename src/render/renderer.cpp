@@ -268,7 +268,8 @@ struct Renderer::Impl {
     frame.camera_position = glm::vec4(camera.eye, 1.0f);
     frame.background = glm::vec4(scene.render.background, 0.0f);
     frame.output_size = glm::ivec4(output.width, output.height, 0, 0);
-    frame.seeds.x = scene.render.seed;
+    frame.seeds.x = static_cast<unsigned>(scene.render.seed);
+    frame.seeds.w = static_cast<unsigned>(scene.render.seed >> 32u);
     frame.seeds.y = static_cast<unsigned>(frame_counter);
     frame.display = glm::vec4(std::exp2(scene.render.exposure), static_cast<float>(static_cast<int>(scene.render.tonemap)),
                               0.0f, 0.0f);

@@ -2,6 +2,7 @@
 #include "scene/gltf_reader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -89,6 +90,46 @@ GltfFile read_gltf_file(const std::string& path) {
                          : loader.LoadASCIIFromString(&file.model, &err, &warn, bytes.data(), size, base_dir);
   if (!ok) throw Error(fmt::format("{}: cannot read glTF: {}", path, first_line(err)));
   return file;
+}
+
+std::vector<std::string> gltf_referenced_files(const std::string& path) {
+  std::vector<std::string> files;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return files;
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string_view text = json_text(bytes);
+  if (json_depth(text) > kMaxJsonDepth) return files;
+  const nlohmann::json json = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!json.is_object()) return files;
+  // tinygltf decodes %XX escapes before opening the file, assimp does not: both names are inputs.
+  auto decoded = [](const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+      if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+          std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+        out.push_back(static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+        i += 2;
+      } else {
+        out.push_back(uri[i]);
+      }
+    }
+    return out;
+  };
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (const char* key : {"buffers", "images"}) {
+    const auto list = json.find(key);
+    if (list == json.end() || !list->is_array()) continue;
+    for (const nlohmann::json& entry : *list) {
+      if (!entry.is_object()) continue;
+      const auto uri = entry.find("uri");
+      if (uri == entry.end() || !uri->is_string()) continue;
+      const std::string& text_uri = uri->get_ref<const std::string&>();
+      if (text_uri.empty() || text_uri.rfind("data:", 0) == 0) continue;
+      files.push_back((folder / text_uri).string());
+      if (const std::string name = decoded(text_uri); name != text_uri) files.push_back((folder / name).string());
+    }
+  }
+  return files;
 }
 
 nlohmann::json gltf_json(const std::string& text, const JsonLocation& where) {

@@ -7,6 +7,7 @@
 // errors name the JSON pointer of the bad value, as every scene error does.
 #pragma once
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -25,6 +26,11 @@ struct GltfFile {
 // buffers), and "<path>: <pointer>: nested deeper than 128 levels" before tinygltf sees such JSON (its value
 // parser recurses once per level).
 GltfFile read_gltf_file(const std::string& path);
+
+// The files a glTF names besides itself: every buffer's and image's URI that is not a data: URI, as written and
+// percent-decoded (tinygltf opens the one, assimp the other), resolved against the file's folder, used or not (tinygltf opens them all), in the file's order. Empty for a
+// file that cannot be read or parsed (reading it names the problem). Outputs are checked against these.
+std::vector<std::string> gltf_referenced_files(const std::string& path);
 
 // An object's "extensions" or "extras" JSON text as tinygltf kept it (empty: {}), parsed by lucent's JSON reader.
 nlohmann::json gltf_json(const std::string& text, const JsonLocation& where);

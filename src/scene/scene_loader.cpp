@@ -25,6 +25,7 @@
 #include "materials/material_maps.h"
 #include "materials/shader_material_json.h"
 #include "scene/gltf_material.h"
+#include "scene/gltf_reader.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
@@ -746,6 +747,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  check_file_path(path);
   // A directory opens as an empty stream on Linux: say what it is rather than report empty JSON.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
@@ -786,7 +788,13 @@ std::vector<std::string> scene_input_files(const Scene& scene) {
   std::vector<std::string> files = {scene.source};
   if (scene.environment) files.push_back(scene.environment->file);
   for (const SceneObject& object : scene.objects) {
-    if (!object.mesh_file.empty()) files.push_back(object.mesh_file);
+    if (!object.mesh_file.empty()) {
+      files.push_back(object.mesh_file);
+      std::string extension = std::filesystem::path(object.mesh_file).extension().string();
+      std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (extension == ".gltf" || extension == ".glb")
+        for (std::string& file : gltf_referenced_files(object.mesh_file)) files.push_back(std::move(file));
+    }
     if (object.material && object.material->maps) {
       for (const std::string* file : {&object.material->maps->albedo_file, &object.material->maps->mfp_file})
         if (!file->empty()) files.push_back(*file);

@@ -73,7 +73,8 @@ struct FrameGPU {
   vec4 camera_position;  // xyz [scene units]
   vec4 background;       // rgb radiance
   ivec4 output_size;     // x: width, y: height [pixels]; zw: unused
-  uvec4 seeds;           // x: user seed, y: frame counter (never repeats), z: 1 = restart accumulation
+  uvec4 seeds;           // x: user seed (low 32 bits), y: frame counter (never repeats), z: 1 = restart
+                         // accumulation, w: the user seed's high 32 bits
   vec4 display;          // x: exposure scale 2^stops, y: tone-map operator; zw: unused
   vec4 shading;          // x: 1 = GGX specular reflection of the lights, y: its roughness (GGX alpha); zw: unused
   ivec4 light_counts;    // x: lights, y: light G-buffer layers, z: light-map size [texels], w: shadow taps per axis

@@ -204,6 +204,38 @@ TEST(OutputSafetyCli, OutputsThatAreInputsAreRefusedAndLeftAlone) {
   EXPECT_EQ(contents(exr), exr_before);
 }
 
+// A glTF mesh's external buffer and images are the scene's inputs as much as the mesh file: an output named like
+// one of them is refused and the file is left as it was (the mesh would no longer load).
+TEST(OutputSafetyCli, FilesAGltfMeshNamesAreInputs) {
+  const fs::path dir = fresh_dir("gltf_inputs");
+  // A tetrahedron: 4 float positions then 12 uint16 indices in buf.bin.
+  const float positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const std::uint16_t indices[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  std::string buffer(reinterpret_cast<const char*>(positions), sizeof(positions));
+  buffer.append(reinterpret_cast<const char*>(indices), sizeof(indices));
+  put(dir / "buf.bin", buffer);
+  lucent::write_png((dir / "tex.png").string(), lucent::ImageRGBA8{2, 2, std::vector<std::uint8_t>(16, 200)});
+  put(dir / "mesh.gltf", R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+                  {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}],
+    "buffers": [{"uri": "buf.bin", "byteLength": 72}], "images": [{"uri": "tex.png"}]})");
+  put(dir / "s.json", R"({"scale_mm": 10, "camera": {"eye": [0, 0, 5]}, "lights": [{"direction": [0, 0, -1]}],
+    "objects": [{"mesh": "mesh.gltf", "material": "Skin1"}], "render": {"width": 8, "height": 6}})");
+  const std::string scene = (dir / "s.json").string();
+  for (const std::string name : {"buf.bin", "tex.png"}) {
+    const fs::path input = dir / name;
+    const std::string before = contents(input);
+    for (const std::string command : {"render", "reference"}) {
+      auto r = run_cli(command + " " + scene + " -q -o '" + input.string() + "'");
+      EXPECT_EQ(r.exit_code, 1) << command << " " << name;
+      EXPECT_NE(r.output.find("would overwrite the input " + input.string()), std::string::npos) << r.output;
+      EXPECT_EQ(contents(input), before) << command << " " << name;
+    }
+  }
+}
+
 // `render --animate -o maps/out.png` writes maps/out_0000.png, maps/out_0001.png, ...: every frame is checked against
 // the scene's inputs before the first is written, not frame 0 alone (a texture named like frame 1 was replaced).
 TEST(OutputSafetyCli, EveryAnimationFrameIsCheckedAgainstTheInputs) {

@@ -14,6 +14,7 @@
 #include "../test_paths.h"
 #include "lucent/lucent.h"
 #include "reference/reference_renderer.h"
+#include "render/gpu_reference.h"
 
 namespace {
 
@@ -299,6 +300,25 @@ std::string walk_refusal(const std::string& objects) {
     return e.what();
   }
   return "";
+}
+
+// The GPU reference's seed is 64 bits and every bit counts: seeds that agree in their low 32 bits (1 and 2^32 + 1)
+// or whose halves XOR to the same word (1 and 2^32: a fold to 32 bits) are different random streams, and one seed
+// gives the same image twice. Sphere jumps on, so the jump records' seeds are covered too.
+TEST(RandomWalk, GpuReferenceSeedsUseEveryBit) {
+  lucent::test::ensure_gl_context();
+  lucent::Scene scene = walk_sphere(kGreyMedium, R"({ "direction": [0.2, 0.1, 1], "radiance": [1, 1, 1] })");
+  scene.render.width = 8, scene.render.height = 8;
+  auto image = [&](std::uint64_t seed) {
+    lucent::reference::ReferenceSettings settings;
+    settings.samples_per_pixel = 2;
+    settings.seed = seed;
+    return lucent::render::render_reference_on_gpu(scene, settings).mean.pixels;
+  };
+  const std::vector<float> one = image(1);
+  EXPECT_EQ(image(1), one);
+  EXPECT_NE(image(std::uint64_t{1} << 32), one);
+  EXPECT_NE(image((std::uint64_t{1} << 32) + 1), one);
 }
 
 TEST(RandomWalk, RefusesNestedMediaNamingBothObjects) {

@@ -44,6 +44,19 @@ def test_read_exr_round_trip(out_dir):
     assert np.array_equal(lucent.read_exr(str(out_dir / "a.exr")), a)
 
 
+def test_image_writes_refuse_nul_bytes_and_misnamed_formats(out_dir):
+    """A NUL byte would cut the name handed to the system (EXR bytes landing in x.png); a name must say the format."""
+    a, _, _ = images()
+    png = out_dir / "x.png"
+    with pytest.raises(lucent.Error, match=r"NUL byte"):
+        lucent.write_exr(str(png) + "\0.exr", a)
+    with pytest.raises(lucent.Error, match=r"'\.png' is not a format this command writes; use \.exr"):
+        lucent.write_exr(str(png), a)
+    with pytest.raises(lucent.Error, match=r"'\.exr' is not a format this command writes; use \.png"):
+        lucent.write_png(str(out_dir / "x.exr"), a)
+    assert not png.exists() and not (out_dir / "x.exr").exists()
+
+
 def test_size_mismatch_message():
     with pytest.raises(lucent.Error, match=r"^a is 3x2 but b is 2x2; compare needs images of one size$"):
         lucent.compare(np.zeros((2, 3, 3)), np.zeros((2, 2, 3)))

@@ -44,6 +44,12 @@ def test_missing_file_is_the_cli_message(out_dir):
     assert cli_error("render", missing, "-o", out_dir / "x.png") == f"lucent: {error.value}\n"
 
 
+def test_scene_path_with_a_nul_byte_is_refused():
+    """load_scene('s.json\\0junk') must not load s.json: the name given is not a file's."""
+    with pytest.raises(lucent.Error, match=r"NUL byte"):
+        lucent.load_scene(str(SCENES / "default.json") + "\0junk")
+
+
 def test_scene_file_loads():
     scene = lucent.load_scene(str(SCENES / "default.json"), overrides=["render.height=100"])
     assert scene.height == 100 and scene.path.endswith("default.json")

@@ -81,3 +81,12 @@ def test_curves_at_known_points():
                                       np.round(values * 255).astype(np.uint8))
     with pytest.raises(ValueError, match="operator: 'filmic' is not one of aces, reinhard, linear"):
         lucent.tonemap(radiance, operator="filmic")
+
+
+def test_nan_has_no_display_value():
+    """A NaN pixel is named, not shown as 0 (uint8) or passed on as NaN (float32)."""
+    radiance = np.full((2, 3, 3), 0.5, dtype=np.float32)
+    radiance[1, 2, 1] = np.nan
+    for dtype in ("uint8", "float32"):
+        with pytest.raises(lucent.Error, match=r"^image has a NaN at pixel \(2, 1\), green: it has no colour to display$"):
+            lucent.tonemap(radiance, dtype=dtype)

@@ -254,7 +254,7 @@ void render_section(ViewerSession& session) {
     }
   }
   changed |= scene_vec3("render", "background", scene.render.background, 0.005f);
-  int seed = static_cast<int>(scene.render.seed);
+  int seed = static_cast<int>(std::min<std::uint64_t>(scene.render.seed, 1u << 30));
   if (ImGui::DragInt("seed", &seed, 1.0f, 0, 1 << 30)) scene.render.seed = static_cast<unsigned>(std::max(seed, 0)), changed = true;
   if (changed) session.edited();
 }

@@ -20,6 +20,7 @@ void main() {
   if (record >= method.jump_records[level / 4][level % 4] || after >= method.ring.w) return;
   uint first_sample = method.region_first[region / 4][region % 4];
   uint seed = seed_from(method.samples.z, first_sample, uint(level) << 24u ^ uint(bank), uint(record));
+  if (frame.seeds.w != 0u) seed = seed_from(seed, frame.seeds.w, 0x5eed64u, 0u);  // the seed's high 32 bits
   int index = ((region * banks + bank) * kSphereJumpLevelCount + level) * method.distance_size.w + record;
   spheres[index] = sphere_walk(sphere_jump_level_radius(level), method.jump_g[bank], seed);
 }

@@ -554,7 +554,7 @@ void start_path(uint index, uint region) {
   ivec2 pixel = ivec2(int(pixel_index) % size.x, size.y - 1 - int(pixel_index) / size.x);
   float sx = (2.0f * (float(pixel.x) + 0.5f) / float(size.x) - 1.0f) * method.forward.w * method.right.w;
   float sy = (2.0f * (float(pixel.y) + 0.5f) / float(size.y) - 1.0f) * method.forward.w;
-  rng_key = seed_from(method.samples.z, pixel_index, sample_index, 0x5157a1u);
+  rng_key = seed_from(method.samples.z, pixel_index, sample_index, 0x5157a1u ^ frame.seeds.w);  // every bit of the seed
   rng_count = 0u;
   path_origin = method.eye.xyz;
   path_direction = normalize(method.forward.xyz + sx * method.right.xyz + sy * method.up.xyz);
