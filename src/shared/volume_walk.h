@@ -21,26 +21,47 @@ LUCENT_INLINE mat3 walk_frame(vec3 w) {
   return mat3(vec3(1.0f + s * w.x * w.x * a, s * b, -s * w.x), vec3(b, s + w.y * w.y * a, -w.y), w);
 }
 
-// Henyey-Greenstein phase function [1/sr] of the cosine between the old and new directions (g > 0: forward).
-LUCENT_INLINE float hg_phase(float cos_theta, float g) {
-  float denominator = 1.0f + g * g - 2.0f * g * cos_theta;
-  return (1.0f - g * g) / (4.0f * kWalkPi * denominator * sqrt(max(denominator, 1e-12f)));
+// Henyey-Greenstein phase function [1/sr] (g > 0: forward) from 1 - cos theta and 1 + cos theta, the cosine between
+// the old and new directions. Exact to float over all of g in (-1, 1): the denominator 1 + g^2 - 2 g cos theta is
+// written as (1 - g)^2 + 2 g (1 - cos theta) for g >= 0 and (1 + g)^2 - 2 g (1 + cos theta) for g < 0, sums of
+// non-negative terms (the textbook form cancels to nothing near the peak once |g| > 0.999: its true value there,
+// (1 - |g|)^2, is below float's resolution at 2), and 1 - g^2 as (1 - g)(1 + g).
+LUCENT_INLINE float hg_phase_sides(float one_minus_cos, float one_plus_cos, float g) {
+  float denominator = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * one_minus_cos
+                                : (1.0f + g) * (1.0f + g) - 2.0f * g * one_plus_cos;
+  denominator = max(denominator, 1e-30f);
+  return (1.0f - g) * (1.0f + g) / (4.0f * kWalkPi * denominator * sqrt(denominator));
 }
-LUCENT_INLINE vec3 hg_phase_bands(float cos_theta, vec3 g) {
-  return vec3(hg_phase(cos_theta, g.x), hg_phase(cos_theta, g.y), hg_phase(cos_theta, g.z));
+LUCENT_INLINE float hg_phase(float cos_theta, float g) { return hg_phase_sides(1.0f - cos_theta, 1.0f + cos_theta, g); }
+
+// The phase function between unit directions a and b (cos theta = a.b): 1 -+ cos theta from |a -+ b|^2 / 2, which
+// keep the angles below float's resolution of a dot product near 1 (a peak of width 1 - |g| = 1e-6 is one).
+LUCENT_INLINE vec3 hg_phase_between(vec3 a, vec3 b, vec3 g) {
+  vec3 d = a - b, s = a + b;
+  float one_minus_cos = 0.5f * dot(d, d), one_plus_cos = 0.5f * dot(s, s);
+  return vec3(hg_phase_sides(one_minus_cos, one_plus_cos, g.x), hg_phase_sides(one_minus_cos, one_plus_cos, g.y),
+              hg_phase_sides(one_minus_cos, one_plus_cos, g.z));
 }
 
-// A new direction after Henyey-Greenstein scattering of `direction` (unit) from two uniforms.
+// A new direction after Henyey-Greenstein scattering of `direction` (unit) from two uniforms. The inverse of the
+// CDF is taken as x = 1 - cos theta about the peak (`direction` for g >= 0, its opposite for g < 0, sampled with |g|
+// and 1 - u1 so that u1 maps to cos theta as the textbook inverse does): with e = 1 - |g|, t = e (1 + |g|) / (e +
+// 2 |g| u), x = e (1 - u) (t + e) / (e + 2 |g| u), a product of positive terms, so a deflection of 1e-6 radians keeps
+// its size (the textbook (1 + g^2 - t^2) / 2g cancels to float's resolution near the peak).
 LUCENT_INLINE vec3 sample_hg(vec3 direction, float g, float u1, float u2) {
-  float cos_theta = 1.0f - 2.0f * u1;
+  float x = 2.0f * u1;  // isotropic
+  vec3 peak = direction;
   if (abs(g) >= 1e-4f) {
-    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u1);
-    cos_theta = (1.0f + g * g - s * s) / (2.0f * g);
+    float a = abs(g), u = g >= 0.0f ? u1 : 1.0f - u1, e = 1.0f - a;
+    float denominator = e + 2.0f * a * u;
+    float t = e * (1.0f + a) / denominator;
+    x = e * (1.0f - u) * (t + e) / denominator;
+    if (g < 0.0f) peak = -direction;
   }
-  cos_theta = clamp(cos_theta, -1.0f, 1.0f);
-  float sin_theta = sqrt(max(0.0f, 1.0f - cos_theta * cos_theta));
+  x = clamp(x, 0.0f, 2.0f);
+  float cos_theta = 1.0f - x, sin_theta = sqrt(x * (2.0f - x));
   float phi = 2.0f * kWalkPi * u2;
-  return normalize(walk_frame(direction) * vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta));
+  return normalize(walk_frame(peak) * vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta));
 }
 
 // A cosine-distributed direction about unit n from two uniforms (Lambertian reflection).

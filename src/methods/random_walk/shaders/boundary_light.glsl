@@ -506,7 +506,7 @@ vec3 root_light(int object, vec3 x, vec3 path_dir, vec3 w, int reflections, vec3
   } else {
     inside = exp(-sigma_t_of(object) * chain.exit.path_length);
   }
-  return radiance * factor * outside * inside * hg_phase_bands(dot(root.w, path_dir), walk_objects[object].g.xyz);
+  return radiance * factor * outside * inside * hg_phase_between(root.w, path_dir, walk_objects[object].g.xyz);
 }
 
 // The estimate's solutions, each with its weight: the known chains (found from deterministic seeds, each counted

@@ -272,7 +272,7 @@ vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
         if (!(d > 0.0f) || trace(x, to_light / d, d, 0.0f).object >= 0) continue;
         vec3 light_dir = -to_light / d;
         L += point_intensity(light, light_dir) / (d * d) * transmittance(object, x_l, x) *
-             hg_phase_bands(dot(light_dir, -path_dir), g);
+             hg_phase_between(light_dir, -path_dir, g);
         continue;
       }
       if (medium >= 0) continue;  // inside another medium
@@ -414,7 +414,7 @@ bool scatter(vec3 x) {
   if (jumped) return roulette();
   vec3 g = walk_objects[path_medium].g.xyz;
   vec3 next = sample_hg(path_direction, g[path_hero], rnd(), rnd());
-  vec3 phase = hg_phase_bands(dot(next, path_direction), g);
+  vec3 phase = hg_phase_between(next, path_direction, g);
   path_throughput *= phase / phase[path_hero];
   path_r_u *= phase / phase[path_hero];
   path_origin = x;
