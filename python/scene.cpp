@@ -102,7 +102,7 @@ void bind_scene(py::module_& m) {
                              "render.exposure [stops], as lucent.tonemap takes it")
       .def_property_readonly("tonemap", [](const SceneHandle& h) { return tonemap_name(h.scene.render.tonemap); },
                              "render.tonemap, the operator lucent.tonemap takes")
-      .def_property_readonly("camera", [](const SceneHandle& h) { return camera_dict(h.scene.camera); },
+      .def_property_readonly("camera", [](const SceneHandle& h) { return camera_dict(h.scene.camera, h.scene.origin); },
                              "eye, target, up [scene units] and fov_y_deg")
       .def_property_readonly("scale_mm", [](const SceneHandle& h) { return h.scene.scale_mm; },
                              "millimetres per scene unit")

@@ -15,6 +15,12 @@ namespace lucent::python {
 namespace {
 
 py::tuple rgb(glm::vec3 v) { return py::make_tuple(decimal(v.x), decimal(v.y), decimal(v.z)); }
+// A position in the scene file's coordinates (Scene::origin added back).
+py::tuple at(glm::vec3 p, const glm::dvec3& origin) {
+  if (origin == glm::dvec3(0.0)) return rgb(p);
+  const glm::dvec3 q = glm::dvec3(p) + origin;
+  return py::make_tuple(q.x, q.y, q.z);
+}
 
 py::object typed_value(const ParamDecl& decl, const ParamValue& value) {
   if (decl.type == ParamType::Int) return py::int_(std::llround(std::get<double>(value)));
@@ -113,9 +119,9 @@ py::dict light_dict(const DirectionalLight& light) {
   return d;
 }
 
-py::dict light_dict(const PointLight& light) {
+py::dict light_dict(const PointLight& light, const glm::dvec3& origin) {
   py::dict d;
-  d["type"] = light.spot ? "spot" : "point", d["position"] = rgb(light.position);
+  d["type"] = light.spot ? "spot" : "point", d["position"] = at(light.position, origin);
   d["intensity"] = rgb(light.intensity);
   if (light.spot) d["direction"] = rgb(light.direction), d["inner_deg"] = decimal(light.inner_deg), d["outer_deg"] = decimal(light.outer_deg);
   return d;
@@ -125,9 +131,9 @@ py::dict light_dict(const PointLight& light) {
 
 double decimal(float x) { return std::stod(fmt::format("{}", x)); }
 
-py::dict camera_dict(const Camera& camera) {
+py::dict camera_dict(const Camera& camera, const glm::dvec3& origin) {
   py::dict d;
-  d["eye"] = rgb(camera.eye), d["target"] = rgb(camera.target), d["up"] = rgb(camera.up);
+  d["eye"] = at(camera.eye, origin), d["target"] = at(camera.target, origin), d["up"] = rgb(camera.up);
   d["fov_y_deg"] = decimal(camera.fov_y_deg);
   return d;
 }
@@ -168,7 +174,7 @@ py::object lights_of(const Scene& scene) {
     if (!light.specular && scene.environment) d["environment"] = true;  // a sample of the environment map
     items.emplace_back("", d);
   }
-  for (const PointLight& light : scene.point_lights) items.emplace_back("", light_dict(light));
+  for (const PointLight& light : scene.point_lights) items.emplace_back("", light_dict(light, scene.origin));
   return py::cast(SceneItems("lights", std::move(items)));
 }
 

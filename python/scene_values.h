@@ -15,7 +15,8 @@ pybind11::object objects_of(const Scene& scene);
 pybind11::object lights_of(const Scene& scene);
 
 // {"eye", "target", "up", "fov_y_deg"}.
-pybind11::dict camera_dict(const Camera& camera);
+// eye and target in the scene file's coordinates (Scene::origin added back).
+pybind11::dict camera_dict(const Camera& camera, const glm::dvec3& origin);
 // "aces", "reinhard" or "linear" (render.tonemap).
 const char* tonemap_name(ToneMapOperator op);
 // A float as the shortest decimal that reads back as it (0.0024, not 0.002400000113993883), as the scene file wrote it.

@@ -107,10 +107,20 @@ struct Scene {
   std::vector<PointLight> point_lights;         // point and spot lights
   std::optional<EnvironmentLight> environment;
   std::vector<SceneObject> objects;
+  // Where the scene file's coordinate origin lies in the Scene's coordinates, negated: a position p in the file is
+  // p - origin here [scene units]. Zero unless the camera looks at a point far from the file's origin relative to
+  // its distance to it (more than kFarFromOrigin times): the loader then moves the origin to the camera's target, in
+  // double precision, so that float keeps its resolution where the objects are (a 2 cm ball 10 km from the origin
+  // would otherwise be 1 mm grids of vertices and rays). Writers add it back.
+  glm::dvec3 origin{0.0};
   std::string method;                           // a registered method (`lucent methods`); empty: the default
   ParamValues method_params;                    // declared by the method (see `lucent render --help`)
   RenderSettings render;
 };
+
+// A camera target farther from the file's origin than this many times the camera's distance to it moves the
+// origin there (Scene::origin).
+inline constexpr double kFarFromOrigin = 16.0;
 
 // Loads a scene file. `overrides` are "key.path=value" strings (value as JSON, or a bare string) applied to
 // the JSON before validation, e.g. "method.K=8", "render.width=320", "objects.0.material=Potato".

@@ -136,7 +136,8 @@ void add_lights(const Scene& scene, float metres_per_unit, json& doc) {
     json light = punctual(p.intensity, p.spot ? "spot" : "point");
     if (p.spot)
       light["spot"] = {{"innerConeAngle", glm::radians(p.inner_deg)}, {"outerConeAngle", glm::radians(p.outer_deg)}};
-    node(light, light_frame(p.spot ? p.direction : glm::vec3(0, 0, -1), p.position * metres_per_unit),
+    const glm::dvec3 position = (glm::dvec3(p.position) + scene.origin) * static_cast<double>(metres_per_unit);
+    node(light, light_frame(p.spot ? p.direction : glm::vec3(0, 0, -1), glm::vec3(position)),
          fmt::format("{} light {}", p.spot ? "spot" : "point", i));
   }
   if (lights.empty()) return;
@@ -146,8 +147,9 @@ void add_lights(const Scene& scene, float metres_per_unit, json& doc) {
 
 void add_camera(const Scene& scene, float metres_per_unit, json& doc) {
   const Camera& c = scene.camera;
-  const glm::mat4 world_from_camera =
-      glm::inverse(glm::lookAt(c.eye * metres_per_unit, c.target * metres_per_unit, c.up));
+  const double m = metres_per_unit;  // in the file's coordinates (Scene::origin added back), in double
+  const glm::mat4 world_from_camera = glm::mat4(glm::inverse(glm::lookAt(
+      (glm::dvec3(c.eye) + scene.origin) * m, (glm::dvec3(c.target) + scene.origin) * m, glm::dvec3(c.up))));
   const double distance = glm::length(c.target - c.eye) * static_cast<double>(metres_per_unit);
   doc["cameras"] = json::array({{{"name", "camera"}, {"type", "perspective"},
                                  {"perspective", {{"yfov", glm::radians(static_cast<double>(c.fov_y_deg))},
@@ -160,6 +162,8 @@ void add_camera(const Scene& scene, float metres_per_unit, json& doc) {
 // The objects under one node that scales scene units to metres.
 void add_objects(const Scene& frozen, const std::string& name, const std::string& path, BufferBuilder& buffer, json& doc) {
   const float roughness = scene_roughness(frozen);
+  // The file's coordinates (Scene::origin added back), then metres.
+  const glm::dvec3 origin_m = frozen.origin * (static_cast<double>(frozen.scale_mm) / 1000.0);
   json root = {{"name", name}, {"scale", vec(glm::vec3(frozen.scale_mm / 1000.0f))}, {"children", json::array()},
                {"extras", {{"lucent", {{"scale_mm", frozen.scale_mm}}}}}};
   std::vector<std::string> extensions;
@@ -174,6 +178,7 @@ void add_objects(const Scene& frozen, const std::string& name, const std::string
                             {"matrix", matrix(object.world_from_object)}});
     root["children"].push_back(doc["nodes"].size() - 1);
   }
+  if (frozen.origin != glm::dvec3(0.0)) root["translation"] = json::array({origin_m.x, origin_m.y, origin_m.z});
   doc["nodes"].push_back(root);
   doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
   for (const std::string& e : extensions) doc["extensionsUsed"].push_back(e);

@@ -713,8 +713,83 @@ void warn_about_enclosures(const Scene& scene) {
                                    "object; only the volpath reference renders light from inside a medium (the "
                                    "real-time methods and the bssrdf reference light surfaces from outside, where "
                                    "it lights nothing)",
-                           what, light.position.x, light.position.y, light.position.z));
+                           what, static_cast<float>(light.position.x + scene.origin.x),
+                           static_cast<float>(light.position.y + scene.origin.y),
+                           static_cast<float>(light.position.z + scene.origin.z)));
   }
+}
+
+// Ray offsets scale with the coordinates (1e-6 of them in volpath, 2e-6 on the GPU: a few float rounding steps);
+// a medium whose mean free path is within kOffsetsPerMeanFreePath of the GPU's loses energy at its boundary
+// (measured in volpath on a 2 cm ball at the origin with albedo near 1: about 5% at 10 of its offsets per mean free
+// path, none measurable at 100; everything at 1). Warned about, naming the object, with what would help.
+constexpr double kOffsetsPerMeanFreePath = 32.0;
+constexpr double kLargestRelativeOffset = 2e-6;  // the GPU walk's (methods/random_walk/shaders/trace.comp)
+void warn_about_unrepresentable_media(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    if (!object.material || object.mesh.positions.empty()) continue;
+    double largest = 0.0;
+    for (const glm::vec3& p : transformed(object.mesh, object.world_from_object).positions)
+      largest = std::max({largest, std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))});
+    const glm::vec3 sigma_t = object.material->sigma_t() * object.material->field.max_multiplier();
+    const double mfp_mm = 1.0 / std::max({double(sigma_t.x), double(sigma_t.y), double(sigma_t.z), 1e-30});
+    const double offset_mm = kLargestRelativeOffset * largest * scene.scale_mm;
+    if (mfp_mm >= kOffsetsPerMeanFreePath * offset_mm) continue;
+    warn(fmt::format("{}: /objects/{}: the shortest mean free path of its medium, {:.3g} mm, is only {:.3g} ray offsets "
+                     "long at the object's coordinates (offsets are {:g} of them: {:.3g} mm here): volpath and "
+                     "random-walk lose light at its boundary (about 5% at 5 offsets, all of it at 0.5); a "
+                     "smaller scale_mm, the object nearer the origin, or a less dense medium keeps them exact",
+                     scene.source, i, mfp_mm, mfp_mm / offset_mm, kLargestRelativeOffset, offset_mm));
+  }
+}
+
+// A JSON array of three finite numbers, as doubles.
+std::optional<glm::dvec3> json_point(const json& value) {
+  if (!value.is_array() || value.size() != 3) return std::nullopt;
+  glm::dvec3 p;
+  for (int i = 0; i < 3; ++i) {
+    if (!value[static_cast<std::size_t>(i)].is_number()) return std::nullopt;
+    p[i] = value[static_cast<std::size_t>(i)].get<double>();
+    if (!std::isfinite(p[i])) return std::nullopt;
+  }
+  return p;
+}
+
+// Scene::origin: when the camera's target lies more than kFarFromOrigin times its distance from the eye away from the
+// file's origin, every position the file gives (the camera's eye and target, point and spot lights, objects'
+// translations) is moved by minus the target, in double precision, before it becomes float; returns the target
+// (zero otherwise: the file's numbers are kept as they are). Not with blobs, whose field lies about the file's
+// origin, nor when a position is malformed (the reader then names it).
+glm::dvec3 move_origin_to_the_view(json& doc) {
+  if (!doc.is_object() || !doc.contains("camera") || !doc["camera"].is_object()) return glm::dvec3(0.0);
+  json& camera = doc["camera"];
+  const std::optional<glm::dvec3> target = json_point(camera.value("target", json::array({0, 0, 0})));
+  const std::optional<glm::dvec3> eye = json_point(camera.value("eye", json::array({0, 0, 5})));
+  if (!target || !eye) return glm::dvec3(0.0);
+  const double distance = glm::length(*eye - *target);
+  if (!(glm::length(*target) > kFarFromOrigin * distance)) return glm::dvec3(0.0);
+  std::vector<json*> positions = {&camera["eye"], &camera["target"]};
+  camera["eye"] = json::array({eye->x, eye->y, eye->z});
+  camera["target"] = json::array({target->x, target->y, target->z});
+  if (doc.contains("lights")) {
+    if (!doc["lights"].is_array()) return glm::dvec3(0.0);
+    for (json& light : doc["lights"])
+      if (light.is_object() && light.contains("position")) positions.push_back(&light["position"]);
+  }
+  if (!doc.contains("objects") || !doc["objects"].is_array()) return glm::dvec3(0.0);
+  for (json& object : doc["objects"]) {
+    if (!object.is_object() || object.value("shape", json()) == "blobs") return glm::dvec3(0.0);
+    if (!object.contains("translate")) object["translate"] = json::array({0, 0, 0});
+    positions.push_back(&object["translate"]);
+  }
+  for (const json* p : positions)
+    if (!json_point(*p)) return glm::dvec3(0.0);
+  for (json* p : positions) {
+    const glm::dvec3 moved = *json_point(*p) - *target;
+    *p = json::array({moved.x, moved.y, moved.z});
+  }
+  return *target;
 }
 
 }  // namespace
@@ -727,6 +802,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   JsonLocation root{source, "", &applied};
   ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "environment", "objects", "method", "render"});
   Scene scene;
+  scene.origin = move_origin_to_the_view(doc);
   scene.source = source;
   scene.scale_mm = static_cast<float>(top.number("scale_mm"));
   scene.camera = read_camera(doc.value("camera", json::object()), root.child("camera"));
@@ -739,6 +815,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   for (std::size_t i = 0; i < objects.size(); ++i)
     scene.objects.push_back(read_object(objects[i], root.child("objects").child(i), base_dir, scene.scale_mm));
   warn_about_gltf_mean_free_paths(objects, scene);
+  warn_about_unrepresentable_media(scene);
   read_method(doc.value("method", json::object()), root.child("method"), scene);
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
   warn_if_unlit(scene);

@@ -25,6 +25,11 @@ using nlohmann::json;
 
 json vec(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 json vec(glm::vec2 v) { return json::array({v.x, v.y}); }
+// A position in the file's coordinates: the Scene's plus its origin (Scene::origin), in double.
+json at(glm::vec3 p, const glm::dvec3& origin) {
+  const glm::dvec3 q = glm::dvec3(p) + origin;
+  return json::array({q.x, q.y, q.z});
+}
 
 // The loader's transform: translate, then rotate about z, y, x (so x applies first), then scale.
 glm::mat4 compose(const ObjectTransform& t) {
@@ -50,8 +55,8 @@ json light_json(const DirectionalLight& light) {
   return {{"type", "directional"}, {"direction", vec(light.direction)}, {"radiance", vec(light.radiance)}};
 }
 
-json light_json(const PointLight& light) {
-  json j = {{"type", light.spot ? "spot" : "point"}, {"position", vec(light.position)},
+json light_json(const PointLight& light, const glm::dvec3& origin) {
+  json j = {{"type", light.spot ? "spot" : "point"}, {"position", at(light.position, origin)},
             {"intensity", vec(light.intensity)}};
   if (light.spot) {
     j["direction"] = vec(light.direction);
@@ -124,7 +129,8 @@ bool takes_gltf_texture(const SceneObject& object) {
   return object.material->maps->albedo_file.rfind(object.mesh_file + "#", 0) == 0;
 }
 
-json object_json(const SceneObject& object, std::size_t index, const std::vector<std::string>& mesh_files) {
+json object_json(const SceneObject& object, std::size_t index, const std::vector<std::string>& mesh_files,
+                 const glm::dvec3& origin) {
   json j = {{"name", object.name}};
   if (object.blob_resolution > 0) {
     j["shape"] = "blobs";
@@ -134,7 +140,7 @@ json object_json(const SceneObject& object, std::size_t index, const std::vector
       throw Error(fmt::format("save scene: object {} ('{}') has no mesh file to reference", index, object.name));
     j["mesh"] = mesh_files[index];
     ObjectTransform t = decompose_object_transform(object.world_from_object, fmt::format("object '{}'", object.name));
-    j["translate"] = vec(t.translate);
+    j["translate"] = at(t.translate, origin);
     j["rotate_deg"] = vec(t.rotate_deg);
     j["scale"] = t.scale;
     if (object.deformation.type != DeformationType::None) j["deform"] = deformation_json(object.deformation);
@@ -227,7 +233,7 @@ json scene_to_json(const Scene& scene, const std::vector<std::string>& mesh_file
   json j;
   j["comment"] = fmt::format("written by lucent from {}", scene.source);
   j["scale_mm"] = scene.scale_mm;
-  j["camera"] = {{"eye", vec(scene.camera.eye)}, {"target", vec(scene.camera.target)},
+  j["camera"] = {{"eye", at(scene.camera.eye, scene.origin)}, {"target", at(scene.camera.target, scene.origin)},
                  {"up", vec(scene.camera.up)}, {"fov_y_deg", scene.camera.fov_y_deg}};
   json lights = json::array();
   for (const DirectionalLight& light : scene.lights) {
@@ -237,13 +243,13 @@ json scene_to_json(const Scene& scene, const std::vector<std::string>& mesh_file
     }
     lights.push_back(light_json(light));
   }
-  for (const PointLight& light : scene.point_lights) lights.push_back(light_json(light));
+  for (const PointLight& light : scene.point_lights) lights.push_back(light_json(light, scene.origin));
   j["lights"] = lights;
   if (scene.environment)
     j["environment"] = {{"file", scene.environment->file}, {"lights", scene.environment->light_count},
                         {"intensity", scene.environment->intensity}, {"background", scene.environment->background}};
   json objects = json::array();
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) objects.push_back(object_json(scene.objects[i], i, mesh_files));
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) objects.push_back(object_json(scene.objects[i], i, mesh_files, scene.origin));
   j["objects"] = objects;
   j["method"] = method_json(scene);
   j["render"] = render_json(scene.render);
