@@ -178,6 +178,12 @@ void run(ReferenceOptions o) {
   }
   if (!gpu.empty()) metadata["gpu"] = gpu;
   reference::save_reference(files, image, std::move(metadata));
+  if (signal && o.device == "gpu")  // a GPU batch does not resume: another seed's batch merges with it
+    throw Interrupted(signal, fmt::format("{}: saved {} of the {} samples per pixel asked in {}; to add the other {}, "
+                                          "render them with a different --seed (--device gpu --spp {} --seed {} -o "
+                                          "<other>.exr) and combine both with lucent reference merge",
+                                          why, added, asked, files.mean, asked - added, asked - added,
+                                          o.settings.seed + 1));
   if (signal)
     throw Interrupted(signal, fmt::format("{}: saved {} of the {} samples per pixel asked ({} in all) in {}; to add "
                                           "the other {}, run the same command with --resume --spp {}",

@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lucent {
@@ -33,6 +34,10 @@ ImageRGBA32F read_exr(const std::string& path);
 // A PNG or JPEG image held in memory (a glTF's embedded image), decoded to RGBA8 with the same size checks as
 // read_png. `what` names it in messages: "<what>: cannot read PNG: ...".
 ImageRGBA8 decode_image(const std::string& bytes, const std::string& what);
+// The width and height a PNG or JPEG held in memory declares in its header, read without decoding it ({0, 0} when
+// the bytes are neither); and the same of a PNG, JPEG or HDR file.
+std::pair<int, int> encoded_image_size(const std::string& bytes);
+std::pair<int, int> image_file_size(const std::string& path);
 // Radiance RGBE (.hdr) through stb: RGB with shared 8-bit exponent (about 1% precision, non-negative values);
 // alpha is dropped on write and reads as 1.
 void write_hdr(const std::string& path, const ImageRGBA32F& image);

@@ -309,6 +309,23 @@ ImageRGBA8 read_png(const std::string& path) {
   return image;
 }
 
+std::pair<int, int> encoded_image_size(const std::string& bytes) {
+  int width = 0, height = 0, channels = 0;
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
+      stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
+                            &height, &channels) == 0)
+    return {0, 0};
+  return {width, height};
+}
+
+std::pair<int, int> image_file_size(const std::string& path) {
+  check_file_path(path);
+  require_regular_file(path);
+  int width = 0, height = 0, channels = 0;
+  if (stbi_info(path.c_str(), &width, &height, &channels) == 0) return {0, 0};
+  return {width, height};
+}
+
 ImageRGBA8 decode_image(const std::string& bytes, const std::string& what) {
   static constexpr unsigned char kJpegStart[3] = {0xff, 0xd8, 0xff};
   const bool jpeg = bytes.size() >= 3 && std::memcmp(bytes.data(), kJpegStart, 3) == 0;

@@ -82,6 +82,10 @@ MapImage read_material_map(const std::string& file, bool colour, const std::stri
   ImageRGBA32F image;
   try {
     if (ext == ".png") {
+      // The size the header declares, before the pixels are decoded (a small file can declare gigabytes of them).
+      if (const auto [width, height] = image_file_size(file); width > kMaxMaterialMapSide || height > kMaxMaterialMapSide)
+        throw Error(fmt::format("{}: map is {}x{}; a material map may have at most {} texels on each side", file, width,
+                                height, kMaxMaterialMapSide));
       const ImageRGBA8 png = read_png(file);
       image.width = png.width, image.height = png.height;
       image.pixels.resize(png.pixels.size());

@@ -25,9 +25,19 @@ reference::ReferenceImage render_reference_on_gpu(const Scene& scene_in, const r
   Scene scene = scene_at_time(scene_in, settings.time_seconds);
   scene.method = std::string(method->name);
   scene.method_params = read_params(nlohmann::json::object(), {method->name, method->params}, {"--device gpu", ""});
-  const int batches = std::min(kGpuReferenceBatches, std::max(1, settings.samples_per_pixel));
-  const int per_batch = (settings.samples_per_pixel + batches - 1) / batches;
-  scene.method_params.set("samples_per_frame", static_cast<double>(per_batch));
+  if (settings.samples_per_pixel < 2)
+    throw Error(fmt::format("--spp {}: the GPU reference's standard error comes from the spread of its batches; give "
+                            "at least 2 samples per pixel",
+                            settings.samples_per_pixel));
+  const int batches = std::min(kGpuReferenceBatches, settings.samples_per_pixel);
+  // A batch is frames of equal size (a change of size would restart the accumulation), each at most
+  // kGpuReferenceFramePaths paths: a stop is seen and progress reported between frames, not once a batch.
+  const double pixels = static_cast<double>(scene.render.width) * static_cast<double>(scene.render.height);
+  int per_batch = (settings.samples_per_pixel + batches - 1) / batches;
+  const int per_frame = std::clamp(static_cast<int>(kGpuReferenceFramePaths / pixels), 1, per_batch);
+  per_batch = (per_batch + per_frame - 1) / per_frame * per_frame;
+  const int frames_per_batch = per_batch / per_frame;
+  scene.method_params.set("samples_per_frame", static_cast<double>(per_frame));
   scene.method_params.set("sphere_jumps", settings.sphere_jumps);
   scene.method_params.set("max_scatter", static_cast<double>(settings.max_scatter));
   scene.render.seed = settings.seed;  // every bit: seeds 1 and 2^32 are two random streams
@@ -41,9 +51,21 @@ reference::ReferenceImage render_reference_on_gpu(const Scene& scene_in, const r
   std::vector<double> previous(values, 0.0), sum(values, 0.0), sum2(values, 0.0);
   ImageRGBA32F mean;
   double steps = 0.0;
-  for (int b = 0; b < batches; ++b) {
-    if (settings.stop_requested && settings.stop_requested()) break;
-    renderer.render(scene.camera, {target.id(), width, height});
+  int done = 0;  // whole batches
+  bool stopped = false;
+  for (int b = 0; b < batches && !stopped; ++b) {
+    double batch_steps = 0.0;
+    for (int f = 0; f < frames_per_batch; ++f) {
+      if (settings.stop_requested && settings.stop_requested()) {
+        stopped = true;  // the batch's frames so far are not a batch: left out of the image
+        break;
+      }
+      renderer.render(scene.camera, {target.id(), width, height});
+      batch_steps += renderer.last_frame_timings().stat("steps_per_path", 0.0);
+      const int frames_done = b * frames_per_batch + f + 1;
+      if (settings.progress) settings.progress(static_cast<double>(frames_done) / (batches * frames_per_batch));
+    }
+    if (stopped) break;
     mean = renderer.read_radiance();
     for (std::size_t i = 0; i < values; ++i) {
       const double running = mean.pixels[i];
@@ -51,10 +73,12 @@ reference::ReferenceImage render_reference_on_gpu(const Scene& scene_in, const r
       previous[i] = running;
       sum[i] += batch, sum2[i] += batch * batch;
     }
-    steps += renderer.last_frame_timings().stat("steps_per_path", 0.0);
-    if (settings.progress) settings.progress(static_cast<double>(b + 1) / batches);
+    steps += batch_steps / frames_per_batch;
+    ++done;
+    if (settings.pass_done) settings.pass_done(done * per_batch);
   }
-  const int done = renderer.accumulated_frames();
+  // One batch has no spread to give a standard error: nothing is kept (the command says none was saved).
+  if (done < 2) done = 0;
   reference::ReferenceImage image;
   image.samples_per_pixel = done * per_batch;
   image.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -310,6 +310,10 @@ double attenuation_distance_mm(const GltfMaterial& m) {
   if (!m.has_volume)
     fail(translucency_key(m), "thin-walled (no KHR_materials_volume): lucent renders a medium and needs its "
                               "attenuationDistance, or extras.lucent.mfp_mm");
+  if (!(m.thickness_factor > 0.0f))
+    fail(extension_at(m, "KHR_materials_volume").child("thicknessFactor"),
+         "0 (glTF's default when absent): the material is thin-walled, a surface with no volume behind it; lucent "
+         "renders a medium: give the thickness the volume has (in the mesh's units), or extras.lucent.mfp_mm");
   if (!std::isfinite(m.attenuation_distance_m))
     fail(extension_at(m, "KHR_materials_volume"),
          "no attenuationDistance (glTF's default: infinite, a clear medium); lucent's medium needs one, or "

@@ -15,6 +15,7 @@
 #include "io/printable_text.h"
 #include "lucent/error.h"
 #include "lucent/image.h"
+#include "scene/gltf_file_check.h"
 #include "shared/tonemap.h"
 
 namespace lucent {
@@ -72,6 +73,7 @@ bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*,
 
 GltfFile read_gltf_file(const std::string& path) {
   require_regular_file(path);
+  check_gltf_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot read glTF: cannot open the file");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -154,6 +156,10 @@ MapImage read_gltf_texture(const GltfFile& file, int texture_index, const JsonLo
     fail(image.uri.empty() ? image_at : image_at.child("uri"),
          image.uri.empty() ? std::string("no image data") : fmt::format("cannot load '{}'", text_excerpt(image.uri)));
   const std::string bytes(image.image.begin(), image.image.end());
+  // The size the header declares, before the pixels are decoded (a small file can declare gigabytes of them).
+  if (const auto [width, height] = encoded_image_size(bytes); width > kMaxMaterialMapSide || height > kMaxMaterialMapSide)
+    fail(image_at, fmt::format("image is {}x{}; a material map may have at most {} texels on each side", width, height,
+                               kMaxMaterialMapSide));
   const ImageRGBA8 decoded = decode_image(bytes, image_at.str());
   if (decoded.width > kMaxMaterialMapSide || decoded.height > kMaxMaterialMapSide)
     fail(image_at, fmt::format("image is {}x{}; a material map may have at most {} texels on each side", decoded.width,

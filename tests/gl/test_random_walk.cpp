@@ -12,6 +12,7 @@
 
 #include "image_compare.h"
 #include "../test_paths.h"
+#include "../test_support.h"
 #include "lucent/lucent.h"
 #include "reference/reference_renderer.h"
 #include "render/gpu_reference.h"
@@ -369,6 +370,35 @@ TEST(RandomWalk, ABallTenKilometresAwayRendersAsAtTheOrigin) {
   const WalkEstimate origin = render_walk(ball_at(0.0), 2, 2), far = render_walk(ball_at(10000.0), 2, 2);
   EXPECT_GT(origin.image_mean, 0.0);
   EXPECT_EQ(far.mean, origin.mean);
+}
+
+// The GPU reference renders a batch as frames of at most kGpuReferenceFramePaths paths: a stop is seen between
+// frames (a batch had been one frame of spp/16 paths per pixel: 95 s and more without a look at Ctrl-C), progress
+// moves frame by frame, and what is kept is whole batches with a standard error from their spread.
+TEST(RandomWalk, GpuReferenceStopsBetweenFramesAndKeepsWholeBatches) {
+  lucent::test::ensure_gl_context();
+  lucent::Scene scene = walk_sphere(R"({ "sigma_a": [2, 2, 2], "sigma_s": [0.5, 0.5, 0.5], "g": 0, "eta": 1.3 })",
+                                    R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })");
+  scene.render.width = scene.render.height = 32;  // 1024 pixels: 32 samples per frame, 2 frames a batch of 64
+  lucent::reference::ReferenceSettings settings;
+  settings.samples_per_pixel = 1024;
+  int frames = 0;
+  std::vector<double> fractions;
+  settings.progress = [&](double done) { fractions.push_back(done), ++frames; };
+  settings.stop_requested = [&] { return frames >= 5; };
+  const lucent::reference::ReferenceImage image = lucent::render::render_reference_on_gpu(scene, settings);
+  EXPECT_EQ(frames, 5);
+  EXPECT_DOUBLE_EQ(fractions.front(), 1.0 / 32.0);
+  EXPECT_EQ(image.samples_per_pixel, 128);  // two whole batches; the third's first frame is left out
+  double mean = 0.0, error = 0.0;
+  for (std::size_t i = 0; i < image.mean.pixels.size(); i += 4) mean += image.mean.pixels[i], error += image.standard_error.pixels[i];
+  EXPECT_GT(mean, 0.0);
+  EXPECT_GT(error, 0.0);
+  settings.samples_per_pixel = 1;
+  settings.stop_requested = {};
+  EXPECT_NE(lucent::test::error_message([&] { lucent::render::render_reference_on_gpu(scene, settings); })
+                .find("--spp 1: the GPU reference's standard error comes from the spread of its batches"),
+            std::string::npos);
 }
 
 TEST(RandomWalk, RefusesNestedMediaNamingBothObjects) {

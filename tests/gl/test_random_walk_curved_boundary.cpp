@@ -48,7 +48,7 @@ constexpr int kSize = 16;
 lucent::Scene sphere_scene(const SphereCase& c) {
   const glm::dvec3 l = c.back_lit ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0);
   const double fov_y = 2.0 * glm::degrees(std::atan(1.05 * std::tan(std::asin(0.25))));
-  return lucent::parse_scene(fmt::format(R"({{
+  lucent::Scene scene = lucent::parse_scene(fmt::format(R"({{
     "scale_mm": 1,
     "camera": {{ "eye": [{}, 0, {}], "target": [{}, 0, 0], "fov_y_deg": {} }},
     "lights": [{{ "direction": [{}, {}, {}], "radiance": [1, 1, 1] }}],
@@ -60,6 +60,13 @@ lucent::Scene sphere_scene(const SphereCase& c) {
                                          l.z, c.radius, c.offset * c.radius, c.eta, c.samples_per_frame,
                                          kSize, kSize),
                              "random-walk curved boundary", ".");
+  // The loader would move the origin to the camera's target (Scene::origin); put the scene back where the file
+  // has it, so that the walk works at these coordinates in float.
+  const glm::vec3 shift(scene.origin);
+  scene.camera.eye += shift, scene.camera.target += shift;
+  for (lucent::SceneObject& object : scene.objects) object.world_from_object[3] += glm::vec4(shift, 0.0f);
+  scene.origin = glm::dvec3(0.0);
+  return scene;
 }
 
 void expect_agreement(const SphereCase& c) {

@@ -386,7 +386,7 @@ class RandomWalk final : public Method {
     out.push_back({"node_visits_per_step", steps > 0.0 ? f.node_visits / steps : 0.0, ""});
     out.push_back({"dispatches", f.dispatches, ""});
     out.push_back({"sparse_dispatches", f.sparse_dispatches, ""});
-    if (f.dispatch_ms > 0.0) out.push_back({"sparse_time_share", f.sparse_ms / f.dispatch_ms, ""});
+    out.push_back({"sparse_time_share", f.dispatch_ms > 0.0 ? f.sparse_ms / f.dispatch_ms : 0.0, ""});
     out.push_back({"read_backs", f.read_backs, ""});
     out.push_back({"loop_limited_paths", f.loop_limited, ""});
     out.push_back({"replayed_events", f.replayed, ""});

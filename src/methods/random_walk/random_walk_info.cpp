@@ -42,7 +42,7 @@ constexpr StatDecl kStats[] = {
     {"node_visits_per_step", "", "hierarchy nodes visited per walk step"},
     {"dispatches", "", "trace dispatches with work this frame"},
     {"sparse_dispatches", "", "of them, those with under a tenth of the pool's slots busy (the tail of long paths)"},
-    {"sparse_time_share", "", "the share of the measured dispatch time spent in sparse dispatches (time_dispatches only)"},
+    {"sparse_time_share", "", "the share of the measured dispatch time spent in sparse dispatches (with time_dispatches on; 0 otherwise)"},
     {"read_backs", "", "blocking reads of the walk's counters this frame (one per round of indirect dispatches)"},
     {"loop_limited_paths", "", "paths dropped this frame: an event the driver's loop cap (llvmpipe) cut at a dispatch's start"},
     {"replayed_events", "", "events the driver's loop cap cut, undone and replayed in the next dispatch (llvmpipe)"},
