@@ -39,6 +39,9 @@ struct ReferenceSettings {
   // 0 = no limit. 1 restricts the image to single scattering (through refractive boundaries, internal Fresnel
   // reflections included), the physics of single-scattering methods.
   int max_scatter = 0;
+  // --device gpu: a frame traces at most this many paths (one sample per pixel at least); a stop is seen and
+  // progress reported between frames.
+  double gpu_frame_paths = 32768.0;
   // Volpath: sphere jumps deep inside homogeneous media (docs/references.md, "Sphere jumps"): the same image, in
   // far fewer steps per path in dense, high-albedo media.
   bool sphere_jumps = true;

@@ -31,10 +31,10 @@ reference::ReferenceImage render_reference_on_gpu(const Scene& scene_in, const r
                             settings.samples_per_pixel));
   const int batches = std::min(kGpuReferenceBatches, settings.samples_per_pixel);
   // A batch is frames of equal size (a change of size would restart the accumulation), each at most
-  // kGpuReferenceFramePaths paths: a stop is seen and progress reported between frames, not once a batch.
+  // settings.gpu_frame_paths paths: a stop is seen and progress reported between frames, not once a batch.
   const double pixels = static_cast<double>(scene.render.width) * static_cast<double>(scene.render.height);
   int per_batch = (settings.samples_per_pixel + batches - 1) / batches;
-  const int per_frame = std::clamp(static_cast<int>(kGpuReferenceFramePaths / pixels), 1, per_batch);
+  const int per_frame = std::clamp(static_cast<int>(settings.gpu_frame_paths / pixels), 1, per_batch);
   per_batch = (per_batch + per_frame - 1) / per_frame * per_frame;
   const int frames_per_batch = per_batch / per_frame;
   scene.method_params.set("samples_per_frame", static_cast<double>(per_frame));

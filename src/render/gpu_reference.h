@@ -15,7 +15,6 @@ namespace lucent::render {
 // sphere-walk records, the batches are independent). settings.jitter, bssrdf and --resume are refused by the
 // caller. `device` receives the GL renderer string.
 inline constexpr int kGpuReferenceBatches = 16;
-inline constexpr double kGpuReferenceFramePaths = 32768.0;  // paths per frame at most (1 sample per pixel at least)
 reference::ReferenceImage render_reference_on_gpu(const Scene& scene, const reference::ReferenceSettings& settings,
                                                   std::string* device = nullptr);
 
