@@ -63,10 +63,12 @@ void print_text(const ArtistParameters& a, const ArtistInversion& inv, const glm
   for (int b = 0; b < 3; ++b)
     fmt::print("{:<5} {:>8.4f} {:>10.4g} {:>7.3f} {:>10.6f} {:>15.6g} {:>15.6g} {:>11.5f}\n", "RGB"[b], a.albedo[b],
                a.mfp_mm[b], a.g[b], inv.alpha[b], m.sigma_a[b], m.sigma_s[b], inv.total[b]);
-  const glm::vec3 sigma_tr = m.sigma_tr();
+  // sqrt(3 sigma_a sigma_t') in double: the product underflows float for mean free paths past about 1e15 mm.
+  const glm::dvec3 sigma_t_prime = glm::dvec3(m.sigma_a) + glm::dvec3(m.sigma_s) * (1.0 - glm::dvec3(m.g));
+  const glm::dvec3 length = 1.0 / (glm::sqrt(3.0 * glm::dvec3(m.sigma_a)) * glm::sqrt(sigma_t_prime));
   fmt::print("diffusion length 1 / sigma_tr [mm]  R {:.4g}  G {:.4g}  B {:.4g}: an object much thicker than this shows "
              "the albedo; a thinner one transmits the band and shows less of it\n",
-             1.0f / sigma_tr.x, 1.0f / sigma_tr.y, 1.0f / sigma_tr.z);
+             length.x, length.y, length.z);
   if (inv.curve_model != a.model)
     fmt::print("flat total: the {} model's curve, which inverts the {} model\n", to_string(inv.curve_model),
                to_string(a.model));

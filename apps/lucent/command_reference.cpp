@@ -64,6 +64,12 @@ void check_resumable(const nlohmann::json& meta, const ReferenceOptions& o, cons
                                                          {"width", scene.render.width},
                                                          {"height", scene.render.height},
                                                          {"scene_hash", reference::scene_content_hash(scene)}};
+  // A GPU batch's standard error is the spread of its batches, a CPU run's the spread of its samples: resumed, the
+  // file would be labelled with one device and hold both. A merge keeps each input's own.
+  if (meta.contains("device") && meta["device"] == "gpu")
+    throw Error(fmt::format("{}: cannot resume: the reference was rendered on the gpu; render the other samples as a "
+                            "batch of their own (another --seed) and combine both with lucent reference merge",
+                            path));
   const int version = reference::reference_version(meta);
   if (version != reference::kReferenceVersion)
     throw Error(fmt::format("{}: cannot resume: the reference was rendered by version {} of the references' "

@@ -19,6 +19,7 @@
 #include "io/input_file.h"
 #include "io/printable_text.h"
 #include "lucent/error.h"
+#include "params/param_json.h"
 
 namespace lucent {
 namespace {
@@ -102,17 +103,21 @@ struct Container {
 
 std::optional<Container> container_of(const std::string& path, const std::string& bytes) {
   if (bytes.size() < 4 || std::memcmp(bytes.data(), "glTF", 4) != 0) return Container{bytes, std::nullopt};
-  if (bytes.size() < 20) return std::nullopt;  // the reader names a truncated header
+  if (bytes.size() < 20)
+    throw Error(fmt::format("{}: cannot read glTF: a truncated GLB: {} bytes, fewer than a header and a chunk's 20",
+                            path, bytes.size()));
+  if (u32_at(bytes, 4) != 2) return std::nullopt;  // another version: the reader names it
   const std::uint64_t length = u32_at(bytes, 8);
   if (length > bytes.size())
-    refuse(path, "GLB header", fmt::format("declares {} bytes; the file holds {}", length, bytes.size()));
+    throw Error(fmt::format("{}: cannot read glTF: the GLB header declares {} bytes; the file holds {}", path, length,
+                            bytes.size()));
   Container c;
   std::size_t offset = 12;
   for (int chunk = 0; offset + 8 <= length; ++chunk) {
     const std::uint64_t size = u32_at(bytes, offset);
     if (offset + 8 + size > length)
-      refuse(path, fmt::format("GLB chunk {}", chunk),
-             fmt::format("declares {} bytes; {} remain in the file", size, length - offset - 8));
+      throw Error(fmt::format("{}: cannot read glTF: GLB chunk {} declares {} bytes; {} remain in the file", path,
+                              chunk, size, length - offset - 8));
     const std::string data = bytes.substr(offset + 8, size);
     if (chunk == 0) c.json_text = data;
     else if (chunk == 1) c.bin = data;
@@ -198,8 +203,16 @@ void check_gltf_file(const std::string& path) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::optional<Container> c = container_of(path, bytes);
   if (!c) return;
-  const json doc = json::parse(c->json_text, nullptr, /*allow_exceptions=*/false);
-  if (!doc.is_object()) return;
+  // Named as a scene file's JSON errors are (line, column, what; glTF's JSON has no NaN or Infinity literals).
+  json doc;
+  try {
+    doc = parse_json(c->json_text, {path, ""});
+  } catch (const Error& e) {  // "<path>: malformed JSON: ..." as "<path>: cannot read glTF: malformed JSON: ..."
+    const std::string message = e.what();
+    throw Error(fmt::format("{}: cannot read glTF: {}", path,
+                            message.rfind(path + ": ", 0) == 0 ? message.substr(path.size() + 2) : message));
+  }
+  if (!doc.is_object()) throw Error(fmt::format("{}: cannot read glTF: its JSON is not an object", path));
   if (const json* list = member(doc, "extensionsRequired"); list && list->is_array()) {
     const json& required = *list;
     for (std::size_t i = 0; i < required.size(); ++i) {
@@ -239,14 +252,19 @@ void check_gltf_file(const std::string& path) {
     for (std::size_t p = 0; p < primitives->size(); ++p) {
       const json& primitive = (*primitives)[p];
       const json* attributes = member(primitive, "attributes");
-      const std::optional<std::uint64_t> index_accessor = whole(primitive, "indices"),
-                                         position = attributes ? whole(*attributes, "POSITION") : std::nullopt;
-      if (!index_accessor || !position || *position >= accessors->size()) continue;
-      const std::optional<std::uint64_t> count = whole((*accessors)[static_cast<std::size_t>(*position)], "count");
+      // Absent or malformed: past every accessor (GCC 12 misreads an optional here as maybe uninitialized).
+      constexpr std::uint64_t kNone = ~std::uint64_t{0};
+      const std::uint64_t index_accessor = whole(primitive, "indices").value_or(kNone);
+      const std::uint64_t position = attributes ? whole(*attributes, "POSITION").value_or(kNone) : kNone;
+      if (const json* mode = member(primitive, "mode"); mode && !(mode->is_number_unsigned() && mode->get<std::uint64_t>() <= 6))
+        refuse(path, fmt::format("/meshes/{}/primitives/{}/mode", m, p),
+               fmt::format("{} is not a primitive mode (0 points to 6 triangle fan)", mode->dump()));
+      if (index_accessor == kNone || position >= accessors->size()) continue;
+      const std::optional<std::uint64_t> count = whole((*accessors)[static_cast<std::size_t>(position)], "count");
       if (!count) continue;
       const std::uint64_t vertices = *count;
       const std::optional<std::vector<std::uint32_t>> indices =
-          index_values(doc, static_cast<std::size_t>(*index_accessor), buffers, path);
+          index_values(doc, static_cast<std::size_t>(index_accessor), buffers, path);
       if (!indices) continue;
       for (std::size_t k = 0; k < indices->size(); ++k)
         if ((*indices)[k] >= vertices)

@@ -133,6 +133,16 @@ TEST(CliReferences, ResumeRefusesAnythingButTheSameReference) {
                         "references' estimators, this lucent renders version " + std::to_string(lucent::reference::kReferenceVersion) +
                             "; its samples estimate another image: "
                         "render it anew\n");
+  // A GPU batch is not resumed on the CPU (the file would be labelled gpu or cpu and hold both estimators).
+  ASSERT_EQ(run(render).exit_code, 0);
+  m = nlohmann::json::parse(std::ifstream(meta));
+  m["device"] = "gpu";
+  std::ofstream(meta) << m.dump();
+  Result gpu = run(resume);
+  EXPECT_NE(gpu.exit_code, 0);
+  EXPECT_EQ(gpu.output, "lucent: " + meta + ": cannot resume: the reference was rendered on the gpu; render the other "
+                        "samples as a batch of their own (another --seed) and combine both with lucent reference "
+                        "merge\n");
   // Another scene under the same file name.
   ASSERT_EQ(run(render).exit_code, 0);
   std::ofstream(scene) << std::string(text).replace(text.find("Skin1"), 5, "Marble");

@@ -77,6 +77,18 @@ TEST(GltfFileCheck, WhatTheSpecificationSaysALoaderMustRejectIsRefused) {
   put(path, tetrahedron_json("buf.bin", "", "-2"));
   EXPECT_EQ(error_message([&] { load_mesh(path); }),
             path + ": /accessors/1/byteOffset: -2 is not a non-negative whole number of bytes");
+  std::string bad_mode = tetrahedron_json("buf.bin");
+  bad_mode.replace(bad_mode.find("\"indices\": 1,"), 13, "\"indices\": 1, \"mode\": 7,");
+  put(path, bad_mode);
+  EXPECT_EQ(error_message([&] { load_mesh(path); }),
+            path + ": /meshes/0/primitives/0/mode: 7 is not a primitive mode (0 points to 6 triangle fan)");
+  put(path, R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "scale": [NaN, 1, 1]}]})");
+  EXPECT_NE(error_message([&] { load_mesh(path); }).find(path + ": cannot read glTF: malformed JSON: line 1, column"),
+            std::string::npos);
+  put(dir / "short.glb", std::string("glTF\x02\0\0\0", 8));
+  EXPECT_EQ(error_message([&] { load_mesh((dir / "short.glb").string()); }),
+            (dir / "short.glb").string() + ": cannot read glTF: a truncated GLB: 8 bytes, fewer than a header and a "
+                                           "chunk's 20");
   put(dir / "buf.bin", tetrahedron_bytes(4));  // past the 4 vertices: the importer dropped the triangle
   put(path, tetrahedron_json("buf.bin"));
   EXPECT_EQ(error_message([&] { load_mesh(path); }),
@@ -112,7 +124,7 @@ TEST(GltfFileCheck, SizesAndUrisAreCheckedBeforeAnythingIsRead) {
   glb.append(20, ' ');
   put(dir / "big.glb", glb);
   EXPECT_EQ(error_message([&] { load_mesh((dir / "big.glb").string()); }),
-            (dir / "big.glb").string() + ": GLB chunk 0: declares 2147483632 bytes; 20 remain in the file");
+            (dir / "big.glb").string() + ": cannot read glTF: GLB chunk 0 declares 2147483632 bytes; 20 remain in the file");
   // A buffer file shorter than its byteLength, and a sparse one of 2 GB.
   put(dir / "short.bin", tetrahedron_bytes().substr(0, 40));
   put(dir / "short.gltf", tetrahedron_json("short.bin"));

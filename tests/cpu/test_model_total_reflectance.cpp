@@ -83,4 +83,20 @@ TEST(ModelTotalReflectance, AgainstExactTransportAtHighAlbedo) {
   EXPECT_GT(directional.total.x / exact, 1.2);
 }
 
+// The total depends on the albedo, g and eta, not on the length unit: a mean free path of 1e-30 mm or 1e30 mm gives
+// the total of 1 mm in every model (they were NaN: the rings' radii and S_d's values left float's range).
+TEST(ModelTotalReflectance, IsTheSameAtAnyMeanFreePath) {
+  for (lucent::BssrdfModel model : {lucent::BssrdfModel::StandardDipole, lucent::BssrdfModel::DirectionalDipole,
+                                    lucent::BssrdfModel::PhotonBeamDiffusion, lucent::BssrdfModel::BetterDipole}) {
+    const lucent::Material unit = material(model, 0.9f, 1.3f);
+    const double expected = lucent::model_total_reflectance(unit, 0.0).total.x;
+    for (float scale : {1e-30f, 1e30f}) {
+      lucent::Material m = unit;
+      m.sigma_a *= scale, m.sigma_s *= scale;
+      const double total = lucent::model_total_reflectance(m, 0.0).total.x;
+      EXPECT_NEAR(total, expected, 1e-5 * expected) << lucent::to_string(model) << " sigma x " << scale;
+    }
+  }
+}
+
 }  // namespace
