@@ -213,7 +213,7 @@ struct Renderer::Impl {
       atlas = texture_space::load_or_build_scene_atlas(source, options, step_progress("texture atlas")).atlas;
       atlas_scene = texture_space::with_atlas_meshes(source, *atlas);
     }
-    scene_gpu = std::make_unique<render::SceneGpu>(method_scene());
+    scene_gpu = std::make_unique<render::SceneGpu>(method_scene(), /*model_tables=*/!info->estimates_volpath);
     geometry_dirty = true;
     environment.reset();
     if (scene.environment && scene.environment->map)

@@ -75,7 +75,7 @@ GLuint make_buffer(const std::vector<T>& data, const char* label, GLbitfield fla
 
 }  // namespace
 
-SceneGpu::SceneGpu(const Scene& scene) {
+SceneGpu::SceneGpu(const Scene& scene, bool model_tables) : model_tables_(model_tables) {
   std::vector<std::size_t> order(scene.objects.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return scene.objects[i].translucent(); });
@@ -151,7 +151,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
   material_count_ = materials.size();
   upload_material_maps(map_texels, scene.source);
   for (const SceneObject& object : scene.objects)
-    if (object.translucent()) prepare_bssrdf_tables(*object.material);
+    if (object.translucent() && model_tables_) prepare_bssrdf_tables(*object.material);
   upload_bssrdf_tables();
   glCreateVertexArrays(1, &vao_);
   gpu::set_vertex_gpu_layout(vao_, vertex_buffer_);
@@ -236,7 +236,7 @@ void SceneGpu::update_materials(const Scene& scene) {
   if (materials.size() != material_count_)
     throw Error("SceneGpu::update_materials: the translucent objects changed; rebuild the scene instead");
   for (const SceneObject& object : scene.objects)
-    if (object.translucent()) prepare_bssrdf_tables(*object.material);
+    if (object.translucent() && model_tables_) prepare_bssrdf_tables(*object.material);
   upload_bssrdf_tables();  // callers bind the buffers again before drawing
   upload_material_maps(map_texels, scene.source);
   if (!materials.empty())

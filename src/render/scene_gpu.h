@@ -25,7 +25,9 @@ struct BoundingSphere {
 
 class SceneGpu {
  public:
-  explicit SceneGpu(const Scene& scene);
+  // `model_tables`: whether the tabulated model's tables are made for the translucent materials (photon transport,
+  // seconds per material); methods that estimate volpath instead of evaluating a model never read them.
+  explicit SceneGpu(const Scene& scene, bool model_tables = true);
   ~SceneGpu();
   SceneGpu(const SceneGpu&) = delete;
   SceneGpu& operator=(const SceneGpu&) = delete;
@@ -83,6 +85,7 @@ class SceneGpu {
   // Throws lucent::Error naming `source` when the texels exceed the driver's largest storage block.
   void upload_material_maps(const std::vector<glm::vec4>& texels, const std::string& source);
   std::uint64_t bssrdf_table_generation_ = 0;
+  bool model_tables_ = true;  // the tabulated model's tables made for the translucent materials
 
   GLuint vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0, material_buffer_ = 0, object_buffer_ = 0;
   GLsizei translucent_index_count_ = 0, index_count_ = 0;

@@ -15,6 +15,7 @@
 #include "../test_support.h"
 #include "lucent/lucent.h"
 #include "reference/reference_renderer.h"
+#include "materials/tabulated_bssrdf.h"
 #include "render/gpu_reference.h"
 
 namespace {
@@ -399,6 +400,18 @@ TEST(RandomWalk, GpuReferenceStopsBetweenFramesAndKeepsWholeBatches) {
   EXPECT_NE(lucent::test::error_message([&] { lucent::render::render_reference_on_gpu(scene, settings); })
                 .find("--spp 1: the GPU reference's standard error comes from the spread of its batches"),
             std::string::npos);
+}
+
+// The walk estimates volpath and never evaluates a diffusion model: a material with the tabulated model costs it
+// no tables (photon transport per material, 26-100 s before it was skipped).
+TEST(RandomWalk, BuildsNoModelTables) {
+  lucent::test::ensure_gl_context();
+  lucent::Scene scene = walk_sphere(R"({ "sigma_a": [0.0123, 0.0123, 0.0123], "sigma_s": [1.77, 1.77, 1.77],
+                                         "g": 0, "eta": 1.3, "model": "tabulated" })",
+                                    R"({ "direction": [0, 0, -1], "radiance": [1, 1, 1] })");
+  const std::uint64_t before = lucent::bssrdf_table_generation();
+  lucent::Renderer renderer(scene);
+  EXPECT_EQ(lucent::bssrdf_table_generation(), before);
 }
 
 TEST(RandomWalk, RefusesNestedMediaNamingBothObjects) {
