@@ -146,5 +146,11 @@ Material material_from_preset(const MaterialPreset& preset);
 // coefficient is NaN, infinite or negative, g is outside (-1, 1), eta outside [1, 3], or sigma_a or sigma_s'
 // is zero in a band (the diffusion models need both positive).
 void validate_material(const Material& material, const std::string& where);
+// The checks of a medium that volumetric path tracing renders (volpath, random-walk): the coefficients, g and eta
+// as validate_material checks them, and some extinction in every band; sigma_a or sigma_s' may be 0 (a pure
+// scatterer, a band that only absorbs).
+void validate_medium(const Material& material, const std::string& where);
+// What the diffusion models need besides: sigma_a and sigma_s' positive in every band.
+void validate_diffusion_medium(const Material& material, const std::string& where);
 
 }  // namespace lucent

@@ -95,11 +95,23 @@ void check_diffusion_positive(const Material& material, const std::string& where
 
 }  // namespace
 
-void validate_material(const Material& material, const std::string& where) {
+void validate_medium(const Material& material, const std::string& where) {
   check_coefficient(material.sigma_a, "sigma_a", where);
   check_coefficient(material.sigma_s, "sigma_s", where);
   check_g(material.g, where);
   check_eta(material.eta, where);
+  for (int i = 0; i < 3; ++i)
+    if (!(material.sigma_a[i] + material.sigma_s[i] > 0.0f))
+      fail(where, fmt::format("sigma_a[{0}] + sigma_s[{0}] = 0: the medium neither absorbs nor scatters in band {0}", i),
+           kPositiveRange);
+}
+
+void validate_diffusion_medium(const Material& material, const std::string& where) {
+  check_diffusion_positive(material, where);
+}
+
+void validate_material(const Material& material, const std::string& where) {
+  validate_medium(material, where);
   check_diffusion_positive(material, where);
 }
 

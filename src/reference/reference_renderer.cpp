@@ -122,6 +122,11 @@ ReferenceImage render_reference(const Scene& animated_scene, const ReferenceSett
   if (previous && (previous->mean.width != width || previous->mean.height != height))
     throw Error(fmt::format("cannot add samples: the existing reference is {}x{}, the scene renders {}x{}",
                             previous->mean.width, previous->mean.height, width, height));
+  if (settings.integrator == Integrator::Bssrdf)  // it integrates the models: they need what volpath does not
+    for (std::size_t i = 0; i < scene.objects.size(); ++i)
+      if (scene.objects[i].material)
+        validate_diffusion_medium(*scene.objects[i].material,
+                                  fmt::format("{}: /objects/{}/material (the bssrdf reference)", scene.source, i));
   auto start = std::chrono::steady_clock::now();
   EmbreeScene rt(scene);
   if (settings.max_scatter < 0) throw Error("--max-scatter must be 0 (no limit) or more");

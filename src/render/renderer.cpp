@@ -201,6 +201,11 @@ struct Renderer::Impl {
     if (!info) throw Error(fmt::format("{}: unknown method '{}'", scene.source, scene.method));
     check_material_maps(scene);
     if (!info->reads_material_maps) methods::refuse_material_maps(scene, *info);
+    if (!info->estimates_volpath)  // a method switched to after loading: its models need what volpath does not
+      for (std::size_t i = 0; i < scene.objects.size(); ++i)
+        if (scene.objects[i].material)
+          validate_diffusion_medium(*scene.objects[i].material,
+                                    fmt::format("{}: /objects/{}/material (method '{}')", scene.source, i, scene.method));
     material_maps = has_material_maps(scene);  // a change of maps always rebuilds (classify_change)
     method.reset();
     atlas.reset();

@@ -387,7 +387,7 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
     maps->made_with_sigma_a = m.sigma_a, maps->made_with_sigma_s = m.sigma_s;
     m.maps = std::move(maps);
   }
-  validate_material(m, where.str());
+  validate_medium(m, where.str());  // what the diffusion models need besides: once the method is known
   return m;
 }
 
@@ -817,6 +817,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   warn_about_gltf_mean_free_paths(objects, scene);
   warn_about_unrepresentable_media(scene);
   read_method(doc.value("method", json::object()), root.child("method"), scene);
+  // A method that evaluates the diffusion models needs sigma_a and sigma_s' positive; one that estimates volpath
+  // renders a pure scatterer or a band that only absorbs.
+  if (const methods::MethodInfo* info = methods::find_method(scene.method); info && !info->estimates_volpath)
+    for (std::size_t i = 0; i < scene.objects.size(); ++i)
+      if (scene.objects[i].material)
+        validate_diffusion_medium(*scene.objects[i].material, root.child("objects").child(i).child("material").str());
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
   warn_if_unlit(scene);
   warn_about_enclosures(scene);

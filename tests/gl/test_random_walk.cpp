@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "image_compare.h"
 #include "../test_paths.h"
@@ -16,6 +17,8 @@
 #include "lucent/lucent.h"
 #include "reference/reference_renderer.h"
 #include "materials/tabulated_bssrdf.h"
+#include "methods/method_info.h"
+#include "params/param_json.h"
 #include "render/gpu_reference.h"
 
 namespace {
@@ -214,6 +217,31 @@ INSTANTIATE_TEST_SUITE_P(EndsOfTheRange, RandomWalkExtremeG, ::testing::Values(0
                            return fmt::format("{}{}", g.param < 0 ? "minus_" : "plus_",
                                               std::fabs(g.param) > 0.99995 ? "0_999999" : "0_9999");
                          });
+
+// Media the diffusion models cannot take and volumetric path tracing can: a pure scatterer (red, sigma_a 0, as
+// Spectralon) and a band that only absorbs (blue, sigma_s 0, as Merlot's green). The loader accepts them for the
+// methods that estimate volpath (it refused them for every method) and refuses them for the others.
+TEST(RandomWalk, AgreesWithVolpathOnAPureScattererAndABandThatOnlyAbsorbs) {
+  const char* medium = R"({ "sigma_a": [0, 0.01, 0.02], "sigma_s": [2, 2, 0], "g": 0, "eta": 1.4 })";
+  expect_agreement("sigma_a 0 in red, sigma_s 0 in blue",
+                   walk_sphere(medium, R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })"), 16, 4, 128);
+  EXPECT_EQ(lucent::test::error_message([&] {
+              lucent::parse_scene(fmt::format(R"({{ "objects": [{{ "shape": "sphere", "material": {} }}],
+                                                   "method": {{ "name": "per-pixel" }} }})", medium),
+                                  "per-pixel sphere", ".");
+            }),
+            "per-pixel sphere: /objects/0/material: sigma_a[0] = 0 must be positive for the diffusion models; allowed "
+            "range (0, inf) mm^-1");
+  // Switched to a diffusion method after loading (as the viewer does): refused when the renderer is built.
+  lucent::Scene scene = walk_sphere(medium, R"({ "direction": [0, 0, -1], "radiance": [1, 1, 1] })");
+  const lucent::methods::MethodInfo* per_pixel = lucent::methods::find_method("per-pixel");
+  ASSERT_NE(per_pixel, nullptr);
+  scene.method = "per-pixel";
+  scene.method_params = lucent::read_params(nlohmann::json::object(), {per_pixel->name, per_pixel->params}, {"test", ""});
+  EXPECT_EQ(lucent::test::error_message([&] { lucent::Renderer renderer(scene); }),
+            "random-walk sphere: /objects/0/material (method 'per-pixel'): sigma_a[0] = 0 must be positive for the "
+            "diffusion models; allowed range (0, inf) mm^-1");
+}
 
 }  // namespace
 
