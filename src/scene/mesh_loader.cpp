@@ -104,7 +104,13 @@ TriangleMesh import_triangles(const std::string& path) {
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
-  if (!scene) throw Error(path + ": cannot read mesh: " + printable_text(one_line(importer.GetErrorString())));
+  if (!scene) {
+    const std::string reason = one_line(importer.GetErrorString());
+    // Assimp's words for a file whose meshes hold no face (a truncated OBJ, a glTF of points only).
+    if (reason.find("all meshes are orphaned") != std::string::npos)
+      throw Error(path + ": cannot read mesh: it holds no faces (no triangles to render; is the file truncated?)");
+    throw Error(path + ": cannot read mesh: " + printable_text(reason));
+  }
 
   // SortByPType leaves each mesh one primitive type. Point and line meshes are dropped here rather than by
   // AI_CONFIG_PP_SBP_REMOVE, which fails a file of lines alone as "No meshes remaining".

@@ -325,6 +325,15 @@ TEST(HostileMesh, SceneWithACrashingMeshFailsCleanly) {
                                ": cannot read mesh: the importer crashed (signal 11, Segmentation fault)\n");
 }
 
+// A file whose meshes hold no face (an OBJ cut off before its faces) is named for what it lacks, not in the
+// importer's words ("all meshes are orphaned").
+TEST(HostileMesh, AFileWithoutFacesSaysSo) {
+  TempFile file(".obj");
+  write_file(file.path(), "v 0 0 0\nv 1 0 0\nv 0 1");
+  EXPECT_EQ(error_message([&] { load_mesh(file.path()); }),
+            file.path() + ": cannot read mesh: it holds no faces (no triangles to render; is the file truncated?)");
+}
+
 TEST(HostileMesh, DegenerateTrianglesAreRefused) {
   const TempFile file(".obj");
   write_file(file.path(), "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
