@@ -7,8 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "lucent/error.h"
+#include "geometry/closest_point.h"
 #include "geometry/triangle_adjacency.h"
+#include "lucent/error.h"
 #include "scene/mesh_enclosure.h"
 
 namespace lucent::reference {
@@ -214,13 +215,6 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
 
 namespace {
 
-// The point of segment [a, b] nearest to p.
-glm::dvec3 closest_point_on_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
-  const glm::dvec3 ab = b - a;
-  const double length2 = glm::dot(ab, ab);
-  if (!(length2 > 0.0)) return a;
-  return a + std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) * ab;
-}
 
 }  // namespace
 
@@ -228,24 +222,6 @@ glm::dvec3 closest_point_on_segment(const glm::dvec3& p, const glm::dvec3& a, co
 // triangle (all three barycentric coordinates >= 0); otherwise the nearest point is on the boundary, the nearest of
 // the three edges' nearest points (the distance to the plane's points grows away from the foot, so its minimum over
 // the triangle, a convex set, lies on the boundary when the foot is outside).
-glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c) {
-  const glm::dvec3 ab = b - a, ac = c - a, normal = glm::cross(ab, ac);
-  const double area2 = glm::dot(normal, normal);
-  if (area2 > 0.0) {
-    const glm::dvec3 foot = p - glm::dot(p - a, normal) / area2 * normal;
-    // Barycentric coordinates of the foot from the signed areas of the sub-triangles opposite each corner.
-    const double wb = glm::dot(glm::cross(foot - a, ac), normal) / area2;
-    const double wc = glm::dot(glm::cross(ab, foot - a), normal) / area2;
-    if (wb >= 0.0 && wc >= 0.0 && wb + wc <= 1.0) return foot;
-  }
-  const glm::dvec3 candidates[3] = {closest_point_on_segment(p, a, b), closest_point_on_segment(p, b, c),
-                                    closest_point_on_segment(p, c, a)};
-  glm::dvec3 best = candidates[0];
-  for (const glm::dvec3& q : candidates)
-    if (glm::dot(q - p, q - p) < glm::dot(best - p, best - p)) best = q;
-  return best;
-}
 
 namespace {
 

@@ -88,9 +88,6 @@ struct SurfaceSample {
   double offset = 0.0;  // as SurfaceHit::offset
 };
 
-// The point of triangle (a, b, c) nearest to p (a degenerate triangle: the nearest point of its edges).
-glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c);
 
 class EmbreeScene {
  public:

@@ -26,6 +26,7 @@
 #include "materials/shader_material_json.h"
 #include "scene/gltf_material.h"
 #include "scene/gltf_reader.h"
+#include "geometry/closest_point.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
@@ -692,6 +693,13 @@ void warn_if_unlit(const Scene& scene) {
     warn(scene.source + ": translucent objects but no light (lights, environment); the image will be black");
 }
 
+// Ray offsets scale with the coordinates (1e-6 of them in volpath, 2e-6 on the GPU: a few float rounding steps);
+// a medium whose mean free path is within kOffsetsPerMeanFreePath of the GPU's loses energy at its boundary
+// (measured in volpath on a 2 cm ball at the origin with albedo near 1: about 5% at 10 of its offsets per mean free
+// path, none measurable at 100; everything at 1). Warned about, naming the object, with what would help.
+constexpr double kOffsetsPerMeanFreePath = 32.0;
+constexpr double kLargestRelativeOffset = 2e-6;  // the GPU walk's (methods/random_walk/shaders/trace.comp)
+constexpr double kLightOnSurfaceOffsets = 4.0;   // a point light this many offsets from a surface is on it
 // A translucent object is a medium only inside a closed surface, and a point light inside one lights it only in
 // volpath: say so where the image would silently miss the light.
 void warn_about_enclosures(const Scene& scene) {
@@ -707,8 +715,24 @@ void warn_about_enclosures(const Scene& scene) {
                                "leave (dark), while the real-time methods treat its surface as closed",
                        what, open));
     else
-      for (const PointLight& light : scene.point_lights)
-        if (encloses(world, glm::dvec3(light.position)))
+      for (const PointLight& light : scene.point_lights) {
+        // On the surface (within the ray offsets there: a few float steps of the coordinates) the light is neither
+        // inside nor outside for the estimators, which then disagree (volpath lit 45 pixels of a sphere with a
+        // light on one of its vertices, the GPU walk none): said, not guessed.
+        const glm::dvec3 at(light.position);
+        double extent = std::max({std::fabs(at.x), std::fabs(at.y), std::fabs(at.z)});
+        for (const glm::vec3& p : world.positions)
+          extent = std::max({extent, std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))});
+        if (distance_to_mesh(world, at) <= kLightOnSurfaceOffsets * kLargestRelativeOffset * extent) {
+          warn(fmt::format("{}: the point light at ({}, {}, {}) lies on the surface of this translucent object "
+                           "(within the ray offsets there): it is neither inside nor outside it for the estimators, "
+                           "which disagree (volpath lights the medium from one side, the GPU walk not at all); move "
+                           "it off the surface",
+                           what, static_cast<float>(at.x + scene.origin.x), static_cast<float>(at.y + scene.origin.y),
+                           static_cast<float>(at.z + scene.origin.z)));
+          continue;
+        }
+        if (encloses(world, at))
           warn(fmt::format("{}: the point light at ({}, {}, {}) is inside this translucent "
                                    "object; only the volpath reference renders light from inside a medium (the "
                                    "real-time methods and the bssrdf reference light surfaces from outside, where "
@@ -716,15 +740,11 @@ void warn_about_enclosures(const Scene& scene) {
                            what, static_cast<float>(light.position.x + scene.origin.x),
                            static_cast<float>(light.position.y + scene.origin.y),
                            static_cast<float>(light.position.z + scene.origin.z)));
+      }
   }
 }
 
-// Ray offsets scale with the coordinates (1e-6 of them in volpath, 2e-6 on the GPU: a few float rounding steps);
-// a medium whose mean free path is within kOffsetsPerMeanFreePath of the GPU's loses energy at its boundary
-// (measured in volpath on a 2 cm ball at the origin with albedo near 1: about 5% at 10 of its offsets per mean free
-// path, none measurable at 100; everything at 1). Warned about, naming the object, with what would help.
-constexpr double kOffsetsPerMeanFreePath = 32.0;
-constexpr double kLargestRelativeOffset = 2e-6;  // the GPU walk's (methods/random_walk/shaders/trace.comp)
+// The media too dense for the offsets at their coordinates (kOffsetsPerMeanFreePath), one warning each.
 void warn_about_unrepresentable_media(const Scene& scene) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];

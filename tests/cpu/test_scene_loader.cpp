@@ -110,6 +110,14 @@ TEST(SceneLoader, LightsInsideMediaAndOpenMediaAreWarnedAbout) {
                        0),
             0u)
       << open;
+  // A light on a vertex of the sphere (its pole): neither inside nor outside for the estimators.
+  const std::string on = warnings(R"({
+    "lights": [{ "type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1] }],
+    "objects": [{ "name": "ball", "shape": "sphere", "material": "Skin1" }] })");
+  EXPECT_EQ(on, "lucent: warning: enclosure: /objects/0 ('ball'): the point light at (0, 1, 0) lies on the surface of "
+                "this translucent object (within the ray offsets there): it is neither inside nor outside it for the "
+                "estimators, which disagree (volpath lights the medium from one side, the GPU walk not at all); move "
+                "it off the surface\n");
   EXPECT_EQ(warnings(R"({ "lights": [{ "type": "point", "position": [5, 0, 0] }],
                           "objects": [{ "shape": "sphere", "material": "Skin1" }, { "shape": "box", "material": "Skin1" },
                                       { "shape": "torus", "material": "Skin1" }] })"),

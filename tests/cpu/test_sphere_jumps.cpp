@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "lucent/scene.h"
+#include "geometry/closest_point.h"
 #include "reference/embree_scene.h"
 #include "reference/integrators.h"
 #include "reference/reference_renderer.h"
