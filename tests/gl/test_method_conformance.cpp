@@ -7,7 +7,9 @@
 // it) on the sphere, a thin slab lit from behind and a coarse box lit obliquely, within the tolerances it declares
 // (MethodInfo::weakest) beside the values it measured.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,6 +20,7 @@
 #include "image_compare.h"
 #include "lucent/lucent.h"
 #include "methods/method_info.h"
+#include "reference/reference_files.h"
 #include "reference/reference_renderer.h"
 
 namespace {
@@ -165,6 +168,33 @@ struct WeakCase {
 
 class MethodWhereWeakest : public ::testing::TestWithParam<WeakCase> {};
 
+// The reference of a weak scene, shared by the methods that compare against the same integrator: the scene differs
+// between them only in its "method" block, which no reference reads. Kept in the temporary folder under a name
+// that holds the test binary's build time, so a rebuilt binary (changed code) never reads an older one; the first
+// test process to need it renders it (two at once both do, and write the same set whole).
+lucent::reference::ReferenceImage shared_reference(const lucent::Scene& scene, WeakScene which,
+                                                  const lucent::reference::ReferenceSettings& settings) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto built = fs::last_write_time(fs::read_symlink("/proc/self/exe", ec), ec).time_since_epoch().count();
+  const fs::path folder = fs::temp_directory_path() / "lucent_conformance_references";
+  fs::create_directories(folder, ec);
+  std::string name = fmt::format("{}_{}_{}_{}", weak_scene_name(which), to_string(settings.integrator),
+                                 settings.samples_per_pixel, built);
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  const lucent::reference::ReferenceFiles files = lucent::reference::reference_files((folder / (name + ".exr")).string());
+  if (!ec && fs::exists(files.metadata)) {
+    try {
+      return lucent::reference::load_reference(files).image;
+    } catch (const lucent::Error&) {  // being written by another test process: render it here
+    }
+  }
+  lucent::reference::ReferenceImage image = lucent::reference::render_reference(scene, settings);
+  if (!ec) lucent::reference::save_reference(files, image, nlohmann::json::object());
+  return image;
+}
+
 // Relative error of the mean and noise-corrected relative RMS error per pixel over the object's pixels.
 TEST_P(MethodWhereWeakest, AgreesWithItsReferencePerPixel) {
   const lucent::methods::MethodInfo& method = *GetParam().method;
@@ -177,7 +207,7 @@ TEST_P(MethodWhereWeakest, AgreesWithItsReferencePerPixel) {
   settings.integrator =
       method.estimates_volpath ? lucent::reference::Integrator::Volpath : lucent::reference::Integrator::Bssrdf;
   settings.samples_per_pixel = method.estimates_volpath ? 64 : 4096;
-  const lucent::reference::ReferenceImage reference = lucent::reference::render_reference(scene, settings);
+  const lucent::reference::ReferenceImage reference = shared_reference(scene, which, settings);
   double sum_a = 0.0, sum_b = 0.0, squared = 0.0, noise = 0.0;
   int n = 0;
   const std::vector<float>& a = rendered.radiance.pixels;
