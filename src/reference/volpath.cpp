@@ -66,29 +66,21 @@ glm::dvec3 shadow_transmittance(const ReferenceScene& s, glm::dvec3 origin, glm:
 namespace {
 
 // Next-event estimation at a medium scattering vertex: light in-scattered toward -path_dir, through the medium
-// `k` of the path: a point light inside this medium straight through it, every other light through the boundary
-// (boundary_light.h).
+// `k` of the path, from every light outside the medium through the boundary (boundary_light.h). The point lights
+// inside the medium are estimated along the flights instead (interior_lights_along).
 glm::dvec3 medium_next_event(const ReferenceScene& s, int object, const MediumCoefficients& k, glm::dvec3 x,
                              glm::dvec3 path_dir, const Rng& path_rng) {
   // Its own random numbers: the path's do not depend on how many the estimate draws.
   Rng rng = path_rng.split();
-  const ObjectData& o = s.rt.object(object);
-  glm::dvec3 L = light_through_boundary(s, object, k, x, path_dir, rng);
-  for (std::size_t i = 0; i < s.scene.point_lights.size(); ++i) {
-    if (s.rt.medium_of_point_light(i) != object) continue;
-    // A light inside this medium: straight to it when no boundary is in between (a concave medium's light
-    // behind a fold reaches x only through the boundary: not estimated, as for thin parts).
-    const PointLight& light = s.scene.point_lights[i];
-    const glm::dvec3 x_l(light.position);
-    const glm::dvec3 to_light = x_l - x;
-    const double d = glm::length(to_light);
-    if (!(d > 0.0) || s.rt.intersect(x, to_light / d, d, 0.0).hit()) continue;
-    const glm::dvec3 light_dir = -to_light / d;  // the way the light travels
-    const glm::dvec3 phase = henyey_greenstein_pdf_bands(glm::dot(light_dir, -path_dir), o.g);
-    L += point_light_intensity(s, light, light_dir) / (d * d) * medium_transmittance(o, k, x_l, x, rng) * phase;
-  }
-  return L;
+  return light_through_boundary(s, object, k, x, path_dir, rng);
 }
+
+bool has_interior_lights(const ReferenceScene& s, int object) {
+  for (std::size_t i = 0; i < s.scene.point_lights.size(); ++i)
+    if (s.rt.medium_of_point_light(i) == object) return true;
+  return false;
+}
+
 
 // Chromatic media: distances and phase directions are sampled with one "hero" band per path; every band keeps
 // its throughput divided by the hero's path pdf (throughput) and the ratio of its own path pdf to the hero's
@@ -179,11 +171,45 @@ double surface_distance_bound(const ReferenceScene& s, PathState& p, glm::dvec3 
   return empty;
 }
 
+// The light of the point lights inside the path's medium in-scattered along the flight about to leave p.origin in
+// p.direction, up to the boundary at t_b, toward -p.direction: per light one point of the flight sampled with
+// density proportional to 1 / |x(t) - light|^2 (equiangular sampling, Kulla and Fajardo 2012), then straight to
+// the light when no boundary is in between (a concave medium's light behind a fold is not estimated, as for thin
+// parts). Next-event estimation at the scattering vertices would estimate the same integral (a vertex falls on the
+// flight with density T sigma_t and weighs sigma_s / sigma_t), but with 1/r^2 itself: infinite variance where
+// paths pass near the light. Sphere jumps skip media with such lights (a jump has no flights to sample).
+glm::dvec3 interior_lights_along(const ReferenceScene& s, const PathState& p, double t_b, Rng& rng) {
+  const ObjectData& o = s.rt.object(p.medium);
+  glm::dvec3 L(0.0);
+  for (std::size_t i = 0; i < s.scene.point_lights.size(); ++i) {
+    if (s.rt.medium_of_point_light(i) != p.medium) continue;
+    const PointLight& light = s.scene.point_lights[i];
+    const glm::dvec3 x_l(light.position);
+    const double delta = glm::dot(x_l - p.origin, p.direction);  // the flight's point nearest the light
+    const double h = glm::length(x_l - (p.origin + delta * p.direction));
+    if (!(h > 0.0)) continue;  // the light on the flight's line: a set of measure zero
+    const double theta_a = std::atan(-delta / h), theta_b = std::atan((t_b - delta) / h);
+    if (!(theta_b > theta_a)) continue;
+    const double t = delta + h * std::tan(theta_a + rng.uniform() * (theta_b - theta_a));
+    const double pdf = h / ((theta_b - theta_a) * (h * h + (t - delta) * (t - delta)));
+    const glm::dvec3 x = p.origin + t * p.direction;
+    const glm::dvec3 to_light = x_l - x;
+    const double d = glm::length(to_light);
+    if (!(d > 0.0) || s.rt.intersect(x, to_light / d, d, 0.0).hit()) continue;
+    const glm::dvec3 light_dir = -to_light / d;  // the way the light travels
+    const glm::dvec3 sigma_s = o.heterogeneous() ? std::min(o.multiplier(x), 1.0) * o.sigma_s : p.medium_k.sigma_s;
+    const glm::dvec3 phase = henyey_greenstein_pdf_bands(glm::dot(light_dir, -p.direction), o.g);
+    L += medium_transmittance(o, p.medium_k, p.origin, x, rng) * sigma_s * phase *
+         point_light_intensity(s, light, light_dir) / (d * d) * medium_transmittance(o, p.medium_k, x_l, x, rng) / pdf;
+  }
+  return L;
+}
+
 // A sphere jump at scattering vertex x (its next-event estimate done): the walk from x to the boundary of the
 // largest sphere about x inside the medium, from a bank record (shared/sphere_walk.h; docs/references.md, "Sphere
 // jumps"). False, and nothing changed, where no jump applies: the caller steps as usual.
 bool sphere_jump(const ReferenceScene& s, PathState& p, Rng& rng, glm::dvec3 x) {
-  if (!s.sphere_jumps || !s.jump_bank || s.max_scatter > 0) return false;
+  if (!s.sphere_jumps || !s.jump_bank || s.max_scatter > 0 || has_interior_lights(s, p.medium)) return false;
   const ObjectData& o = s.rt.object(p.medium);
   if (o.heterogeneous() || o.g.x != o.g.y || o.g.x != o.g.z) return false;
   const glm::dvec3 sigma_t = p.medium_k.sigma_t();
@@ -309,6 +335,15 @@ bool medium_step(const ReferenceScene& s, PathState& p, Rng& rng) {
   const ObjectData& o = s.rt.object(p.medium);
   const glm::dvec3 sigma_t = p.medium_k.sigma_t();
   ++p.steps;
+  // The point lights inside the medium, along this flight (as the next-event estimate at its end would count them:
+  // not past the last scattering event allowed).
+  if ((s.max_scatter == 0 || p.scatterings < s.max_scatter) && has_interior_lights(s, p.medium)) {
+    const SurfaceHit boundary = s.rt.intersect(p.origin, p.direction, 1e30, 0.0);
+    if (boundary.hit()) {
+      Rng own = rng.split();  // its own random numbers, as the next-event estimates'
+      p.add(interior_lights_along(s, p, boundary.t, own));
+    }
+  }
   // Medium rays start inside (scattering vertices, or boundary points offset inward): no epsilon skip, so a vertex
   // within epsilon of the boundary still finds it.
   if (o.heterogeneous()) {

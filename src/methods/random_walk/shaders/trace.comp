@@ -235,8 +235,8 @@ float surface_distance_bound(vec3 x) {
 
 #include "methods/random_walk/shaders/boundary_light.glsl"
 
-// Light in-scattered at medium vertex x of `object` toward -path_dir (phase functions per band): a point light inside
-// this medium straight through it, every light outside it through the boundary (boundary_light.glsl).
+// Light in-scattered at medium vertex x of `object` toward -path_dir (phase functions per band): every light outside
+// the medium through the boundary (boundary_light.glsl); the point lights inside it along the flights instead.
 vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
   ++stat_next_events;
   uint traversals_before = stat_traversals;
@@ -263,20 +263,9 @@ vec3 medium_next_event(int object, vec3 x, vec3 path_dir) {
     ++loop_count;
     LightGPU light = frame.lights[l];
     bool point = int(light.position.w) != LUCENT_LIGHT_DIRECTIONAL;
-    if (point) {
-      int medium = light_medium(l);
-      if (medium == object) {  // inside this medium: straight to it unless the boundary is in between
-        vec3 x_l = light.position.xyz;
-        vec3 to_light = x_l - x;
-        float d = length(to_light);
-        if (!(d > 0.0f) || trace(x, to_light / d, d, 0.0f).object >= 0) continue;
-        vec3 light_dir = -to_light / d;
-        L += point_intensity(light, light_dir) / (d * d) * transmittance(object, x_l, x) *
-             hg_phase_between(light_dir, -path_dir, g);
-        continue;
-      }
-      if (medium >= 0) continue;  // inside another medium
-    }
+    // A point light inside a medium: this one's are estimated along the flights (interior_lights_along), another's
+    // do not reach here.
+    if (point && light_medium(l) >= 0) continue;
     if (through_boundary) L_outside += light_through_boundary(object, x, path_dir, l);
   }
   L += L_outside / survival;
@@ -347,6 +336,16 @@ bool leave_or_reflect(Hit boundary) {
 // The collision a jump's record represents, for its next-event estimate (n times the weight after it).
 vec3 jump_vertex, jump_vertex_direction, jump_vertex_weight;
 
+// Whether a point light lies inside `object` (light_media: the medium of each point light).
+bool has_interior_lights(int object) {
+  // loop bound: checked; at most LUCENT_MAX_LIGHTS lights (each counted in loop_count, budgeted by random_walk.cpp)
+  for (int l = 0; l < frame.light_counts.x; ++l) {
+    ++loop_count;
+    if (int(frame.lights[l].position.w) != LUCENT_LIGHT_DIRECTIONAL && light_medium(l) == object) return true;
+  }
+  return false;
+}
+
 // At scattering vertex x (its next-event estimate done): jump across the largest sphere of the levels that lies
 // inside the medium, from a record of the frame's bank, turned toward a direction sampled from the phase function
 // with a uniform azimuth. The collisions inside count through the record's one vertex (n times its next-event
@@ -355,7 +354,7 @@ bool sphere_jump(vec3 x) {
   WalkObjectGPU o = walk_objects[path_medium];
   int bank = int(o.majorant.w);
   if ((method.samples.w & uint(LUCENT_WALK_SPHERE_JUMPS)) == 0u || bank < 0 || method.jump_bound.y < 0.5f ||
-      method.limits.z > 0 || int(o.g.w) != kFieldNone)
+      method.limits.z > 0 || int(o.g.w) != kFieldNone || has_interior_lights(path_medium))
     return false;
   vec3 sigma_s = o.sigma_s.xyz, sigma_t = o.sigma_a.xyz + sigma_s;
   float sigma_hero = sigma_t[path_hero];
@@ -394,6 +393,36 @@ bool sphere_jump(vec3 x) {
   path_origin = x + radius * (turn * record.exit.xyz);
   path_direction = normalize(turn * record.exit_dir.xyz);
   return true;
+}
+
+// The light of the point lights inside the path's medium in-scattered along the flight about to leave path_origin
+// in path_direction, up to the boundary at t_b: per light one point of the flight with density proportional to
+// 1 / |x(t) - light|^2 (equiangular sampling, Kulla and Fajardo 2012; volpath's interior_lights_along).
+vec3 interior_lights_along(int object, float t_b) {
+  vec3 L = vec3(0.0f), g = walk_objects[object].g.xyz;
+  // loop bound: checked; at most LUCENT_MAX_LIGHTS lights (each counted in loop_count, budgeted by random_walk.cpp)
+  for (int l = 0; l < frame.light_counts.x; ++l) {
+    ++loop_count;
+    LightGPU light = frame.lights[l];
+    if (int(light.position.w) == LUCENT_LIGHT_DIRECTIONAL || light_medium(l) != object) continue;
+    vec3 x_l = light.position.xyz;
+    float delta = dot(x_l - path_origin, path_direction);
+    float h = length(x_l - (path_origin + delta * path_direction));
+    if (!(h > 0.0f)) continue;
+    float theta_a = atan(-delta / h), theta_b = atan((t_b - delta) / h);
+    if (!(theta_b > theta_a)) continue;
+    float t = delta + h * tan(theta_a + rnd() * (theta_b - theta_a));
+    float pdf = h / ((theta_b - theta_a) * (h * h + (t - delta) * (t - delta)));
+    vec3 x = path_origin + t * path_direction;
+    vec3 to_light = x_l - x;
+    float d = length(to_light);
+    if (!(d > 0.0f) || trace(x, to_light / d, d, 0.0f).object >= 0) continue;
+    vec3 light_dir = -to_light / d;
+    vec3 sigma_s = heterogeneous(object) ? min(multiplier(object, x), 1.0f) * sigma_s_of(object) : sigma_s_of(object);
+    L += transmittance(object, path_origin, x) * sigma_s * hg_phase_between(light_dir, -path_direction, g) *
+         point_intensity(light, light_dir) / (d * d) * transmittance(object, x_l, x) / pdf;
+  }
+  return L;
 }
 
 // A scattering vertex at x: next-event estimation, then a sphere jump (with the estimate at the collision its record
@@ -470,6 +499,18 @@ int delta_track(float boundary_t, out vec3 x) {
 bool medium_step() {
   int object = path_medium;
   ++path_steps;
+  // The point lights inside the medium, along this flight (not past the last scattering event allowed), with their
+  // own random numbers as the next-event estimates'.
+  if ((method.limits.z == 0 || path_scatterings < method.limits.z) && has_interior_lights(object)) {
+    Hit wall = trace(path_origin, path_direction, 1e30f, 0.0f);
+    if (wall.object >= 0) {
+      uint path_key = rng_key, path_count = rng_count;
+      rng_key = pcg_hash(rng_key ^ pcg_hash(rng_count ^ 0x6a09e667u));
+      rng_count = 0u;
+      path_add(interior_lights_along(object, wall.t));
+      rng_key = path_key, rng_count = path_count;
+    }
+  }
   bool field = heterogeneous(object);
   vec3 sigma_t = sigma_t_of(object);
   float t = field ? 1e30f : free_flight(sigma_t[path_hero], rnd());
