@@ -2,7 +2,6 @@
 // measures their surface area. The importer runs in a child process (scene/import_guard.h), after a size check
 // of PLY headers (scene/ply_size_check.h); what it returns is validated before anything uses it.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -20,6 +19,7 @@
 #include "io/printable_text.h"
 #include "lucent/warning.h"
 #include "lucent/error.h"
+#include "lucent/output_file.h"
 #include "io/input_file.h"
 #include "lucent/mesh.h"
 #include "scene/gltf_file_check.h"
@@ -137,11 +137,8 @@ TriangleMesh load_mesh(const std::string& path) {
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
   require_regular_file(path);
   check_ply_size(path);
-  {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (extension == ".gltf" || extension == ".glb") check_gltf_file(path);  // before the importer allocates
-  }
+  if (const std::string extension = lowercase_extension(path); extension == ".gltf" || extension == ".glb")
+    check_gltf_file(path);  // before the importer allocates
 
   // Address space for the importer: generous for real files (its own structures take a few times the file),
   // small enough that a header asking for terabytes fails in the child.

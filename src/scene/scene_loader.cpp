@@ -17,6 +17,7 @@
 #include "lucent/warning.h"
 #include "lucent/environment.h"
 #include "lucent/error.h"
+#include "lucent/output_file.h"
 #include "io/input_file.h"
 #include "lucent/medium_vdb.h"
 #include "lucent/medium_volume.h"
@@ -893,8 +894,7 @@ std::vector<std::string> scene_input_files(const Scene& scene) {
   for (const SceneObject& object : scene.objects) {
     if (!object.mesh_file.empty()) {
       files.push_back(object.mesh_file);
-      std::string extension = std::filesystem::path(object.mesh_file).extension().string();
-      std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+      const std::string extension = lowercase_extension(object.mesh_file);
       if (extension == ".gltf" || extension == ".glb")
         for (std::string& file : gltf_referenced_files(object.mesh_file)) files.push_back(std::move(file));
     }
