@@ -61,7 +61,7 @@ void bind_reference(py::module_& m) {
          const py::object& threads, bool jitter, const py::object& max_scatter, const py::object& time,
          py::object width, py::object height, bool sphere_jumps, const py::object& progress) {
         return render_reference_arrays(scene,
-                                       {std::move(width), std::move(height), py::none(), py::none(), {}, py::none()},
+                                       {std::move(width), std::move(height), py::none(), py::none(), {}, py::none(), py::none()},
                                        settings_of(integrator, spp, seed, threads, jitter, max_scatter, time, sphere_jumps),
                                        progress);
       },

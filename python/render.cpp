@@ -69,18 +69,21 @@ void bind_render(py::module_& m) {
   m.def(
       "render",
       [](const SceneHandle& scene, py::object width, py::object height, py::object frames,
-         std::optional<std::string> method, py::object params, py::object seed, bool timings,
+         std::optional<std::string> method, py::object params, py::object seed, py::object denoise, bool timings,
          const py::object& progress) {
         return render(scene, {std::move(width), std::move(height), std::move(frames), std::move(seed),
-                              std::move(method), std::move(params)},
+                              std::move(method), std::move(params), std::move(denoise)},
                       timings, progress);
       },
       py::arg("scene"), py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
       py::arg("frames") = py::none(), py::arg("method") = py::none(), py::arg("params") = py::none(),
-      py::arg("seed") = py::none(), py::arg("timings") = false, py::arg("progress") = py::none(),
+      py::arg("seed") = py::none(), py::arg("denoise") = py::none(), py::arg("timings") = false,
+      py::arg("progress") = py::none(),
       "Renders the scene headless as `lucent render` does and returns the linear radiance, float32 of shape "
       "(height, width, 3). width, height, frames and seed override render.*; method replaces the scene's method "
-      "(its parameters from params, else the defaults); params alone override method.<key>. With timings=True "
+      "(its parameters from params, else the defaults); params alone override method.<key>. denoise: True, False or a dict of the "
+      "denoising stage's parameters (`lucent render --help`, [denoise]; enabled unless the dict says otherwise): the "
+      "filtered image instead of the method's raw average. With timings=True "
       "returns (image, {\"device\": ..., \"frames\": [{\"frame\", \"total_ms\", \"passes\", \"stats\"}, ...]}) "
       "with each frame's GPU times [ms]. progress: None or a callable taking the fraction of frames done, called "
       "on the calling thread; Ctrl-C raises KeyboardInterrupt after the frame in flight. The OpenGL context is the "

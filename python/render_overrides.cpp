@@ -13,6 +13,15 @@ std::vector<std::string> render_overrides(const RenderArguments& a) {
       {"width", a.width}, {"height", a.height}, {"frames", a.frames}, {"seed", a.seed}};
   for (const auto& [key, value] : render_values)
     if (value && !value.is_none()) overrides.push_back(fmt::format("render.{}={}", key, to_json_text(value)));
+  if (a.denoise && !a.denoise.is_none()) {
+    if (py::isinstance<py::bool_>(a.denoise)) {
+      overrides.push_back(fmt::format("denoise.enabled={}", a.denoise.cast<bool>() ? "true" : "false"));
+    } else {
+      py::dict denoise = py::dict(a.denoise);
+      if (!denoise.contains("enabled")) denoise["enabled"] = true;
+      overrides.push_back("denoise=" + to_json_text(denoise));
+    }
+  }
   py::dict params = a.params.is_none() ? py::dict() : py::dict(a.params);
   if (a.method) {
     py::dict method;

@@ -14,9 +14,13 @@ struct RenderArguments {
   pybind11::object width, height, frames, seed;
   std::optional<std::string> method;  // a registered method: replaces the scene's method and its parameters
   pybind11::object params;            // dict of method parameters (None: none)
+  // lucent.render's denoise: None (the scene's), a bool (denoise.enabled) or a dict of the denoising stage's
+  // parameters (enabled unless it says otherwise).
+  pybind11::object denoise = pybind11::none();
 };
 
-// "render.width=W", ...; "method={"name": M, ...params}" with a method, else "method.<key>=<value>" per parameter.
+// "render.width=W", ...; "method={"name": M, ...params}" with a method, else "method.<key>=<value>" per parameter;
+// "denoise.enabled=B" or "denoise={...}".
 std::vector<std::string> render_overrides(const RenderArguments& arguments);
 
 }  // namespace lucent::python

@@ -29,6 +29,7 @@ struct RenderOptions {
   bool quiet = false;
   bool animate = false;
   bool restart_every_frame = false;
+  bool denoise = false;
   int samples_per_frame = 1;
 };
 
@@ -114,6 +115,7 @@ void run_animation(const RenderOptions& o, const Scene& scene, const std::string
 
 void run(const RenderOptions& o) {
   std::vector<std::string> overrides = o.sets;
+  if (o.denoise) overrides.insert(overrides.begin(), "denoise.enabled=true");  // a --set may still turn it off
   if (o.frames) overrides.push_back(fmt::format("render.frames={}", *o.frames));
   if (o.seed) overrides.push_back(fmt::format("render.seed={}", *o.seed));
   Scene scene = o.scene_path.empty() ? default_scene(overrides) : load_scene(o.scene_path, overrides);
@@ -192,6 +194,9 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--seed", options->seed, "random seed (render.seed)")->check(whole_number_in(0, 4294967295.0));
   cmd->add_option("--set", options->sets, "override a scene value, e.g. --set method.K=8 --set render.width=320");
   cmd->add_flag("-q,--quiet", options->quiet, "print nothing but errors");
+  cmd->add_flag("--denoise", options->denoise,
+                "filter the method's image (denoise.enabled): history reprojected across camera moves and an "
+                "edge-stopping wavelet filter; biased, for a few paths per pixel");
   add_no_cache_flag(cmd);
   cmd->add_flag("--animate", options->animate,
                 "render --frames animation frames (time f / render.fps) to <output>_NNNN.png, and an MP4 with ffmpeg");

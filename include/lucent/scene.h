@@ -116,6 +116,9 @@ struct Scene {
   std::string method;                           // a registered method (`lucent methods`); empty: the default
   ParamValues method_params;                    // declared by the method (see `lucent render --help`)
   RenderSettings render;
+  // The denoising stage after the method (the scene's "denoise" object; declarations in src/denoise/
+  // denoise_params.h): off unless its "enabled" is true. Empty values are the defaults.
+  ParamValues denoise;
 };
 
 // A camera target farther from the file's origin than this many times the camera's distance to it moves the

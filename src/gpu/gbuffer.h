@@ -28,6 +28,7 @@ class GBuffer {
   int size_y() const { return size_y_; }
   int layers() const { return layers_; }
   GLuint position() const { return position_; }
+  GLuint normal() const { return normal_; }
 
  private:
   int size_x_, size_y_, layers_;

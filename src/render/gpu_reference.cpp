@@ -40,6 +40,7 @@ reference::ReferenceImage render_reference_on_gpu(const Scene& scene_in, const r
   scene.method_params.set("samples_per_frame", static_cast<double>(per_frame));
   scene.method_params.set("sphere_jumps", settings.sphere_jumps);
   scene.method_params.set("max_scatter", static_cast<double>(settings.max_scatter));
+  scene.denoise.set("enabled", false);  // a reference is the method's unbiased average
   scene.render.seed = settings.seed;  // every bit: seeds 1 and 2^32 are two random streams
   const int width = scene.render.width, height = scene.render.height;
   const std::size_t values = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;

@@ -3,9 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <map>
 #include <optional>
 #include <utility>
 
+#include "denoise/denoiser.h"
 #include "gpu/gbuffer.h"
 #include "gpu/gl_debug.h"
 #include "gpu/frame_profiler.h"
@@ -159,6 +161,13 @@ struct Renderer::Impl {
   double time_seconds = 0.0;
   bool geometry_dirty = true;  // animated geometry must be brought to time_seconds before the next frame
   std::uint64_t frame_counter = 0;
+  // The denoising stage (made when the scene first enables it, released when it disables it), the camera and the
+  // method's frame count of the previous frame (to tell a restart and its cause), and each frame's history length
+  // until its statistics are reported.
+  std::unique_ptr<denoise::Denoiser> denoiser;
+  glm::mat4 previous_clip_from_world{0.0f};
+  int previous_method_frames = 0;
+  std::map<std::uint64_t, double> denoise_history;
   FrameTimings latest;                   // newest frame reported
   std::vector<FrameTimings> unclaimed;   // reported frames not yet taken by finished_frames()
   static constexpr std::size_t kMaxUnclaimed = 4096;
@@ -293,6 +302,24 @@ struct Renderer::Impl {
     if (output.camera_gbuffer->has_uv()) output.camera_gbuffer->bind_uv(LUCENT_TEX_CAMERA_UV);
   }
 
+  // The denoising stage over the method's radiance, when the scene enables it.
+  void denoise_pass(const shader::FrameGPU& frame, const Camera& camera, bool edited) {
+    const denoise::DenoiseSettings settings = denoise::denoise_settings(scene.denoise);
+    const int method_frames = method->accumulated_frames();
+    const bool camera_moved = frame.clip_from_world != previous_clip_from_world;
+    const bool restarted = edited || camera_moved || method_frames <= previous_method_frames;
+    previous_clip_from_world = frame.clip_from_world;
+    previous_method_frames = method_frames;
+    if (!settings.enabled) {
+      denoiser.reset();
+      return;
+    }
+    if (!denoiser) denoiser = std::make_unique<denoise::Denoiser>();
+    denoiser->run({frame, *output.camera_gbuffer, output.hdr, method_frames, restarted, edited, camera.fov_y_deg,
+                   settings, profiler});
+    denoise_history[frame_counter] = denoiser->history_frames();
+  }
+
   void tonemap_pass() {
     auto pass = profiler.pass("tonemap");
     glBindTextureUnit(LUCENT_TEX_HDR, output.hdr);
@@ -313,17 +340,21 @@ struct Renderer::Impl {
     // Output images: RGBA32F radiance, RGBA8 display, camera G-buffer (RGBA32F + RGBA16F + DEPTH32F, + RG32F
     // texture coordinates with material maps).
     std::size_t pixels = static_cast<std::size_t>(output.width) * static_cast<std::size_t>(output.height);
-    t.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4 + (output.with_uv ? 8 : 0));
+    t.gpu_memory_bytes = method->gpu_memory_bytes() + pixels * (16 + 4 + 16 + 8 + 4 + (output.with_uv ? 8 : 0)) +
+                         (denoiser ? denoiser->gpu_memory_bytes() : 0);
     t.stats.push_back({"translucent_pixels", static_cast<double>(c.translucent_pixels), ""});
     t.stats.push_back({"coverage", c.translucent_pixels > 0 ? static_cast<double>(c.covered_pixels) / c.translucent_pixels : 1.0, ""});
     t.stats.push_back({"gpu_memory", static_cast<double>(t.gpu_memory_bytes) / (1024.0 * 1024.0), "MiB"});
     method->statistics({t.passes, c, profiled.frame}, t.stats);
+    if (auto it = denoise_history.find(profiled.frame); it != denoise_history.end())
+      t.stats.push_back({"denoise_history", it->second, "frames"});
     return t;
   }
 
   void take_reported(bool wait) {
     for (const gpu::ProfiledFrame& f : profiler.collect(wait)) {
       latest = summarize(f);
+      denoise_history.erase(denoise_history.begin(), denoise_history.upper_bound(f.frame));
       if (unclaimed.size() == kMaxUnclaimed) unclaimed.erase(unclaimed.begin());
       unclaimed.push_back(latest);
     }
@@ -334,6 +365,7 @@ struct Renderer::Impl {
       throw Error(fmt::format("render target size {}x{} is empty", target.width, target.height));
     output.resize(target.width, target.height, material_maps);
     profiler.begin_frame(++frame_counter);
+    const bool edited = restart;  // an edit (or a first frame) restarts the method: no history survives it
     shader::FrameGPU frame = frame_block(camera);
     restart = false;
     glNamedBufferSubData(frame_buffer, 0, sizeof(frame), &frame);
@@ -345,6 +377,7 @@ struct Renderer::Impl {
     camera_gbuffer_pass();
     method->render({method_scene(), *scene_gpu, *output.camera_gbuffer, output.hdr, profiler, frame.seeds.z != 0, time_seconds,
                     frame_counter});
+    denoise_pass(frame, camera, edited);
     tonemap_pass();
     glBlitNamedFramebuffer(output.ldr_framebuffer, target.framebuffer, 0, 0, output.width, output.height, 0, 0,
                            target.width, target.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

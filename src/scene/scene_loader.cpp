@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "denoise/denoise_params.h"
 #include "io/file_path_check.h"
 #include "lucent/warning.h"
 #include "lucent/environment.h"
@@ -821,7 +822,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   std::vector<JsonOverride> applied;  // errors at or under a value set by --set name the assignment
   for (const std::string& assignment : overrides) applied.push_back({apply_override(doc, assignment), assignment});
   JsonLocation root{source, "", &applied};
-  ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "environment", "objects", "method", "render"});
+  ParamValues top = read_params(doc, {"scene", kSceneParams}, root, {"camera", "lights", "environment", "objects", "method", "render", "denoise"});
   Scene scene;
   scene.origin = move_origin_to_the_view(doc);
   scene.source = source;
@@ -845,6 +846,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
       if (scene.objects[i].material)
         validate_diffusion_medium(*scene.objects[i].material, root.child("objects").child(i).child("material").str());
   scene.render = read_render(doc.value("render", json::object()), root.child("render"));
+  scene.denoise = read_params(doc.value("denoise", json::object()), {"denoise", denoise::kDenoiseParams}, root.child("denoise"));
   warn_if_unlit(scene);
   warn_about_enclosures(scene);
   return scene;
@@ -916,7 +918,8 @@ std::vector<ParamSection> scene_param_sections() {
                                         {"objects[]", kObjectParams},          {"objects[].deform", kDeformParams},
                                         {"objects[].material", kMaterialParams}, {"objects[].material.field", kFieldParams},
                                         {"objects[].material.principled", kPrincipledParams},
-                                        {"objects[].material.openpbr", kOpenPbrParams}, {"render", kRenderParams}};
+                                        {"objects[].material.openpbr", kOpenPbrParams}, {"render", kRenderParams},
+                                        {"denoise", denoise::kDenoiseParams}};
   for (const auto* m : methods::method_registry()) sections.push_back({m->name, m->params});
   return sections;
 }

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "denoise/denoise_params.h"
 #include "io/base64.h"
 #include "lucent/error.h"
 #include "lucent/medium_vdb.h"
@@ -182,6 +183,15 @@ json method_json(const Scene& scene) {
   return j;
 }
 
+// The denoising stage's values, written when it is enabled (a scene without the object has it off).
+json denoise_json(const Scene& scene) {
+  json j = json::object();
+  for (const ParamDecl& decl : denoise::kDenoiseParams)
+    if (scene.denoise.has(decl.name))
+      j[std::string(decl.name)] = param_json(decl, scene.denoise.all().at(std::string(decl.name)));
+  return j;
+}
+
 json render_json(const RenderSettings& r) {
   const char* tonemap = r.tonemap == ToneMapOperator::Aces       ? "aces"
                         : r.tonemap == ToneMapOperator::Reinhard ? "reinhard"
@@ -253,6 +263,7 @@ json scene_to_json(const Scene& scene, const std::vector<std::string>& mesh_file
   j["objects"] = objects;
   j["method"] = method_json(scene);
   j["render"] = render_json(scene.render);
+  if (denoise::denoise_settings(scene.denoise).enabled) j["denoise"] = denoise_json(scene);
   return j;
 }
 

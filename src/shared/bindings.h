@@ -13,7 +13,7 @@
 // ---- uniform buffers --------------------------------------------------------------------------------------
 #define LUCENT_BINDING_FRAME 0   // FrameGPU (std140): camera, output, seeds, display, lights (shared/shader_io.h)
 #define LUCENT_BINDING_METHOD 1  // the active method's own block (std140), declared in its folder
-// 2-7: method range (uniform); 8-11: isosurface extractor
+// 2-7: method range (uniform); 8-11: isosurface extractor; 12-15: the denoising stage
 
 // ---- storage buffers --------------------------------------------------------------------------------------
 #define LUCENT_BINDING_MATERIALS 1  // MaterialGPU[] (std430)
@@ -61,6 +61,15 @@
 #define LUCENT_TEXTURE_SPACE_IMAGE_FIRST 6
 #define LUCENT_TEXTURE_SPACE_IMAGE_LAST 7
 
+// The denoising stage (src/denoise/) runs after the method's last pass and before tone mapping: its images may
+// reuse the method's image units (GL guarantees only 8), never any other range's.
+#define LUCENT_DENOISE_UNIFORM_FIRST 12
+#define LUCENT_DENOISE_UNIFORM_LAST 15
+#define LUCENT_DENOISE_TEX_FIRST 32
+#define LUCENT_DENOISE_TEX_LAST 40
+#define LUCENT_DENOISE_IMAGE_FIRST 2
+#define LUCENT_DENOISE_IMAGE_LAST 4
+
 #define LUCENT_TEST_STORAGE_FIRST 30
 #define LUCENT_TEST_STORAGE_LAST 30
 #define LUCENT_BINDING_PARITY 30  // the GPU parity test's cases and results (std430)
@@ -76,6 +85,9 @@ struct SlotRange {
   SlotKind kind;
   int first, last;
   bool frame;  // bound once per frame (true) or pass-local (false)
+  // A pass-local range whose passes run only after this group's passes have ended for the frame (the denoising
+  // stage after the method): it may share that group's slots, which both bind before use. Null: shares none.
+  const char* runs_after = nullptr;
 };
 
 inline constexpr SlotRange kSlotTable[] = {
@@ -110,6 +122,9 @@ inline constexpr SlotRange kSlotTable[] = {
      false},
     {"texture-space textures", SlotKind::Texture, LUCENT_TEXTURE_SPACE_TEX_FIRST, LUCENT_TEXTURE_SPACE_TEX_LAST, false},
     {"texture-space images", SlotKind::Image, LUCENT_TEXTURE_SPACE_IMAGE_FIRST, LUCENT_TEXTURE_SPACE_IMAGE_LAST, false},
+    {"denoise uniform", SlotKind::Uniform, LUCENT_DENOISE_UNIFORM_FIRST, LUCENT_DENOISE_UNIFORM_LAST, false},
+    {"denoise textures", SlotKind::Texture, LUCENT_DENOISE_TEX_FIRST, LUCENT_DENOISE_TEX_LAST, false},
+    {"denoise images", SlotKind::Image, LUCENT_DENOISE_IMAGE_FIRST, LUCENT_DENOISE_IMAGE_LAST, false, "method"},
     {"test storage", SlotKind::Storage, LUCENT_TEST_STORAGE_FIRST, LUCENT_TEST_STORAGE_LAST, false},
 };
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "denoise/denoise_params.h"
 #include "lucent/error.h"
 #include "../test_support.h"
 #include "lucent/environment.h"
@@ -334,7 +335,7 @@ TEST(SceneLoader, UnknownTopLevelKey) {
   json doc = minimal_scene();
   doc["objcets"] = json::array();
   EXPECT_EQ(parse_error(doc),
-            "test.json: /objcets: unknown key; known keys: scale_mm, comment, camera, lights, environment, objects, method, render");
+            "test.json: /objcets: unknown key; known keys: scale_mm, comment, camera, lights, environment, objects, method, render, denoise");
 }
 
 TEST(SceneLoader, UnknownMethodKey) {
@@ -595,3 +596,23 @@ TEST(LightViews, TooManyLightsOrLayersAreErrors) {
 }
 
 }  // namespace
+
+// The denoising stage's section: off by default, its values read as declared (denoise/denoise_params.h), refused
+// outside their ranges with one line naming the key.
+TEST(SceneLoader, DenoiseSection) {
+  EXPECT_FALSE(lucent::denoise::denoise_settings(parse(minimal_scene()).denoise).enabled);
+  json doc = minimal_scene();
+  doc["denoise"] = {{"enabled", true}, {"iterations", 3}, {"fade_frames", 0}};
+  const lucent::denoise::DenoiseSettings s = lucent::denoise::denoise_settings(parse(doc).denoise);
+  EXPECT_TRUE(s.enabled);
+  EXPECT_EQ(s.iterations, 3);
+  EXPECT_EQ(s.fade_frames, 0.0f);
+  EXPECT_EQ(s.sigma_luminance, 8.0f);  // the default
+  EXPECT_TRUE(lucent::denoise::denoise_settings(parse(minimal_scene(), {"denoise.enabled=true"}).denoise).enabled);
+  doc["denoise"] = {{"iterations", 9}};
+  EXPECT_NE(parse_error(doc).find("test.json: /denoise/iterations"), std::string::npos) << parse_error(doc);
+  doc["denoise"] = {{"sigma_luminanse", 2}};
+  EXPECT_NE(parse_error(doc).find("/denoise/sigma_luminanse: unknown key"), std::string::npos) << parse_error(doc);
+  doc["denoise"] = 1;
+  EXPECT_NE(parse_error(doc).find("/denoise"), std::string::npos) << parse_error(doc);
+}

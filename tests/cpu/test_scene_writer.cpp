@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "denoise/denoise_params.h"
 #include "lucent/scene_writer.h"
 #include "../test_support.h"
 #include "../test_paths.h"
@@ -43,6 +44,13 @@ void expect_same_triangles(const TriangleMesh& a, const TriangleMesh& b, const s
 
 void expect_equal_scenes(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.scale_mm, b.scale_mm);
+  for (const ParamDecl& decl : lucent::denoise::kDenoiseParams) {  // written when enabled; otherwise off
+    const std::string key(decl.name);
+    if (lucent::denoise::denoise_settings(a.denoise).enabled) {
+      EXPECT_EQ(to_string(a.denoise.all().at(key)), to_string(b.denoise.all().at(key))) << "denoise." << key;
+    }
+  }
+  EXPECT_EQ(lucent::denoise::denoise_settings(a.denoise).enabled, lucent::denoise::denoise_settings(b.denoise).enabled);
   EXPECT_EQ(a.camera.eye, b.camera.eye);
   EXPECT_EQ(a.camera.target, b.camera.target);
   expect_near(a.camera.up, b.camera.up, 1e-6f, "camera.up");
@@ -151,6 +159,8 @@ TEST(SceneWriter, EditedValuesRoundTrip) {
   scene.render.tonemap = ToneMapOperator::Reinhard;
   scene.render.exposure = -0.75f;
   scene.render.seed = 4000000000u;
+  Scene denoised = default_scene({"denoise={\"enabled\": true, \"iterations\": 2, \"sigma_luminance\": 3.5}"});
+  scene.denoise = denoised.denoise;
   for (const char* method : {"per-pixel", "voxel-paths", "radiosity-maps"}) {
     Scene s = default_scene({std::string("method={\"name\": \"") + method + "\"}"});
     scene.method = s.method;

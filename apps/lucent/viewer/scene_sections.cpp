@@ -256,6 +256,13 @@ void render_section(ViewerSession& session) {
   changed |= scene_vec3("render", "background", scene.render.background, 0.005f);
   int seed = static_cast<int>(std::min<std::uint64_t>(scene.render.seed, 1u << 30));
   if (ImGui::DragInt("seed", &seed, 1.0f, 0, 1 << 30)) scene.render.seed = static_cast<unsigned>(std::max(seed, 0)), changed = true;
+  // The denoising stage after the method (key D toggles it): its declared parameters.
+  if (scene.denoise.has("enabled"))
+    for (const ParamSection& section : scene_param_sections())
+      if (section.name == "denoise" && ImGui::TreeNode("denoise")) {
+        changed |= param_section_widgets(section, scene.denoise);
+        ImGui::TreePop();
+      }
   if (changed) session.edited();
 }
 

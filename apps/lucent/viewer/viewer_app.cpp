@@ -223,8 +223,18 @@ class ViewerApp {
       if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
       if (key == GLFW_KEY_R) session_.camera().reset();
       if (key == GLFW_KEY_P) actions.screenshot = true;
+      if (key == GLFW_KEY_D) toggle_denoise();
     }
     return actions;
+  }
+
+  // The denoising stage on or off (the filtered image or the method's raw average).
+  void toggle_denoise() {
+    if (!session_.renderer()) return;
+    Scene& scene = session_.edit();
+    const bool enabled = scene.denoise.has("enabled") && scene.denoise.boolean("enabled");
+    scene.denoise.set("enabled", !enabled);
+    session_.edited();
   }
 
   FrameStatus frame_status(bool render_now) {
