@@ -3,6 +3,7 @@
 #include "common/frame.glsl"
 #include "bssrdf/diffuse_albedo.h"
 #include "denoise/denoise_io.h"
+#include "media/material_map.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
@@ -15,15 +16,28 @@ int pixel_object(vec4 position) { return int(position.w + 0.5f); }
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
+#if defined(LUCENT_MATERIAL_MAPS)
+layout(binding = LUCENT_TEX_CAMERA_UV) uniform sampler2D camera_uv;
+#endif
+
 // The albedo the radiance is divided by: an opaque object's diffuse albedo; a translucent one's the diffuse albedo
-// of its medium (bssrdf/diffuse_albedo.h: the emergent fraction on a flat, uniformly lit surface), per band.
-// Kept above 1e-3 so that division and multiplication stay exact inverses of each other.
-vec3 demodulation_albedo(int object) {
+// of its medium (bssrdf/diffuse_albedo.h: the emergent fraction on a flat, uniformly lit surface), per band, from
+// its albedo map at the pixel where it has one (the map's single-scattering albedo sigma_s / sigma_t: only the
+// ratio matters), so that the filter does not blur the texture. Kept above 1e-3 so that division and
+// multiplication stay exact inverses of each other.
+vec3 demodulation_albedo(int object, ivec2 pixel) {
   ObjectGPU o = objects[object - 1];
   vec3 albedo = o.albedo.rgb;
   if (o.info.x >= 0) {
     MaterialGPU m = materials[o.info.x];
-    albedo = diffuse_albedo(m.sigma_a.xyz, m.sigma_s.xyz, m.g.xyz, m.sigma_a.w);
+    vec3 sigma_a = m.sigma_a.xyz, sigma_s = m.sigma_s.xyz;
+#if defined(LUCENT_MATERIAL_MAPS)
+    if (m.alpha_map.x >= 0) {
+      sigma_s = clamp(material_map_value(m.alpha_map, texelFetch(camera_uv, pixel, 0).xy), vec3(0.0f), vec3(1.0f));
+      sigma_a = vec3(1.0f) - sigma_s;
+    }
+#endif
+    albedo = diffuse_albedo(sigma_a, sigma_s, m.g.xyz, m.sigma_a.w);
   }
   return max(albedo, vec3(1e-3f));
 }

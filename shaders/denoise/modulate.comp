@@ -20,7 +20,7 @@ void main() {
   if (object != 0) {
     float fade = denoise.history.z;
     float w = fade > 0.0f ? fade * fade / (fade * fade + c.a * c.a) : 1.0f;
-    radiance = mix(c.rgb, demodulation_albedo(object) * texelFetch(filtered, pixel, 0).rgb, w);
+    radiance = mix(c.rgb, demodulation_albedo(object, pixel) * texelFetch(filtered, pixel, 0).rgb, w);
   }
   imageStore(hdr, pixel, vec4(radiance, coverage));
 }

@@ -90,6 +90,6 @@ void main() {
   vec3 x = m.rgb;
   if (state == LUCENT_DENOISE_KEEP && n_frames >= 2.0f)
     x = n_frames * m.rgb - (n_frames - 1.0f) * texelFetch(previous_average, pixel, 0).rgb;
-  float l = luminance(x / demodulation_albedo(object));
+  float l = luminance(x / demodulation_albedo(object, pixel));
   imageStore(moments, pixel, moment_sums + vec4(l, l * l, 1.0f, 0.0f));
 }

@@ -21,7 +21,7 @@ void main() {
     imageStore(demodulated, pixel, vec4(c, 0.0f));
     return;
   }
-  vec3 albedo = demodulation_albedo(object);
+  vec3 albedo = demodulation_albedo(object, pixel);
   vec4 sums = texelFetch(moments, pixel, 0);
   if (sums.z >= kTemporalFrames) {
     float mean = sums.x / sums.z;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "denoise/denoise_io.h"
 #include "gpu/gl_debug.h"
@@ -26,13 +27,16 @@ void dispatch(const gpu::ShaderProgram& program, int width, int height) {
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
+std::string defines(bool material_maps) { return material_maps ? "#define LUCENT_MATERIAL_MAPS 1\n" : ""; }
+
 }  // namespace
 
-Denoiser::Denoiser()
-    : temporal_(gpu::ShaderProgram::compute("denoise/temporal.comp")),
-      variance_(gpu::ShaderProgram::compute("denoise/variance.comp")),
-      atrous_(gpu::ShaderProgram::compute("denoise/atrous.comp")),
-      modulate_(gpu::ShaderProgram::compute("denoise/modulate.comp")) {
+Denoiser::Denoiser(bool material_maps)
+    : material_maps_(material_maps),
+      temporal_(gpu::ShaderProgram::compute("denoise/temporal.comp", defines(material_maps))),
+      variance_(gpu::ShaderProgram::compute("denoise/variance.comp", defines(material_maps))),
+      atrous_(gpu::ShaderProgram::compute("denoise/atrous.comp", defines(material_maps))),
+      modulate_(gpu::ShaderProgram::compute("denoise/modulate.comp", defines(material_maps))) {
   glCreateBuffers(1, &block_);
   glNamedBufferStorage(block_, sizeof(shader::DenoiseGPU), nullptr, GL_DYNAMIC_STORAGE_BIT);
   gpu::label_object(GL_BUFFER, block_, "denoise");

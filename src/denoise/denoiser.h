@@ -39,7 +39,10 @@ struct DenoiseFrame {
 
 class Denoiser {
  public:
-  Denoiser();
+  // material_maps: the scene has textured materials (the camera G-buffer keeps texture coordinates, bound at
+  // LUCENT_TEX_CAMERA_UV): the albedo maps divide the radiance per pixel.
+  explicit Denoiser(bool material_maps);
+  bool material_maps() const { return material_maps_; }
   ~Denoiser();
   Denoiser(const Denoiser&) = delete;
   Denoiser& operator=(const Denoiser&) = delete;
@@ -54,6 +57,7 @@ class Denoiser {
   void resize(int width, int height);
   void release();
 
+  bool material_maps_;
   gpu::ShaderProgram temporal_, variance_, atrous_, modulate_;
   GLuint block_ = 0;
   int width_ = 0, height_ = 0;

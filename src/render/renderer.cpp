@@ -314,7 +314,8 @@ struct Renderer::Impl {
       denoiser.reset();
       return;
     }
-    if (!denoiser) denoiser = std::make_unique<denoise::Denoiser>();
+    if (!denoiser || denoiser->material_maps() != material_maps)
+      denoiser = std::make_unique<denoise::Denoiser>(material_maps);
     denoiser->run({frame, *output.camera_gbuffer, output.hdr, method_frames, restarted, edited, camera.fov_y_deg,
                    settings, profiler});
     denoise_history[frame_counter] = denoiser->history_frames();

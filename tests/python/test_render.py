@@ -77,3 +77,18 @@ def test_renders_from_other_threads():
     assert first.max() > 0.01
     for image in results + [lucent.render(scene, **args)]:  # the last one back on the first thread
         np.testing.assert_array_equal(image, first)  # the same seed and code: the same image
+
+
+def test_denoise_as_render_denoise(out_dir):
+    # denoise=True is the CLI's --denoise; a dict sets the stage's parameters; the stage's passes are timed.
+    py, info = lucent.render(lucent.load_scene(), method="per-pixel", params=PER_PIXEL,
+                             denoise={"iterations": 2}, timings=True, **SIZE)
+    cli = cli_render(out_dir, "method=" + json.dumps({"name": "per-pixel", **PER_PIXEL}), "denoise.enabled=true",
+                     "denoise.iterations=2")
+    assert_same_image(py, cli)
+    assert "denoise_filter" in info["frames"][-1]["passes"]
+    raw = lucent.render(lucent.load_scene(), method="per-pixel", params=PER_PIXEL, denoise=False, **SIZE)
+    assert np.abs(raw - py).max() > 0.0  # the stage changed the image
+    with pytest.raises(ValueError) as error:  # out of its declared range, as `Scene.set` says it
+        lucent.render(lucent.load_scene(), denoise={"iterations": 99})
+    assert str(error.value).startswith("denoise.iterations: 99 is out of range")
