@@ -124,12 +124,12 @@ def pareto(points):
 
 def plot(run, rows, out_png):
     """Error (volpath) against time, log-log, one series per method, the Pareto front as a line."""
-    methods = sorted({r["method"] for r in rows})
+    methods = sorted({method_label(r) for r in rows})
     data = out_png[:-4] + ".dat"
     with open(data, "w") as f:
         for m in methods:
             f.write(f'"{m}"\n')
-            for r in sorted((r for r in rows if r["method"] == m), key=time_ms):
+            for r in sorted((r for r in rows if method_label(r) == m), key=time_ms):
                 f.write(f"{time_ms(r)} {max(error(r, 'volpath'), 1e-5)}\n")
             f.write("\n\n")
         pts = [(time_ms(r), error(r, "volpath")) for r in rows]
@@ -153,6 +153,11 @@ plot {', '.join(series)}
 """
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
     os.remove(data)
+
+
+def method_label(result):
+    """The method as the page names it: with the denoising stage after it, "<method> + denoise"."""
+    return result["method"] + (" + denoise" if result.get("denoise") else "")
 
 
 def main():
@@ -234,8 +239,8 @@ def main():
         images_dir = os.path.join(os.path.dirname(results_path), "images")
         by_method_best = {}
         for r in rows:
-            if r["method"] not in by_method_best or error(r, "volpath") < error(by_method_best[r["method"]], "volpath"):
-                by_method_best[r["method"]] = r
+            if method_label(r) not in by_method_best or error(r, "volpath") < error(by_method_best[method_label(r)], "volpath"):
+                by_method_best[method_label(r)] = r
         strip = [os.path.join(os.path.dirname(results_path), rows[0]["error"]["volpath"]["reference_image"])]
         names = ["volpath"]
         if "bssrdf" in rows[0]["error"]:
@@ -256,7 +261,7 @@ def main():
         # fit) and at the generous one (the largest: every method fits).
         by_method = {}
         for r in rows:
-            by_method.setdefault(r["method"], []).append(r)
+            by_method.setdefault(method_label(r), []).append(r)
         fastest_per_method = sorted(min(time_ms(r) for r in rs) for rs in by_method.values())
         budgets = {"tight": fastest_per_method[(len(fastest_per_method) - 1) // 2], "generous": fastest_per_method[-1]}
         rankings = {}
@@ -287,14 +292,14 @@ def main():
         sec.append("| method | setting | time | RMSE vs volpath | relMSE vs volpath | bias vs volpath | "
                    "RMSE vs bssrdf | error image (vs volpath) |")
         sec.append("|---|---|---|---|---|---|---|---|")
-        order = sorted(range(len(rows)), key=lambda i: (rows[i]["method"], pts[i][0]))
+        order = sorted(range(len(rows)), key=lambda i: (method_label(rows[i]), pts[i][0]))
         for i in order:
             r = rows[i]
             ev = r["error"]["volpath"]
             eb = error(r, "bssrdf")
             name = f"**{r['variant']}**" if i in front else r["variant"]
             stem = os.path.splitext(os.path.basename(r["image"]))[0]
-            sec.append(f"| {r['method']} | {name} | {fmt_ms(pts[i][0])} | {pts[i][1]:.4f} | {ev['relative_mse']:.4f} | "
+            sec.append(f"| {method_label(r)} | {name} | {fmt_ms(pts[i][0])} | {pts[i][1]:.4f} | {ev['relative_mse']:.4f} | "
                        f"{ev['mean_error']:+.4f} +- {ev['mean_error_se']:.4f} | {'-' if eb is None else f'{eb:.4f}'} | "
                        f"`images/{stem}+vs_volpath.png` |")
         for r in refused:
@@ -318,7 +323,7 @@ def main():
     md.append("|---|---|---|---|---|")
     for run, (e, m, r), (e2, m2, r2), best, nref in summary:
         md.append(f"| {run} | {m}, {r['variant']} ({e:.4f}, {fmt_ms(time_ms(r))}) | {m2}, {r2['variant']} "
-                  f"({e2:.4f}, {fmt_ms(time_ms(r2))}) | {best['method']}, {best['variant']} "
+                  f"({e2:.4f}, {fmt_ms(time_ms(r2))}) | {method_label(best)}, {best['variant']} "
                   f"({error(best, 'volpath'):.4f}, {fmt_ms(time_ms(best))}) | {nref} |")
     md.append("")
     for k, label in ((1, "tight"), (2, "generous")):

@@ -21,6 +21,7 @@
 
 #include "bench_config.h"
 #include "commands.h"
+#include "denoise/denoise_params.h"
 #include "image/image_metrics.h"
 #include "io/input_file.h"
 #include "lucent/lucent.h"
@@ -198,6 +199,7 @@ struct Bench {
       result["params"][key] = std::move(value);
     }
     if (variant.value("equal_time", false)) result["equal_time_request"] = true;
+    if (denoise::denoise_settings(scene.denoise).enabled) result["denoise"] = true;  // the stage after the method
     for (const reference::ImageRegion& region : run_regions(run)) {
       r.region_masks.emplace_back(region.name, reference::region_mask(scene, region));
       // The region drawn over the variant's image (green), to see which pixels it holds.

@@ -7,19 +7,10 @@
 
 #include "denoise/denoise_io.h"
 #include "gpu/gl_debug.h"
+#include "gpu/image_texture.h"
 
 namespace lucent::denoise {
 namespace {
-
-GLuint make_image(int width, int height, GLenum format, const char* label) {
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, format, width, height);
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gpu::label_object(GL_TEXTURE, texture, label);
-  return texture;
-}
 
 void dispatch(const gpu::ShaderProgram& program, int width, int height) {
   glUseProgram(program.id());
@@ -61,16 +52,16 @@ void Denoiser::resize(int width, int height) {
   if (width == width_ && height == height_) return;
   release();
   width_ = width, height_ = height;
-  frozen_ = make_image(width, height, GL_RGBA32F, "denoise: kept history");
-  combined_[0] = make_image(width, height, GL_RGBA32F, "denoise: combined estimate A");
-  combined_[1] = make_image(width, height, GL_RGBA32F, "denoise: combined estimate B");
-  moments_[0] = make_image(width, height, GL_RGBA32F, "denoise: moments A");
-  moments_[1] = make_image(width, height, GL_RGBA32F, "denoise: moments B");
-  previous_average_ = make_image(width, height, GL_RGBA32F, "denoise: the method's previous average");
-  filter_[0] = make_image(width, height, GL_RGBA32F, "denoise: wavelet A");
-  filter_[1] = make_image(width, height, GL_RGBA32F, "denoise: wavelet B");
-  previous_position_ = make_image(width, height, GL_RGBA32F, "denoise: previous position");
-  previous_normal_ = make_image(width, height, GL_RGBA16F, "denoise: previous normal");
+  frozen_ = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: kept history");
+  combined_[0] = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: combined estimate A");
+  combined_[1] = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: combined estimate B");
+  moments_[0] = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: moments A");
+  moments_[1] = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: moments B");
+  previous_average_ = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: the method's previous average");
+  filter_[0] = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: wavelet A");
+  filter_[1] = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: wavelet B");
+  previous_position_ = gpu::make_image_texture(width, height, GL_RGBA32F, "denoise: previous position");
+  previous_normal_ = gpu::make_image_texture(width, height, GL_RGBA16F, "denoise: previous normal");
 }
 
 std::size_t Denoiser::gpu_memory_bytes() const {

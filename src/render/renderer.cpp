@@ -10,6 +10,7 @@
 #include "denoise/denoiser.h"
 #include "gpu/gbuffer.h"
 #include "gpu/gl_debug.h"
+#include "gpu/image_texture.h"
 #include "gpu/frame_profiler.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
@@ -24,16 +25,6 @@
 namespace lucent {
 namespace {
 
-GLuint make_image_texture(int width, int height, GLenum format, const char* label) {
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, format, width, height);
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gpu::label_object(GL_TEXTURE, texture, label);
-  return texture;
-}
-
 // Output-sized images: HDR radiance, the tone-mapped image and a framebuffer to blit it from.
 struct OutputImages {
   int width = 0, height = 0;
@@ -46,8 +37,8 @@ struct OutputImages {
     if (w == width && h == height && uv == with_uv) return;
     release();
     width = w, height = h, with_uv = uv;
-    hdr = make_image_texture(w, h, GL_RGBA32F, "radiance (HDR)");
-    ldr = make_image_texture(w, h, GL_RGBA8, "display (tone-mapped)");
+    hdr = gpu::make_image_texture(w, h, GL_RGBA32F, "radiance (HDR)");
+    ldr = gpu::make_image_texture(w, h, GL_RGBA8, "display (tone-mapped)");
     glCreateFramebuffers(1, &ldr_framebuffer);
     glNamedFramebufferTexture(ldr_framebuffer, GL_COLOR_ATTACHMENT0, ldr, 0);
     camera_gbuffer = std::make_unique<gpu::GBuffer>(w, h, 0, "camera G-buffer", with_uv);
