@@ -1,0 +1,93 @@
+// multipole.h: the multipole diffusion model of a slab of finite thickness, reflectance and transmittance.
+//
+// Source: Donner and Jensen, "Light Diffusion in Multi-Layered Translucent Materials", SIGGRAPH 2005, Section 3
+// (eqs. 8-11). The standard dipole (standard_dipole.h) assumes the medium goes on forever below the surface; a slab
+// of thickness d has two boundaries, and the fluence must vanish at both extrapolated boundaries, z = -z_b and
+// z = d + z_b, z_b = 2 A D. An infinite row of dipoles mirrored about both does so: for i = -n..n,
+//   z_r,i = 2 i (d + 2 z_b) + l,   z_v,i = 2 i (d + 2 z_b) - l - 2 z_b,   l = 1 / sigma_t'
+// (i = 0 is Jensen et al.'s dipole). The radiant exitance through the top (reflectance) and the bottom
+// (transmittance) at distance r from the entry point along the face:
+//   R(r) = alpha' / (4 pi) sum_i [ z_r,i (1 + sigma_tr d_r,i) e^(-sigma_tr d_r,i) / d_r,i^3 - (same for z_v,i) ]
+//   T(r) = alpha' / (4 pi) sum_i [ (d - z_r,i) (1 + sigma_tr d'_r,i) e^(-sigma_tr d'_r,i) / d'_r,i^3 - (same) ]
+// with d_r,i = sqrt(r^2 + z_r,i^2) and d'_r,i = sqrt(r^2 + (d - z_r,i)^2). Each term integrates over the plane to
+// alpha' / 2 sign(z) e^(-sigma_tr |z|), which gives the totals in closed form.
+// Parameterisation: per colour band, like the standard dipole (same A from eta, same exit normalisation applies
+// to S_d = R / (pi (1 - 2 C1(1/eta))); the caller applies the Fresnel transmission terms). The same eta on both faces.
+// Known limits: a flat slab of uniform thickness (a curved or tapering part is approximated by the local thickness);
+// depends on distance only; diffusion's bias at low albedo; for d below one reduced mean free path the real source
+// lies at or below the bottom face (as the paper places it), where diffusion is least accurate.
+#ifndef LUCENT_BSSRDF_MULTIPOLE_H
+#define LUCENT_BSSRDF_MULTIPOLE_H
+#include "shared/bridge.h"
+#include "bssrdf/constants.h"
+#include "bssrdf/medium.h"
+#include "bssrdf/standard_dipole.h"
+
+LUCENT_SHADER_BEGIN
+
+// Dipole pairs on each side of i = 0 in the profiles (2 x 16 + 1 pairs). The pairs beyond i decay as
+// e^(-sigma_tr 2 |i| (d + 2 z_b)) times the pair's own cancellation; at reduced albedo 0.999 and d of one mean free
+// path that is e^-4 at i = 16, so the profiles of thin, nearly white slabs are truncated by a few percent at large r,
+// where they are small; the totals below sum kMultipoleTotalPairs.
+LUCENT_CONST int kMultipolePairs = 16;
+LUCENT_CONST int kMultipoleTotalPairs = 512;
+
+// z (1 + sigma_tr dist) e^(-sigma_tr dist) / dist^3, dist = sqrt(r^2 + z^2): one source's term.
+LUCENT_INLINE float multipole_source_term(float z, float r, float sigma_tr) {
+  float dist = sqrt(r * r + z * z);
+  return z * (1.0f + sigma_tr * dist) * exp(-sigma_tr * dist) / (dist * dist * dist);
+}
+
+// The reflectance profile R(r) [1/length^2] of a slab `thickness` thick [length] (one band).
+LUCENT_INLINE float multipole_Rd(BandMedium m, float eta, float thickness, float r) {
+  float z_b = 2.0f * standard_dipole_A(eta) * m.D;
+  float l = 1.0f / m.sigma_t_prime;
+  float period = 2.0f * (thickness + 2.0f * z_b);
+  float sum = 0.0f;
+  for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
+    float shift = float(k - kMultipolePairs) * period;
+    sum += multipole_source_term(shift + l, r, m.sigma_tr) - multipole_source_term(shift - l - 2.0f * z_b, r, m.sigma_tr);
+  }
+  return m.alpha_prime / (4.0f * kPi) * sum;
+}
+
+// The transmittance profile T(r) [1/length^2]: exitance through the bottom face at distance r along it from the
+// point below the entry point.
+LUCENT_INLINE float multipole_Td(BandMedium m, float eta, float thickness, float r) {
+  float z_b = 2.0f * standard_dipole_A(eta) * m.D;
+  float l = 1.0f / m.sigma_t_prime;
+  float period = 2.0f * (thickness + 2.0f * z_b);
+  float sum = 0.0f;
+  for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
+    float shift = float(k - kMultipolePairs) * period;
+    sum += multipole_source_term(thickness - (shift + l), r, m.sigma_tr) -
+           multipole_source_term(thickness - (shift - l - 2.0f * z_b), r, m.sigma_tr);
+  }
+  return m.alpha_prime / (4.0f * kPi) * sum;
+}
+
+// sign(z) e^(-sigma_tr |z|): a source's term integrated over the plane, without alpha' / 2.
+LUCENT_INLINE float multipole_source_total(float z, float sigma_tr) {
+  return (z > 0.0f ? 1.0f : (z < 0.0f ? -1.0f : 0.0f)) * exp(-sigma_tr * abs(z));
+}
+
+// Total reflectance and transmittance (the integrals of 2 pi r R and 2 pi r T), in units where sigma_t' = 1: the
+// reduced albedo alpha', eta and the optical thickness sigma_t' d. x: reflectance, y: transmittance.
+LUCENT_INLINE vec2 multipole_totals(float alpha_prime, float eta, float optical_thickness) {
+  float sigma_tr = sqrt(3.0f * (1.0f - alpha_prime));  // sigma_tr / sigma_t'
+  float z_b = 2.0f * standard_dipole_A(eta) / 3.0f;     // 2 A D with D = 1 / 3
+  float period = 2.0f * (optical_thickness + 2.0f * z_b);
+  float reflectance = 0.0f, transmittance = 0.0f;
+  for (int k = 0; k < 2 * kMultipoleTotalPairs + 1; ++k) {
+    float shift = float(k - kMultipoleTotalPairs) * period;
+    float z_r = shift + 1.0f, z_v = shift - 1.0f - 2.0f * z_b;
+    reflectance += multipole_source_total(z_r, sigma_tr) - multipole_source_total(z_v, sigma_tr);
+    transmittance += multipole_source_total(optical_thickness - z_r, sigma_tr) -
+                     multipole_source_total(optical_thickness - z_v, sigma_tr);
+  }
+  return 0.5f * alpha_prime * vec2(reflectance, transmittance);
+}
+
+LUCENT_SHADER_END
+
+#endif
