@@ -88,6 +88,32 @@ LUCENT_INLINE vec2 multipole_totals(float alpha_prime, float eta, float optical_
   return 0.5f * alpha_prime * vec2(reflectance, transmittance);
 }
 
+// The same totals with the refracted light spread along its beam, as photon beam diffusion (Habel et al. 2013) does
+// for the half-space: a source of strength alpha' e^(-z) dz at each depth z of the slab (units of sigma_t' = 1),
+// each with its own row of mirrored dipoles, instead of all of it at depth 1. Quadrature over u = 1 - e^(-z), in
+// which the sources' strength is uniform: kMultipoleBeamSteps midpoints over [0, 1 - e^(-d)]. The light that
+// crosses the slab unscattered is not included (it is the beam's own transmission, e^(-sigma_t d)).
+LUCENT_CONST int kMultipoleBeamSteps = 64;
+
+LUCENT_INLINE vec2 multipole_beam_totals(float alpha_prime, float eta, float optical_thickness) {
+  float sigma_tr = sqrt(3.0f * (1.0f - alpha_prime));
+  float z_b = 2.0f * standard_dipole_A(eta) / 3.0f;
+  float period = 2.0f * (optical_thickness + 2.0f * z_b);
+  float u_end = 1.0f - exp(-optical_thickness);
+  vec2 sum = vec2(0.0f);
+  for (int s = 0; s < kMultipoleBeamSteps; ++s) {
+    float z = -log(1.0f - (float(s) + 0.5f) / float(kMultipoleBeamSteps) * u_end);
+    for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
+      float shift = float(k - kMultipolePairs) * period;
+      float z_r = shift + z, z_v = shift - z - 2.0f * z_b;
+      sum.x += multipole_source_total(z_r, sigma_tr) - multipole_source_total(z_v, sigma_tr);
+      sum.y += multipole_source_total(optical_thickness - z_r, sigma_tr) -
+               multipole_source_total(optical_thickness - z_v, sigma_tr);
+    }
+  }
+  return 0.5f * alpha_prime * u_end / float(kMultipoleBeamSteps) * sum;
+}
+
 LUCENT_SHADER_END
 
 #endif

@@ -75,15 +75,18 @@ TEST(Multipole, WithoutAbsorptionNothingIsLost) {
 // Against exact transport: diffuse reflectance and transmittance per refracted power (unscattered light removed),
 // normal incidence, from lucent slab's photon Monte Carlo (4e4 photons: standard errors about 0.002). The model's
 // totals are the emergent flux as lucent renders it (the exit normalisation and the exit Fresnel transmission
-// cancel; docs/models/total-reflectance.md). Where the slab is 8 mean free paths or more the reflectance is the
-// standard dipole's and within 5% of exact (measured: -3.8% to +3.9%). Thinner, the single source at depth
-// 1 / sigma_t' (Donner and Jensen's placement) is the model's error: at 2 mean free paths it sits in the middle of
-// the slab and gives R = T, where exact transport transmits 0.27-0.36 and reflects 0.33-0.50 (printed table).
+// cancel; docs/models/total-reflectance.md). Two source placements: Donner and Jensen's single source at depth
+// 1 / sigma_t', and the refracted light spread along its beam (multipole_beam_totals). Measured: with the single
+// source a slab of 2 mean free paths gets R = T (the source in its middle) where exact transport transmits a
+// third less than it reflects; spread along the beam, R and T are within 2% of exact at reduced albedo 0.99 for
+// every thickness from 1 to 32 mean free paths and both eta, within 4% at 0.95 with eta 1; at eta 1.4 and lower
+// albedo the reflectance is diffusion's usual overestimate near the surface (+10% at 0.95, +45% at 0.8), as for
+// the half-space models (docs/models/total-reflectance.md). Asserted where measured within 5%.
 TEST(Multipole, AgainstPhotonTransport) {
-  std::printf("albedo eta thickness | R model, exact | T model, exact\n");
+  std::printf("albedo eta thickness | R single source, beam, exact | T single source, beam, exact\n");
   for (float eta : {1.0f, 1.4f})
-    for (float albedo : {0.95f, 0.99f})
-      for (float thickness : {2.0f, 8.0f, 32.0f}) {
+    for (float albedo : {0.8f, 0.95f, 0.99f})
+      for (float thickness : {1.0f, 2.0f, 4.0f, 8.0f, 32.0f}) {
         lucent::reference::SlabConfig config;
         config.albedo = albedo, config.eta = eta, config.thickness = thickness, config.photons = 40000;
         const lucent::reference::SlabResult exact = lucent::reference::simulate_slab(config);
@@ -91,9 +94,14 @@ TEST(Multipole, AgainstPhotonTransport) {
         const double r = exact.diffuse_reflectance_per_refracted.mean;
         const double t = (exact.transmittance.mean - exact.unscattered_transmittance.mean) / entered;
         const lucent::shader::vec2 model = multipole_totals(albedo, eta, thickness);
-        std::printf("%.3f %.1f %5.1f | %.4f %.4f | %.4f %.4f\n", albedo, eta, thickness, model.x, r, model.y, t);
-        if (thickness >= 8.0f) {
-          EXPECT_NEAR(model.x / r, 1.0, 0.05) << "eta " << eta << ", albedo " << albedo << ", d " << thickness;
+        const lucent::shader::vec2 beam = lucent::shader::multipole_beam_totals(albedo, eta, thickness);
+        std::printf("%.3f %.1f %5.1f | %.4f %.4f %.4f | %.4f %.4f %.4f\n", albedo, eta, thickness, model.x, beam.x, r,
+                    model.y, beam.y, t);
+        if (albedo > 0.98f || (albedo > 0.9f && eta == 1.0f)) {
+          EXPECT_NEAR(beam.x / r, 1.0, 0.05) << "R: eta " << eta << ", albedo " << albedo << ", d " << thickness;
+          if (t > 0.01) {
+            EXPECT_NEAR(beam.y / t, 1.0, 0.05) << "T: eta " << eta << ", albedo " << albedo << ", d " << thickness;
+          }
         }
       }
 }
