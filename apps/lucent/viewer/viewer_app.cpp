@@ -15,6 +15,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include "denoise/denoise_params.h"
 #include "lucent/lucent.h"
 #include "lucent/scene_writer.h"
 #include "viewer/viewer_layout.h"
@@ -228,13 +229,15 @@ class ViewerApp {
     return actions;
   }
 
-  // The denoising stage on or off (the filtered image or the method's raw average).
+  // The denoising stage on or off (the filtered image or the method's raw average). The renderer reads the
+  // stage's settings every frame, so the change goes to its scene directly (and to the panel's copy) without
+  // restarting the method: the frames accumulated so far stay, and both images can be compared.
   void toggle_denoise() {
-    if (!session_.renderer()) return;
-    Scene& scene = session_.edit();
-    const bool enabled = scene.denoise.has("enabled") && scene.denoise.boolean("enabled");
-    scene.denoise.set("enabled", !enabled);
-    session_.edited();
+    Renderer* renderer = session_.renderer();
+    if (!renderer) return;
+    const bool enabled = !denoise::denoise_settings(renderer->scene().denoise).enabled;
+    renderer->scene().denoise.set("enabled", enabled);
+    session_.edit().denoise.set("enabled", enabled);
   }
 
   FrameStatus frame_status(bool render_now) {
