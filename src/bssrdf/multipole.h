@@ -114,6 +114,28 @@ LUCENT_INLINE vec2 multipole_beam_totals(float alpha_prime, float eta, float opt
   return 0.5f * alpha_prime * u_end / float(kMultipoleBeamSteps) * sum;
 }
 
+// The profiles with the refracted light spread along its beam (the totals above are their plane integrals): R(r)
+// and T(r) [1/length^2] for a slab `thickness` thick, from `depth_steps` depths (at most kMultipoleBeamSteps; the
+// totals use all of them). Each depth costs 2 (2 kMultipolePairs + 1) exponentials: a reference evaluation, too
+// costly per sample for a renderer, which would tabulate it.
+LUCENT_INLINE vec2 multipole_beam_profiles(BandMedium m, float eta, float thickness, float r, int depth_steps) {
+  float z_b = 2.0f * standard_dipole_A(eta) * m.D;
+  float period = 2.0f * (thickness + 2.0f * z_b);
+  float u_end = 1.0f - exp(-m.sigma_t_prime * thickness);
+  vec2 sum = vec2(0.0f);
+  for (int s = 0; s < kMultipoleBeamSteps && s < depth_steps; ++s) {
+    float z = -log(1.0f - (float(s) + 0.5f) / float(depth_steps) * u_end) / m.sigma_t_prime;
+    for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
+      float shift = float(k - kMultipolePairs) * period;
+      float z_r = shift + z, z_v = shift - z - 2.0f * z_b;
+      sum.x += multipole_source_term(z_r, r, m.sigma_tr) - multipole_source_term(z_v, r, m.sigma_tr);
+      sum.y += multipole_source_term(thickness - z_r, r, m.sigma_tr) -
+               multipole_source_term(thickness - z_v, r, m.sigma_tr);
+    }
+  }
+  return m.alpha_prime / (4.0f * kPi) * u_end / float(depth_steps) * sum;
+}
+
 LUCENT_SHADER_END
 
 #endif

@@ -1,5 +1,6 @@
 // test_multipole_glsl.cpp: the multipole model (bssrdf/multipole.h) compiles as GLSL 4.50 and gives in a compute
-// shader the profiles and totals it gives in C++, over albedos, eta, thicknesses and distances.
+// shader the profiles (one source and spread along the beam) and totals it gives in C++, over albedos, eta,
+// thicknesses and distances.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -21,7 +22,8 @@ void main() {
   if (i >= uint(cases.length())) return;
   vec4 c = cases[i];
   BandMedium m = make_band_medium(1.0f - c.x, c.x, 0.0f);
-  results[2u * i] = vec4(multipole_Rd(m, c.y, c.z, c.w), multipole_Td(m, c.y, c.z, c.w), 0.0f, 0.0f);
+  results[2u * i] = vec4(multipole_Rd(m, c.y, c.z, c.w), multipole_Td(m, c.y, c.z, c.w),
+                         multipole_beam_profiles(m, c.y, c.z, c.w, 16));
   results[2u * i + 1u] = vec4(multipole_totals(c.x, c.y, c.z), multipole_beam_totals(c.x, c.y, c.z));
 }
 )";
@@ -65,11 +67,15 @@ TEST(MultipoleGlsl, ComputeShaderMatchesCpp) {
     const glm::vec4 c = cases[i];
     const BandMedium m = make_band_medium(1.0f - c.x, c.x, 0.0f);
     const float rd = multipole_Rd(m, c.y, c.z, c.w), td = multipole_Td(m, c.y, c.z, c.w);
+    const vec2 beam_profiles = multipole_beam_profiles(m, c.y, c.z, c.w, 16);
     const vec2 totals = multipole_totals(c.x, c.y, c.z), beam = multipole_beam_totals(c.x, c.y, c.z);
     const glm::vec4 a = output[2 * i], b = output[2 * i + 1];
     const float profile_scale = std::max(std::fabs(rd), std::fabs(td));
     EXPECT_TRUE(near(a.x, rd, profile_scale)) << "R(r) case " << i << ": " << a.x << " vs " << rd;
     EXPECT_TRUE(near(a.y, td, profile_scale)) << "T(r) case " << i << ": " << a.y << " vs " << td;
+    const float beam_scale = std::max(std::fabs(beam_profiles.x), std::fabs(beam_profiles.y));
+    EXPECT_TRUE(near(a.z, beam_profiles.x, beam_scale) && near(a.w, beam_profiles.y, beam_scale))
+        << "beam profiles case " << i << ": " << a.z << ", " << a.w << " vs " << beam_profiles.x << ", " << beam_profiles.y;
     EXPECT_TRUE(near(b.x, totals.x, 1.0f) && near(b.y, totals.y, 1.0f)) << "totals case " << i;
     EXPECT_TRUE(near(b.z, beam.x, 1.0f) && near(b.w, beam.y, 1.0f)) << "beam totals case " << i;
   }
