@@ -38,32 +38,28 @@ LUCENT_INLINE float multipole_source_term(float z, float r, float sigma_tr) {
   return z * (1.0f + sigma_tr * dist) * exp(-sigma_tr * dist) / (dist * dist * dist);
 }
 
-// The reflectance profile R(r) [1/length^2] of a slab `thickness` thick [length] (one band).
-LUCENT_INLINE float multipole_Rd(BandMedium m, float eta, float thickness, float r) {
+// The reflectance and transmittance profiles (x: R(r), y: T(r)) [1/length^2] of a slab `thickness` thick
+// [length] (one band): T at distance r along the bottom face from the point below the entry point.
+LUCENT_INLINE vec2 multipole_profiles(BandMedium m, float eta, float thickness, float r) {
   float z_b = 2.0f * standard_dipole_A(eta) * m.D;
   float l = 1.0f / m.sigma_t_prime;
   float period = 2.0f * (thickness + 2.0f * z_b);
-  float sum = 0.0f;
+  vec2 sum = vec2(0.0f);
   for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
     float shift = float(k - kMultipolePairs) * period;
-    sum += multipole_source_term(shift + l, r, m.sigma_tr) - multipole_source_term(shift - l - 2.0f * z_b, r, m.sigma_tr);
+    float z_r = shift + l, z_v = shift - l - 2.0f * z_b;
+    sum.x += multipole_source_term(z_r, r, m.sigma_tr) - multipole_source_term(z_v, r, m.sigma_tr);
+    sum.y += multipole_source_term(thickness - z_r, r, m.sigma_tr) -
+             multipole_source_term(thickness - z_v, r, m.sigma_tr);
   }
   return m.alpha_prime / (4.0f * kPi) * sum;
 }
 
-// The transmittance profile T(r) [1/length^2]: exitance through the bottom face at distance r along it from the
-// point below the entry point.
+LUCENT_INLINE float multipole_Rd(BandMedium m, float eta, float thickness, float r) {
+  return multipole_profiles(m, eta, thickness, r).x;
+}
 LUCENT_INLINE float multipole_Td(BandMedium m, float eta, float thickness, float r) {
-  float z_b = 2.0f * standard_dipole_A(eta) * m.D;
-  float l = 1.0f / m.sigma_t_prime;
-  float period = 2.0f * (thickness + 2.0f * z_b);
-  float sum = 0.0f;
-  for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
-    float shift = float(k - kMultipolePairs) * period;
-    sum += multipole_source_term(thickness - (shift + l), r, m.sigma_tr) -
-           multipole_source_term(thickness - (shift - l - 2.0f * z_b), r, m.sigma_tr);
-  }
-  return m.alpha_prime / (4.0f * kPi) * sum;
+  return multipole_profiles(m, eta, thickness, r).y;
 }
 
 // sign(z) e^(-sigma_tr |z|): a source's term integrated over the plane, without alpha' / 2.

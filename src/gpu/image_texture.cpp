@@ -11,6 +11,8 @@ GLuint make_image_texture(int width, int height, GLenum format, std::string_view
   glTextureStorage2D(texture, 1, format, width, height);
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   label_object(GL_TEXTURE, texture, label);
   return texture;
 }

@@ -1,6 +1,6 @@
-// image_texture.h: a 2D texture of one level, nearest filtering, labelled: the per-pixel images of a frame (the
-// renderer's radiance and display images, the denoising stage's history and wavelet images), read with texelFetch
-// and written as images.
+// image_texture.h: a 2D texture of one level, nearest filtering, clamped to its edges, labelled: per-texel images
+// read with texelFetch or nearest lookups and written as images or attachments (the renderer's radiance and display
+// images, the denoising stage's history and wavelet images, local-global's and the texture-space G-buffer's maps).
 #pragma once
 #include <string_view>
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
+#include "gpu/image_texture.h"
 #include "lucent/error.h"
 #include "render/scene_gpu.h"
 
@@ -17,18 +18,6 @@ std::string shader_defines() {
   return fmt::format("#define TEXTURE_SPACE_BINDING_VERTICES {}\n#define TEXTURE_SPACE_BINDING_INDICES {}\n"
                      "#define TEXTURE_SPACE_BINDING_CORNER_UVS {}\n",
                      kBindingVertices, kBindingIndices, kBindingCornerUvs);
-}
-
-GLuint make_texture(int size, GLenum format, const std::string& label) {
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, format, size, size);
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  gpu::label_object(GL_TEXTURE, texture, label);
-  return texture;
 }
 
 // Atlas coordinates per corner of the scene's index buffer, at the translucent meshes' ranges.
@@ -62,9 +51,9 @@ TextureGBuffer::TextureGBuffer(const render::SceneGpu& scene_gpu, const SceneAtl
       program_(gpu::ShaderProgram::graphics("texture_space/gbuffer.vert", "texture_space/conservative.geom",
                                             "texture_space/gbuffer.frag", shader_defines())) {
   const std::string name = "texture-space G-buffer";
-  position_ = make_texture(size_, GL_RGBA32F, name + " position");
-  normal_ratio_ = make_texture(size_, GL_RGBA32F, name + " normal and area ratio");
-  depth_ = make_texture(size_, GL_DEPTH_COMPONENT32F, name + " distance");
+  position_ = gpu::make_image_texture(size_, size_, GL_RGBA32F, name + " position");
+  normal_ratio_ = gpu::make_image_texture(size_, size_, GL_RGBA32F, name + " normal and area ratio");
+  depth_ = gpu::make_image_texture(size_, size_, GL_DEPTH_COMPONENT32F, name + " distance");
   glCreateFramebuffers(1, &framebuffer_);
   glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, position_, 0);
   glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT1, normal_ratio_, 0);

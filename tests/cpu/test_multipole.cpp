@@ -20,26 +20,20 @@ using lucent::shader::multipole_totals;
 // A medium with sigma_t' = 1 and reduced albedo a (g = 0).
 BandMedium unit_medium(float albedo) { return make_band_medium(1.0f - albedo, albedo, 0.0f); }
 
-// The transmittance a profile function evaluated last, when it gives both (see plane_integral's `second`).
-double last_transmittance = 0.0;
-
-// 2 pi r f(r) integrated over r in [0, inf) by the trapezoid rule on a logarithmic grid (1e-5 to 1e3 mean free
-// paths, 4000 steps) plus the disc below the first node. With `second`, the same integral of last_transmittance,
-// which f sets on each call.
-template <typename Profile>
-double plane_integral(Profile f, double* second = nullptr) {
+// 2 pi r p(r) integrated over r in [0, inf), for both components of a profile pair p (R, T), by the trapezoid rule
+// on a logarithmic grid (1e-5 to 1e3 mean free paths, 4000 steps) plus the disc below the first node.
+template <typename Profiles>
+glm::dvec2 plane_integral(Profiles p) {
   const int steps = 4000;
   const double r0 = 1e-5, r1 = 1e3, ratio = std::pow(r1 / r0, 1.0 / steps);
-  double value = f(static_cast<float>(r0)), other = last_transmittance;
-  double sum = M_PI * r0 * r0 * value, sum_other = M_PI * r0 * r0 * other, r = r0;
+  glm::dvec2 value(p(static_cast<float>(r0))), sum = M_PI * r0 * r0 * value;
+  double r = r0;
   for (int k = 0; k < steps; ++k) {
     const double next = r * ratio;
-    const double next_value = f(static_cast<float>(next)), next_other = last_transmittance;
+    const glm::dvec2 next_value(p(static_cast<float>(next)));
     sum += 0.5 * (next - r) * (2.0 * M_PI * r * value + 2.0 * M_PI * next * next_value);
-    sum_other += 0.5 * (next - r) * (2.0 * M_PI * r * other + 2.0 * M_PI * next * next_other);
-    r = next, value = next_value, other = next_other;
+    r = next, value = next_value;
   }
-  if (second) *second = sum_other;
   return sum;
 }
 
@@ -62,8 +56,9 @@ TEST(Multipole, ProfilesIntegrateToTheTotals) {
     for (float albedo : {0.9f, 0.99f})
       for (float thickness : {1.0f, 4.0f, 16.0f}) {
         const BandMedium m = unit_medium(albedo);
-        const double r = plane_integral([&](float x) { return lucent::shader::multipole_Rd(m, eta, thickness, x); });
-        const double t = plane_integral([&](float x) { return lucent::shader::multipole_Td(m, eta, thickness, x); });
+        const glm::dvec2 integral =
+            plane_integral([&](float x) { return lucent::shader::multipole_profiles(m, eta, thickness, x); });
+        const double r = integral.x, t = integral.y;
         const lucent::shader::vec2 total = multipole_totals(albedo, eta, thickness);
         EXPECT_NEAR(r / total.x, 1.0, 2e-3) << "R: eta " << eta << ", albedo " << albedo << ", d " << thickness;
         EXPECT_NEAR(t / total.y, 1.0, 2e-3) << "T: eta " << eta << ", albedo " << albedo << ", d " << thickness;
@@ -76,12 +71,9 @@ TEST(Multipole, BeamProfilesIntegrateToTheBeamTotals) {
     for (float thickness : {1.0f, 4.0f}) {
       const BandMedium m = unit_medium(0.95f);
       const int steps = lucent::shader::kMultipoleBeamSteps;
-      double t = 0.0;  // the transmittance's integral, beside the reflectance's (one evaluation of both per radius)
-      const double r = plane_integral([&](float x) {
-        const lucent::shader::vec2 p = lucent::shader::multipole_beam_profiles(m, eta, thickness, x, steps);
-        last_transmittance = p.y;
-        return p.x;
-      }, &t);
+      const glm::dvec2 integral =
+          plane_integral([&](float x) { return lucent::shader::multipole_beam_profiles(m, eta, thickness, x, steps); });
+      const double r = integral.x, t = integral.y;
       const lucent::shader::vec2 total = lucent::shader::multipole_beam_totals(0.95f, eta, thickness);
       EXPECT_NEAR(r / total.x, 1.0, 2e-3) << "R: eta " << eta << ", d " << thickness;
       EXPECT_NEAR(t / total.y, 1.0, 2e-3) << "T: eta " << eta << ", d " << thickness;

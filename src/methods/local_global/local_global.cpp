@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "gpu/gl_debug.h"
+#include "gpu/image_texture.h"
 #include "gpu/screen_targets.h"
 #include "gpu/shader_program.h"
 #include "lucent/error.h"
@@ -31,18 +32,6 @@ std::string defines(const Scene& scene) {
   return render::light_sampling_defines(scene) +
          fmt::format("#define LG_TEX_POSITION {}\n#define LG_TEX_NORMAL_RATIO {}\n", texture_space::kTexturePosition,
                      texture_space::kTextureNormalRatio);
-}
-
-GLuint make_texture(int width, int height, GLenum format, const std::string& label) {
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, format, width, height);
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  gpu::label_object(GL_TEXTURE, texture, label);
-  return texture;
 }
 
 template <typename T>
@@ -94,9 +83,9 @@ class LocalGlobal final : public Method {
       throw Error(fmt::format("{}: local-global: precomputed for a {}-texel atlas, the atlas has {}", scene.source,
                               data_.atlas_size, texture_gbuffer_.size()));
     const int size = data_.atlas_size;
-    illumination_ = make_texture(size, size, GL_RGBA32F, "local-global illumination map");
-    local_ = make_texture(size, size, GL_RGBA32F, "local-global local response");
-    texel_index_ = make_texture(size, size, GL_R32I, "local-global texel index");
+    illumination_ = gpu::make_image_texture(size, size, GL_RGBA32F, "local-global illumination map");
+    local_ = gpu::make_image_texture(size, size, GL_RGBA32F, "local-global local response");
+    texel_index_ = gpu::make_image_texture(size, size, GL_R32I, "local-global texel index");
     std::vector<std::int32_t> index(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), -1);
     for (std::size_t t = 0; t < data_.texel_xy.size(); ++t)
       index[(data_.texel_xy[t] >> 16) * static_cast<std::size_t>(size) + (data_.texel_xy[t] & 0xffffu)] = static_cast<std::int32_t>(t);
