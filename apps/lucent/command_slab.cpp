@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "option_checks.h"
 #include "lucent/error.h"
+#include "bssrdf/multipole_table.h"
 #include "transport/slab.h"
 
 namespace lucent::cli {
@@ -19,6 +20,7 @@ struct SlabOptions {
   reference::SlabConfig config;
   std::string thickness = "inf";
   std::string incidence = "normal";
+  std::string model;  // "multipole": the model's totals of the same slab beside the transport's
   bool json = false;
 };
 
@@ -41,7 +43,23 @@ void run(SlabOptions o) {
   if (o.incidence != "normal" && o.incidence != "diffuse")
     throw Error(fmt::format("--incidence: '{}' is not one of normal, diffuse", o.incidence));
   o.config.incidence = o.incidence == "normal" ? reference::Incidence::Normal : reference::Incidence::Diffuse;
+  if (!o.model.empty() && o.model != "multipole")
+    throw Error(fmt::format("--model: '{}' is not multipole (the half-space models' totals: lucent materials)", o.model));
   reference::SlabResult r = reference::simulate_slab(o.config);
+  // The model's totals per refracted power, against the transport's diffuse ones (unscattered light removed).
+  glm::vec2 model(0.0f);
+  const double refracted = 1.0 - r.specular_reflectance.mean;
+  const reference::Estimate exact_R = r.diffuse_reflectance_per_refracted;
+  const reference::Estimate exact_T{(r.transmittance.mean - r.unscattered_transmittance.mean) / refracted,
+                                    r.transmittance.standard_error / refracted};
+  if (!o.model.empty()) {
+    const double a = o.config.albedo, g = o.config.g;
+    const double alpha_prime = a * (1.0 - g) / (1.0 - a * g), reduced = 1.0 - a * g;  // sigma_t' / sigma_t
+    if (!(alpha_prime > 0.0 && alpha_prime < 1.0))
+      throw Error(fmt::format("--model multipole: the reduced albedo {} is outside (0, 1)", alpha_prime));
+    const float d = std::isfinite(o.config.thickness) ? static_cast<float>(o.config.thickness * reduced) : 0.0f;
+    model = multipole_table_totals(static_cast<float>(alpha_prime), static_cast<float>(o.config.eta), d);
+  }
   if (o.json) {
     nlohmann::json out = {{"albedo", o.config.albedo}, {"g", o.config.g}, {"eta", o.config.eta},
                           {"thickness", o.thickness}, {"incidence", o.incidence}, {"photons", r.photons},
@@ -51,6 +69,11 @@ void run(SlabOptions o) {
                           {"transmittance", to_json(r.transmittance)},
                           {"unscattered_transmittance", to_json(r.unscattered_transmittance)},
                           {"seconds", r.seconds}};
+    if (!o.model.empty())
+      out["model"] = {{"name", o.model},
+                      {"diffuse_reflectance_per_refracted", model.x},
+                      {"diffuse_transmittance_per_refracted", model.y},
+                      {"transport_diffuse_transmittance_per_refracted", to_json(exact_T)}};
     fmt::print("{}\n", out.dump(2));
     return;
   }
@@ -64,6 +87,12 @@ void run(SlabOptions o) {
   line("diffuse reflectance (per refracted)", r.diffuse_reflectance_per_refracted);
   line("transmittance (per incident)", r.transmittance);
   line("  of which unscattered", r.unscattered_transmittance);
+  if (o.model.empty()) return;
+  fmt::print("{:<36} {:<24} {:<9} {}\n", "per refracted power, diffuse:", "transport", o.model, "ratio");
+  fmt::print("{:<36} {:.6f} +- {:.6f}   {:.6f}  {:.3f}\n", "  reflectance", exact_R.mean,
+             exact_R.standard_error, model.x, model.x / exact_R.mean);
+  fmt::print("{:<36} {:.6f} +- {:.6f}   {:.6f}  {:.3f}\n", "  transmittance", exact_T.mean,
+             exact_T.standard_error, model.y, exact_T.mean > 0.0 ? model.y / exact_T.mean : 0.0);
 }
 
 }  // namespace
@@ -85,6 +114,8 @@ void add_slab_command(CLI::App& app) {
   cmd->add_option("--threads", o->config.threads, "threads (0 = all cores)")
       ->check(whole_number_in(0, 4096))
       ->capture_default_str();
+  cmd->add_option("--model", o->model,
+                  "also print the totals of this model for the same slab: multipole (the table the renderers read)");
   cmd->add_flag("--json", o->json, "print JSON");
   cmd->callback([o] { run(*o); });
 }

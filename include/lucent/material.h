@@ -18,12 +18,13 @@ enum class BssrdfModel {
   PhotonBeamDiffusion = 2,
   BetterDipole = 3,
   Tabulated = 4,  // the medium's own half-space profile by photon transport (src/bssrdf/tabulated.h)
+  Multipole = 5,  // a slab of finite thickness, reflectance and transmittance (src/bssrdf/multipole_table.h)
 };
 std::string_view to_string(BssrdfModel model);
 // The model a material gets when it names none: the one measured closest to volumetric path tracing on the
 // leaderboard's scene suite and the bunny (docs/accuracy.md, "Which model by default").
 inline constexpr BssrdfModel kDefaultBssrdfModel = BssrdfModel::StandardDipole;
-std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam", "better-dipole", "tabulated"
+std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name);  // "standard", "directional", "photon-beam", "better-dipole", "tabulated", "multipole"
 
 // Where a heterogeneous medium came from when it was read from an OpenVDB file (lucent/medium_vdb.h reads it).
 enum class VdbTransform { ObjectBounds, VdbWorld };
@@ -112,6 +113,11 @@ struct Material {
   glm::vec3 g{0.0f};        // Henyey-Greenstein mean cosine per band [-1, 1]
   float eta = 1.3f;         // relative refractive index n_material / n_outside
   BssrdfModel model = kDefaultBssrdfModel;
+  // The thickness of the part [mm] (a sheet, a fin, an ear, a candle's wall), for the multipole model's reflectance:
+  // light entering and leaving one face of a thin part is what its far face did not let through. 0: a half-space.
+  // (Its transmittance takes the distance between the two faces a light path joins, bssrdf/multipole_table.h.)
+  // The other models ignore it.
+  float thickness_mm = 0.0f;
   MediumField field;        // homogeneous unless set (used by voxel-paths and volpath; the diffusion models ignore it)
   // Textured: coefficients per surface point (the ones above are those of the maps' mean albedo and mean free
   // path, for messages and for what needs one value, such as the references' sampling bounds).

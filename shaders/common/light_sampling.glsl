@@ -71,9 +71,10 @@ bool light_plane_entry(int l, LightPlane p, int object, vec3 x_o, float r, float
 
 // B for one band from light l, without the factor pi * power[band] (and, for point lights, per unit intensity).
 float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o, vec3 n_o, uint state, int samples) {
-  BandMedium m = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
   float eta = material.sigma_a.w;
   int model = int(material.sigma_s.w);
+  BandMedium m = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta,
+                                    material.g.w);
   LightPlane plane = light_plane(l, x_o);
   float sum = 0.0f;
   // loop bound: checked; N samples x 3 bands x the lights per invocation, refused on llvmpipe above the cap by per-pixel and radiosity-maps (platform::check_loop_iterations)

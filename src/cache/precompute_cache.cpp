@@ -181,6 +181,7 @@ Key& Key::mesh(const TriangleMesh& mesh) {
 Key& Key::material(const Material& m) {
   tag('M', 0);
   vec3(m.sigma_a).vec3(m.sigma_s).vec3(m.g).number(m.eta).integer(static_cast<int>(m.model));
+  if (m.model == BssrdfModel::Multipole) number(m.thickness_mm);  // only there, so that other keys stay as they were
   const MediumField& field = m.field;
   integer(static_cast<int>(field.type)).number(field.scale_mm).number(field.contrast);
   integer(field.has_bounds ? 1 : 0).vec3(field.bounds_lower).vec3(field.bounds_upper);

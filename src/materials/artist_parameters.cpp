@@ -140,7 +140,7 @@ std::string models_reaching_advice(double lo, double hi, const glm::vec3& g, flo
 }
 
 BssrdfModel inversion_curve_model(BssrdfModel model) {
-  return model == BssrdfModel::Tabulated ? BssrdfModel::StandardDipole : model;
+  return model == BssrdfModel::Tabulated || model == BssrdfModel::Multipole ? BssrdfModel::StandardDipole : model;
 }
 
 double flat_total_of_albedo(BssrdfModel model, double alpha, float g, float eta) {

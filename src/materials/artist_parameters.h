@@ -41,7 +41,7 @@ inline constexpr double kArtistAlphaMin = 1e-6;
 inline constexpr double kArtistAlphaMax = 1.0 - 1e-7;
 
 // The model whose flat-total curve inverts materials of `model`: the model itself, the standard dipole for the
-// tabulated model.
+// tabulated and multipole models (their media are described by the half-space; a slab's thickness is geometry).
 BssrdfModel inversion_curve_model(BssrdfModel model);
 
 // The flat total diffuse reflectance at normal incidence of one band medium with single-scattering albedo `alpha`

@@ -11,6 +11,7 @@ BssrdfEvaluation evaluate_bssrdf(const Material& material, glm::vec3 x_i, glm::v
   for (int band = 0; band < 3; ++band) {
     shader::BandMedium medium =
         shader::make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
+    medium.thickness = material.thickness_mm;
     result.S_d[band] =
         shader::bssrdf_Sd(static_cast<int>(material.model), medium, material.eta, x_i, w_i, n_i, x_o, n_o);
   }

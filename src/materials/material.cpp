@@ -17,6 +17,7 @@ std::string_view to_string(BssrdfModel model) {
     case BssrdfModel::PhotonBeamDiffusion: return "photon-beam";
     case BssrdfModel::BetterDipole: return "better-dipole";
     case BssrdfModel::Tabulated: return "tabulated";
+    case BssrdfModel::Multipole: return "multipole";
   }
   return "unknown";
 }
@@ -27,6 +28,7 @@ std::optional<BssrdfModel> parse_bssrdf_model(std::string_view name) {
   if (name == "photon-beam") return BssrdfModel::PhotonBeamDiffusion;
   if (name == "better-dipole") return BssrdfModel::BetterDipole;
   if (name == "tabulated") return BssrdfModel::Tabulated;
+  if (name == "multipole") return BssrdfModel::Multipole;
   return std::nullopt;
 }
 
@@ -100,6 +102,8 @@ void validate_medium(const Material& material, const std::string& where) {
   check_coefficient(material.sigma_s, "sigma_s", where);
   check_g(material.g, where);
   check_eta(material.eta, where);
+  if (!(material.thickness_mm >= 0.0f && material.thickness_mm <= 1e30f))
+    fail(where, fmt::format("thickness_mm = {} is out of range", material.thickness_mm), "allowed range [0, 1e30] mm");
   for (int i = 0; i < 3; ++i)
     if (!(material.sigma_a[i] + material.sigma_s[i] > 0.0f))
       fail(where, fmt::format("sigma_a[{0}] + sigma_s[{0}] = 0: the medium neither absorbs nor scatters in band {0}", i),

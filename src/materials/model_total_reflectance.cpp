@@ -45,9 +45,9 @@ ModelTotalReflectance model_total_reflectance(const Material& material, double i
     // (the rings' radii and S_d's values overflowed or underflowed there: NaN totals).
     const double sigma_t = static_cast<double>(material.sigma_a[band]) + static_cast<double>(material.sigma_s[band]);
     const double unit = sigma_t > 0.0 && std::isfinite(sigma_t) ? sigma_t : 1.0;
-    const shader::BandMedium m = shader::make_band_medium(static_cast<float>(material.sigma_a[band] / unit),
-                                                          static_cast<float>(material.sigma_s[band] / unit),
-                                                          material.g[band]);
+    shader::BandMedium m = shader::make_band_medium(static_cast<float>(material.sigma_a[band] / unit),
+                                                    static_cast<float>(material.sigma_s[band] / unit), material.g[band]);
+    m.thickness = static_cast<float>(material.thickness_mm * unit);
     const double r_min = 1e-6 / m.sigma_t_prime;
     const double r_max = 60.0 / std::min<double>(m.sigma_tr, m.sigma_t_prime);
     const double du = std::log(r_max / r_min) / kRings;

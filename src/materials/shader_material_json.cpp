@@ -33,7 +33,8 @@ constexpr ParamDecl kOpenPbr[] = {
     {"specular_ior", ParamType::Float, "1.5", "", 1, 3, "", "IOR of the dielectric interface: lucent's eta"},
 };
 constexpr ParamDecl kOuter[] = {
-    {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated", "diffusion model S_d"},
+    {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated|multipole", "diffusion model S_d"},
+    {"thickness_mm", ParamType::Float, "0", "mm", 0, 1e30, "", "the thickness of the part, for the multipole model's reflectance; 0: a half-space"},
     {"name", ParamType::String, "\"\"", "", 0, 0, "", "name used in messages"},
 };
 
@@ -94,6 +95,7 @@ Material read_shader_material(const json& material, const JsonLocation& where, d
   Material m = material.contains("principled") ? read_principled(material.at(key), where.child(key), scale_mm)
                                                : read_openpbr(material.at(key), where.child(key), scale_mm, model);
   m.model = model;
+  m.thickness_mm = static_cast<float>(outer.number("thickness_mm"));
   if (!outer.text("name").empty()) m.name = outer.text("name");
   validate_material(m, where.str());
   return m;

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "bssrdf/fresnel.h"
+#include "bssrdf/multipole_table.h"
 #include "bssrdf/tabulated.h"
 #include "cache/precompute_cache.h"
 #include "lucent/error.h"
@@ -33,11 +34,7 @@ using shader::kBssrdfTableThetaMaxDeg;
 // Bumped whenever the tables' content changes for the same medium (part of the cache key).
 constexpr std::uint32_t kTableFormatVersion = 4;
 
-// Outer edge of radial bin k (k = 0 .. kBssrdfTableR - 1); the inner edge of bin k is edge(k - 1), 0 for bin 0.
-double radial_edge(int k, double r_max) {
-  const double q = std::log(r_max / kBssrdfTableRMin) / (kBssrdfTableR - 1);
-  return kBssrdfTableRMin * std::exp(k * q);
-}
+double radial_edge(int k, double r_max) { return bssrdf_table_radial_edge(k, r_max); }
 
 // Radial bin of reduced radius r; kBssrdfTableR when beyond r_max.
 int radial_bin(double r, double r_max) {
@@ -98,6 +95,13 @@ class TableStore {
 
  private:
   static std::vector<float> load_or_build(float albedo, float g, float eta, BssrdfTableStats& stats) {
+    if (g == shader::kMultipoleTableKey) {  // closed forms: a fraction of a second, not worth a cache entry
+      const auto start = std::chrono::steady_clock::now();
+      std::vector<float> table = build_multipole_table(albedo, eta);
+      table.resize(static_cast<std::size_t>(kBssrdfTableFloats), 0.0f);
+      stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return table;
+    }
     cache::Key key("bssrdf-table", kTableFormatVersion);
     const std::uint64_t photons = bssrdf_table_photons();
     key.number(albedo).number(g).number(eta).integer(static_cast<std::int64_t>(photons));
@@ -135,7 +139,14 @@ TableStore& store() {
 // Bin averages interpolated between bin centres do not integrate to the bins' sum where the profile is steep (near
 // the entry point it falls like 1/r): about 1.5% short over a whole table. Rescales each radial row (values at
 // `row`) so that the interpolation the evaluation uses (bssrdf_table_radial) carries exactly the row's power.
-void preserve_row_power(float* row, double r_max) {
+}  // namespace
+
+double bssrdf_table_radial_edge(int k, double r_max) {
+  const double q = std::log(r_max / kBssrdfTableRMin) / (kBssrdfTableR - 1);
+  return kBssrdfTableRMin * std::exp(k * q);
+}
+
+void preserve_bssrdf_table_row_power(float* row, double r_max) {
   double binned = 0.0;
   for (int k = 0; k < kBssrdfTableR; ++k) {
     const double inner = k == 0 ? 0.0 : radial_edge(k - 1, r_max), outer = k == 0 ? kBssrdfTableRMin : radial_edge(k, r_max);
@@ -159,8 +170,6 @@ void preserve_row_power(float* row, double r_max) {
   const double scale = binned / integral;
   for (int k = 0; k < kBssrdfTableR; ++k) row[k] = static_cast<float>(row[k] * scale);
 }
-
-}  // namespace
 
 void set_bssrdf_table_photons(std::uint64_t photons_per_node) {
   g_photons_per_node.store(std::max<std::uint64_t>(1, photons_per_node));
@@ -223,7 +232,7 @@ std::vector<float> build_bssrdf_table(float albedo, float g, float eta, std::uin
       }
     }
     for (int p = 0; p < kBssrdfTablePhi; ++p)
-      preserve_row_power(&table[static_cast<std::size_t>(kBssrdfTableHeader + (t * kBssrdfTablePhi + p) * kBssrdfTableR)],
+      preserve_bssrdf_table_row_power(&table[static_cast<std::size_t>(kBssrdfTableHeader + (t * kBssrdfTablePhi + p) * kBssrdfTableR)],
                          r_max);
     if (t == 0 && stats) {
       stats->tail_fraction = sum[bins] / refracted;
@@ -235,10 +244,15 @@ std::vector<float> build_bssrdf_table(float albedo, float g, float eta, std::uin
 }
 
 void prepare_bssrdf_tables(const Material& material) {
-  if (material.model != BssrdfModel::Tabulated) return;
   for (int band = 0; band < 3; ++band) {
     const float sigma_t = material.sigma_a[band] + material.sigma_s[band];
-    store().find_or_build(material.sigma_s[band] / sigma_t, material.g[band], material.eta);
+    if (material.model == BssrdfModel::Tabulated)
+      store().find_or_build(material.sigma_s[band] / sigma_t, material.g[band], material.eta);
+    if (material.model == BssrdfModel::Multipole) {
+      // The reduced albedo as make_band_medium computes it, so that the shaders' search finds it.
+      const shader::BandMedium m = shader::make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
+      store().find_or_build(m.alpha_prime, shader::kMultipoleTableKey, material.eta);
+    }
   }
 }
 

@@ -39,7 +39,14 @@ float bssrdf_table_r_max(float albedo, float g);
 std::vector<float> build_bssrdf_table(float albedo, float g, float eta, std::uint64_t photons_per_node,
                                       BssrdfTableStats* stats = nullptr);
 
-// Builds (or reads from the cache) the tables of every band of `material` when its model is Tabulated.
+// Outer edge of radial bin k of a table reaching r'_max (k = 0 .. kBssrdfTableR - 1; bin 0 starts at 0).
+double bssrdf_table_radial_edge(int k, double r_max);
+// Rescales a radial row of bin averages (kBssrdfTableR values) so that its interpolation between bin centres
+// (bssrdf_table_r_coord) carries exactly the row's power.
+void preserve_bssrdf_table_row_power(float* row, double r_max);
+
+// Builds (or reads from the cache) the tables of every band of `material` when its model reads tables (Tabulated:
+// the photon-transport half-space; Multipole: the slab profiles of bssrdf/multipole_table.h).
 void prepare_bssrdf_tables(const Material& material);
 
 // The array for the shaders' storage buffer: every table built so far, with the directory sorted by albedo and

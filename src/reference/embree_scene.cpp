@@ -63,6 +63,7 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     d.g = m.g;
     d.eta = m.eta;
     d.model = static_cast<int>(m.model);
+    d.thickness = static_cast<double>(m.thickness_mm) / static_cast<double>(scale_mm);
     d.field = m.field;
     d.scale_mm = scale_mm;
     d.lower = glm::vec3(std::numeric_limits<float>::max()), d.upper = -d.lower;

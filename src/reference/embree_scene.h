@@ -43,6 +43,7 @@ struct ObjectData {
   glm::dvec3 sigma_a{0.0}, sigma_s{0.0}, g{0.0};  // [1/scene unit], unreduced sigma_s
   double eta = 1.0;
   int model = 1;                                  // LUCENT_MODEL_*
+  double thickness = 0.0;                         // the multipole model's slab thickness [scene units]
   // A textured material (lucent::MaterialMaps, coefficients in mm^-1) with each triangle's corner texture
   // coordinates; sigma_a and sigma_s above are then those of the maps' mean.
   std::shared_ptr<const MaterialMaps> maps;

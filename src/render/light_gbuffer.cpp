@@ -2,6 +2,7 @@
 #include "render/light_gbuffer.h"
 
 #include <algorithm>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -13,11 +14,20 @@ namespace lucent::render {
 
 std::string light_sampling_defines(const Scene& scene) {
   std::string defines = scene.point_lights.empty() ? "#define LUCENT_DIRECTIONAL_LIGHTS_ONLY 1\n" : "";
+  bool tabulated = false, multipole = false, one_model = true;
+  std::optional<BssrdfModel> first;
   for (const SceneObject& object : scene.objects)
-    if (object.translucent() && object.material->model == BssrdfModel::Tabulated) {
-      defines += "#define LUCENT_TABULATED_MODEL 1\n";  // bssrdf/model.h
-      break;
+    if (object.translucent()) {
+      const BssrdfModel model = object.material->model;
+      tabulated = tabulated || model == BssrdfModel::Tabulated;
+      multipole = multipole || model == BssrdfModel::Multipole;
+      if (!first) first = model;
+      one_model = one_model && model == *first;
     }
+  if (tabulated) defines += "#define LUCENT_TABULATED_MODEL 1\n";  // bssrdf/model.h
+  if (multipole) defines += "#define LUCENT_MULTIPOLE_MODEL 1\n";
+  // One model for the whole scene: the shaders compile that model alone (bssrdf/model.h).
+  if (first && one_model) defines += fmt::format("#define LUCENT_SCENE_MODEL {}\n", static_cast<int>(*first));
   if (has_material_maps(scene)) defines += "#define LUCENT_MATERIAL_MAPS 1\n";  // media/material_map.h
   return defines;
 }

@@ -45,7 +45,7 @@ MaterialGPU to_gpu(const Material& m, float scale_mm, std::vector<glm::vec4>& ma
   MaterialGPU out;
   out.sigma_a = glm::vec4(m.sigma_a * scale_mm, m.eta);
   out.sigma_s = glm::vec4(m.sigma_s * scale_mm, static_cast<float>(static_cast<int>(m.model)));
-  out.g = glm::vec4(m.g, 0.0f);
+  out.g = glm::vec4(m.g, m.thickness_mm / scale_mm);  // [scene units]
   out.alpha_map = out.mfp_map = glm::ivec4(-1, 0, 0, 0);
   if (m.maps) {
     out.alpha_map = append_map(m.maps->alpha, m.maps->alpha_size, 1.0f, map_texels);

@@ -495,6 +495,7 @@ json gltf_material_json(const Material& material, float thickness, float roughne
   const double g = (material.g.x + material.g.y + material.g.z) / 3.0;  // glTF has one phase function
   json lucent = {{"sigma_a", array(material.sigma_a)}, {"sigma_s", array(material.sigma_s)}, {"g", array(material.g)},
                  {"eta", material.eta}, {"model", std::string(to_string(material.model))}};
+  if (material.thickness_mm > 0.0f) lucent["thickness_mm"] = material.thickness_mm;
   return {{"name", material.name},
           {"pbrMetallicRoughness", {{"baseColorFactor", base}, {"metallicFactor", 0.0}, {"roughnessFactor", roughness}}},
           {"extensions",

@@ -106,7 +106,8 @@ constexpr ParamDecl kMaterialParams[] = {
     {"sigma_s_prime", ParamType::Vec3, "", "mm^-1", -1e30, 1e30, "", "reduced scattering (instead of sigma_s, g)"},
     {"g", ParamType::Vec3, "", "", -1e30, 1e30, "", "Henyey-Greenstein g per band (a number sets all three)"},
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
-    {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated", "diffusion model S_d (default: kDefaultBssrdfModel, the closest to volpath measured)"},
+    {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated|multipole", "diffusion model S_d (default: kDefaultBssrdfModel, the closest to volpath measured)"},
+    {"thickness_mm", ParamType::Float, "0", "mm", 0, 1e30, "", "the thickness of the part, for the multipole model's reflectance (its transmittance takes the distance between the faces a light path joins); 0: reflect as a half-space"},
     {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the thick-slab total diffuse reflectance (with mfp_mm, instead of coefficients); a thinner object than the diffusion length shows less of it"},
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
     {"albedo_map", ParamType::String, "\"\"", "", 0, 0, "",
@@ -236,8 +237,11 @@ void read_environment(const json& j, const JsonLocation& where, const std::strin
 // What the loader and check_material_maps refuse about a textured material, worded once: the map key it names and
 // the problem ("" for none).
 const char* map_key(const MaterialMaps& maps) { return maps.albedo_file.empty() ? "mfp_map" : "albedo_map"; }
-std::string tabulated_maps_problem(const char* key) {
-  return fmt::format("tabulated takes no {}: its tables hold one medium each, a texture has a medium per texel", key);
+// Why a model read from tables cannot take a texture ("" for the others).
+std::string table_model_maps_problem(BssrdfModel model, const char* key) {
+  if (model != BssrdfModel::Tabulated && model != BssrdfModel::Multipole) return "";
+  return fmt::format("{} takes no {}: its tables hold one medium each, a texture has a medium per texel",
+                     to_string(model), key);
 }
 std::string texture_coordinates_problem(const SceneObject& object) {
   if (object.blob_resolution == 0 && !object.mesh.uvs.empty()) return "";
@@ -373,12 +377,14 @@ Material read_material(const json& raw, const JsonLocation& where, const std::st
                       : material_from_coefficients(v, where);
   if (v.has("eta")) m.eta = static_cast<float>(v.number("eta"));
   m.model = *parse_bssrdf_model(v.text("model"));
+  m.thickness_mm = static_cast<float>(v.number("thickness_mm"));
   if (j.contains("field")) m.field = read_field(j.at("field"), where.child("field"), base_dir);
   if (albedo_map || mfp_map) {
     const char* key = albedo_map ? "albedo_map" : "mfp_map";
     if (m.field.heterogeneous())
       fail(where.child("field"), fmt::format("not with {}: a material is textured or has a 3D field, not both", key));
-    if (m.model == BssrdfModel::Tabulated) fail(where.child("model"), tabulated_maps_problem(key));
+    if (const std::string problem = table_model_maps_problem(m.model, key); !problem.empty())
+      fail(where.child("model"), problem);
     validate_material(m, where.str());
     std::shared_ptr<MaterialMaps> maps =
         make_material_maps(m, albedo_map ? &*albedo_map : nullptr, mfp_map ? &*mfp_map : nullptr, where.str());
@@ -496,7 +502,8 @@ glm::mat4 read_transform(const ParamValues& v) {
 void attach_albedo_map(Material& m, const MapImage& albedo, const JsonLocation& where) {
   if (m.field.heterogeneous())
     fail(where.child("field"), "not with a base colour texture: a material is textured or has a 3D field, not both");
-  if (m.model == BssrdfModel::Tabulated) fail(where.child("model"), tabulated_maps_problem("albedo_map"));
+  if (const std::string problem = table_model_maps_problem(m.model, "albedo_map"); !problem.empty())
+    fail(where.child("model"), problem);
   std::shared_ptr<MaterialMaps> maps = make_material_maps(m, &albedo, nullptr, where.str());
   maps->made_with_sigma_a = m.sigma_a, maps->made_with_sigma_s = m.sigma_s;
   m.maps = std::move(maps);
@@ -882,7 +889,8 @@ void check_material_maps(const Scene& scene) {
     const char* key = map_key(maps);
     if (const std::string problem = texture_coordinates_problem(object); !problem.empty())
       throw Error(fmt::format("{}/{}: {}", where, key, problem));
-    if (m.model == BssrdfModel::Tabulated) throw Error(fmt::format("{}/model: {}", where, tabulated_maps_problem(key)));
+    if (const std::string problem = table_model_maps_problem(m.model, key); !problem.empty())
+      throw Error(fmt::format("{}/model: {}", where, problem));
     if (m.g != maps.made_with_g || m.eta != maps.made_with_eta || m.model != maps.made_with_model ||
         m.sigma_a != maps.made_with_sigma_a || m.sigma_s != maps.made_with_sigma_s)
       throw Error(fmt::format("{}: the coefficients, g, eta and model of a textured material are those its {} was "

@@ -82,6 +82,7 @@ json material_json(const Material& m) {
   }
   j["eta"] = m.eta;
   j["model"] = std::string(to_string(m.model));
+  if (m.thickness_mm > 0.0f) j["thickness_mm"] = m.thickness_mm;
   if (m.maps) {  // the coefficients written above are the maps' mean; the maps themselves by absolute path
     const MaterialMaps& maps = *m.maps;
     if (!maps.albedo_file.empty()) {

@@ -25,7 +25,7 @@ LUCENT_SHADER_BEGIN
 struct MaterialGPU {
   vec4 sigma_a;     // xyz: absorption [1/scene unit]; w: eta (relative refractive index)
   vec4 sigma_s;     // xyz: scattering, unreduced [1/scene unit]; w: BSSRDF model id (LUCENT_MODEL_*)
-  vec4 g;           // xyz: Henyey-Greenstein g per band; w: unused
+  vec4 g;           // xyz: Henyey-Greenstein g per band; w: the multipole model's slab thickness [scene units]
   ivec4 alpha_map;  // a textured material's maps (media/material_map.h): x the first texel in the material-map
   ivec4 mfp_map;    // buffer (-1: none), y and z width and height; w unused. sigma_a and sigma_s are the maps' mean.
 };

@@ -373,7 +373,7 @@ TEST(PhotonBeamDiffusion, SdIsRadialAndSelectableByName) {
     ADD_FAILURE() << "unknown model accepted";
   } catch (const lucent::Error& error) {
     EXPECT_STREQ(error.what(),
-                 "test.json: /objects/0/material/model: 'photon' is not one of {standard|directional|photon-beam|better-dipole|tabulated}");
+                 "test.json: /objects/0/material/model: 'photon' is not one of {standard|directional|photon-beam|better-dipole|tabulated|multipole}");
   }
 }
 

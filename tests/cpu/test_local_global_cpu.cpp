@@ -122,7 +122,7 @@ TEST(LocalGlobalPrecompute, GlobalRowsSumToTheIntegralOfRdBeyondTheVertexShare) 
     for (std::uint32_t k = data.row_offsets[j]; k < data.row_offsets[j + 1]; ++k) row += data.form_factors[k].value[b];
     // The vertex's own share A_j / 3 (a disk of that area) is left out: F' has no diagonal.
     const double h = 4.0 / 64.0, share = h * h;
-    const lg::RadialProfile profile(static_cast<int>(lucent::BssrdfModel::StandardDipole), kSigmaA[b], kSigmaS[b], 0.0f, kEta, 2.0);
+    const lg::RadialProfile profile(static_cast<int>(lucent::BssrdfModel::StandardDipole), kSigmaA[b], kSigmaS[b], 0.0f, kEta, 0.0f, 2.0);
     const double expected = profile.disk_integral(2.0) - profile.disk_integral(std::sqrt(share / M_PI));
     std::printf("band %d: row sum %.5f, integral of R_d beyond the vertex share within 2 mm %.5f\n", b, row, expected);
     EXPECT_NEAR(row, expected, 0.03 * expected) << "band " << b;

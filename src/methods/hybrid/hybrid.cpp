@@ -58,7 +58,8 @@ float split_radius(const Material& material, float scale_mm, float c) {
   float Rp = 0.0f;
   const glm::vec3 sigma_a = material.sigma_a * scale_mm, sigma_s = material.sigma_s * scale_mm;
   for (int band = 0; band < 3; ++band) {
-    const shader::BandMedium m = shader::make_band_medium(sigma_a[band], sigma_s[band], material.g[band]);
+    shader::BandMedium m = shader::make_band_medium(sigma_a[band], sigma_s[band], material.g[band]);
+    m.thickness = material.thickness_mm / scale_mm;
     const float r_max = 16.0f / std::max(m.sigma_tr, 1e-4f * m.sigma_t_prime);
     Rp = std::max(Rp, shader::hybrid_band_Rp(static_cast<int>(material.model), m, material.eta, c, r_max));
   }
@@ -174,7 +175,10 @@ class Hybrid final : public Method {
       table.push_back(glm::vec4(Rp, 0.0f, 0.0f, 0.0f));
       const glm::vec3 sigma_a = material.sigma_a * scene.scale_mm, sigma_s = material.sigma_s * scene.scale_mm;
       shader::BandMedium m[3];
-      for (int band = 0; band < 3; ++band) m[band] = shader::make_band_medium(sigma_a[band], sigma_s[band], material.g[band]);
+      for (int band = 0; band < 3; ++band) {
+        m[band] = shader::make_band_medium(sigma_a[band], sigma_s[band], material.g[band]);
+        m[band].thickness = material.thickness_mm / scene.scale_mm;
+      }
       for (int ring = 0; ring <= rings_; ++ring)
         table.push_back(shader::hybrid_ring(static_cast<int>(material.model), m[0], m[1], m[2], material.eta, Rp, K_, ring,
                                             rings_, ring_points_));

@@ -78,6 +78,7 @@ struct Texel {
 struct ObjectGeometry {
   std::vector<glm::dvec3> vertex_position;  // welded, world
   std::vector<double> vertex_area;          // A_i: area of the triangles around i
+  std::vector<glm::dvec3> vertex_normal;    // area-weighted mean of the triangles' normals around i
   std::vector<std::uint32_t> corner_vertex; // welded vertex per corner (local numbering)
 };
 
@@ -131,8 +132,8 @@ struct Reader {
 
 }  // namespace
 
-RadialProfile::RadialProfile(int model, float sigma_a, float sigma_s, float g, float eta, double r_end)
-    : model_(model), eta_(eta), sigma_a_(sigma_a), sigma_s_(sigma_s), g_(g) {
+RadialProfile::RadialProfile(int model, float sigma_a, float sigma_s, float g, float eta, float thickness, double r_end)
+    : model_(model), eta_(eta), sigma_a_(sigma_a), sigma_s_(sigma_s), g_(g), thickness_(thickness) {
   const shader::BandMedium m = shader::make_band_medium(sigma_a, sigma_s, g);
   // Geometric radii from a small fraction of the mean free path (the profile is flat below it) to r_end; the
   // integral over [0, r_0] is the disk's area times R_d(r_0).
@@ -153,8 +154,17 @@ RadialProfile::RadialProfile(int model, float sigma_a, float sigma_s, float g, f
 }
 
 double RadialProfile::Rd(double r) const {
-  const shader::BandMedium m = shader::make_band_medium(sigma_a_, sigma_s_, g_);
+  shader::BandMedium m = shader::make_band_medium(sigma_a_, sigma_s_, g_);
+  m.thickness = thickness_;
   return static_cast<double>(shader::bssrdf_radial_Rd(model_, m, eta_, static_cast<float>(r)));
+}
+
+double RadialProfile::Rd(glm::dvec3 x_i, glm::dvec3 n_i, glm::dvec3 x_o, glm::dvec3 n_o) const {
+  if (model_ != LUCENT_MODEL_MULTIPOLE) return Rd(glm::length(x_o - x_i));  // the distance in double, as before
+  shader::BandMedium m = shader::make_band_medium(sigma_a_, sigma_s_, g_);
+  m.thickness = thickness_;
+  return static_cast<double>(
+      shader::bssrdf_pair_Rd(model_, m, eta_, glm::vec3(x_i), glm::vec3(n_i), glm::vec3(x_o), glm::vec3(n_o)));
 }
 
 double RadialProfile::disk_integral(double rho) const {
@@ -338,6 +348,7 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
       welded[v] = id;
     }
     g.vertex_area.assign(g.vertex_position.size(), 0.0);
+    g.vertex_normal.assign(g.vertex_position.size(), glm::dvec3(0.0));
     g.corner_vertex.resize(mesh.indices.size());
     for (std::size_t c = 0; c + 2 < mesh.indices.size(); c += 3) {
       const std::uint32_t a = welded[mesh.indices[c]], b = welded[mesh.indices[c + 1]], d = welded[mesh.indices[c + 2]];
@@ -346,18 +357,22 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
       g.vertex_area[a] += area;
       g.vertex_area[b] += area;
       g.vertex_area[d] += area;
+      const glm::dvec3 n = glm::cross(g.vertex_position[b] - g.vertex_position[a], g.vertex_position[d] - g.vertex_position[a]);
+      g.vertex_normal[a] += n, g.vertex_normal[b] += n, g.vertex_normal[d] += n;
       g.corner_vertex[c] = a;
       g.corner_vertex[c + 1] = b;
       g.corner_vertex[c + 2] = d;
     }
+    for (glm::dvec3& n : g.vertex_normal) n = glm::length(n) > 0.0 ? glm::normalize(n) : n;
     for (std::uint32_t v : g.corner_vertex) out.corner_vertex.push_back(vertex_base + v);
     const Material& material = *object.material;
     const double diameter = std::max(glm::length(upper - lower), 1e-30);
     const glm::vec3 sa = material.sigma_a * scene.scale_mm, ss = material.sigma_s * scene.scale_mm;
     const int model = static_cast<int>(material.model);
-    profiles.push_back({RadialProfile(model, sa.x, ss.x, material.g.x, material.eta, diameter),
-                        RadialProfile(model, sa.y, ss.y, material.g.y, material.eta, diameter),
-                        RadialProfile(model, sa.z, ss.z, material.g.z, material.eta, diameter)});
+    const float thickness = material.thickness_mm / scene.scale_mm;
+    profiles.push_back({RadialProfile(model, sa.x, ss.x, material.g.x, material.eta, thickness, diameter),
+                        RadialProfile(model, sa.y, ss.y, material.g.y, material.eta, thickness, diameter),
+                        RadialProfile(model, sa.z, ss.z, material.g.z, material.eta, thickness, diameter)});
     ObjectSummary summary;
     summary.scene_object = static_cast<std::uint32_t>(atlas.object_index[k]);
     summary.first_vertex = vertex_base;
@@ -416,21 +431,25 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
   std::vector<glm::dvec3> position(vertex_count);
   std::vector<double> vertex_area(vertex_count);
   std::vector<std::uint32_t> vertex_object(vertex_count);
+  std::vector<glm::dvec3> vertex_normal(vertex_count);
   for (std::size_t k = 0; k < object_count; ++k)
     for (std::size_t v = 0; v < geometry[k].vertex_position.size(); ++v) {
       position[out.objects[k].first_vertex + v] = geometry[k].vertex_position[v];
+      vertex_normal[out.objects[k].first_vertex + v] = geometry[k].vertex_normal[v];
       vertex_area[out.objects[k].first_vertex + v] = geometry[k].vertex_area[v];
       vertex_object[out.objects[k].first_vertex + v] = static_cast<std::uint32_t>(k);
     }
 
-  // F'_ij = (A_i / 3) R_d(|v_i - v_j|), i != j, within the cutoff radius; row j lists its sources i.
+  // F'_ij = (A_i / 3) R_d(v_i, v_j), i != j, within the cutoff radius; row j lists its sources i. R_d of the pair
+  // (bssrdf_pair_Rd): the radial profile at their distance, or the multipole's transmittance across a thin part.
   auto form_factor = [&](std::uint32_t i, std::uint32_t j) {
     glm::dvec3 f(0.0);
     if (i == j || vertex_object[i] != vertex_object[j]) return f;
     const std::uint32_t k = vertex_object[i];
     const double r = glm::length(position[i] - position[j]);
     if (r > out.objects[k].cutoff_radius) return f;
-    for (int b = 0; b < 3; ++b) f[b] = vertex_area[i] / 3.0 * profiles[k][static_cast<std::size_t>(b)].Rd(r);
+    for (int b = 0; b < 3; ++b)
+      f[b] = vertex_area[i] / 3.0 * profiles[k][static_cast<std::size_t>(b)].Rd(position[i], vertex_normal[i], position[j], vertex_normal[j]);
     return f;
   };
   // Neighbour candidates by a uniform grid per object.

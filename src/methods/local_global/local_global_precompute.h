@@ -117,16 +117,19 @@ LocalGlobalData decode(std::span<const std::byte> bytes);
 // The model's radial profile of one band and its integrals (numerical, on a geometric grid of radii).
 class RadialProfile {
  public:
-  // sigma_a, sigma_s [1/scene unit]; r_end: the largest radius integrated [scene units].
-  RadialProfile(int model, float sigma_a, float sigma_s, float g, float eta, double r_end);
+  // sigma_a, sigma_s [1/scene unit]; thickness: the multipole model's slab [scene units]; r_end: the largest radius
+  // integrated [scene units].
+  RadialProfile(int model, float sigma_a, float sigma_s, float g, float eta, float thickness, double r_end);
   double Rd(double r) const;                 // R_d(r) [1/scene unit^2]
+  // R_d between two surface points with their normals (bssrdf_pair_Rd) [1/scene unit^2].
+  double Rd(glm::dvec3 x_i, glm::dvec3 n_i, glm::dvec3 x_o, glm::dvec3 n_o) const;
   double disk_integral(double rho) const;    // integral of 2 pi r R_d(r) over [0, rho] (rho <= r_end)
   double total() const { return cumulative_.back(); }  // over [0, r_end]
   double tail_radius(double fraction) const; // smallest r with total - disk_integral(r) <= fraction total
  private:
   int model_;
   float eta_;
-  float sigma_a_, sigma_s_, g_;
+  float sigma_a_, sigma_s_, g_, thickness_;
   std::vector<double> radius_, cumulative_;
 };
 

@@ -37,7 +37,8 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   float Rp = pattern[base].x, K = method.split.x;
   BandMedium m[3];
   for (int band = 0; band < 3; ++band)
-    m[band] = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
+    m[band] = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta,
+                                 material.g.w);
   // Global: the texture-space samples of S_d W_g.
   vec3 B = vec3(0.0f);
   int N = min(method.counts.x, LUCENT_HYBRID_MAX_SAMPLES);

@@ -30,7 +30,8 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   int model = int(material.sigma_s.w);
   BandMedium m[3];
   for (int band = 0; band < 3; ++band)
-    m[band] = make_band_medium(material.sigma_a[band], material.sigma_s[band], material.g[band]);
+    m[band] = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta,
+                                 material.g.w);
   vec3 B = vec3(0.0f);
   int N = min(method.counts.x, LUCENT_TSIS_MAX_SAMPLES);
   // loop bound: checked; texture_space_is.cpp counts N x (this loop, transmitted_Sd's light and band loops, photon
