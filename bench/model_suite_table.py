@@ -8,9 +8,12 @@ mean over scenes and how often each model is closest, and writes the numbers as 
 
   python3 bench/model_suite_table.py [--lucent build/lucent] [--cache out/leaderboard/references]
                                      [--out out/model_suite] [--bssrdf-spp 1024] [--volpath-spp 256] [--run NAME ...]
+                                     [--models NAME ...]
 
 Volpath references are taken from the leaderboard's cache when one of the same scene and settings is there
-(bash bench/leaderboard.sh fills it), else rendered into --out. docs/accuracy.md reads the table.
+(bash bench/leaderboard.sh fills it), else rendered into --out; so are bssrdf references of a model for a scene with
+one translucent object (the leaderboard's multipole variants make them). A bssrdf reference already in --out is
+reused. docs/accuracy.md reads the table.
 """
 import argparse
 import copy
@@ -19,7 +22,7 @@ import os
 import subprocess
 import sys
 
-MODELS = ["standard", "directional", "better-dipole", "photon-beam", "tabulated"]
+MODELS = ["standard", "directional", "better-dipole", "photon-beam", "tabulated", "multipole"]
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -65,6 +68,22 @@ def find_volpath(cache, scene_path, overrides, spp):
     return None
 
 
+def find_bssrdf(cache, scene_path, overrides, model, spp):
+    """A cached bssrdf reference of the scene with its first object's model set to `model` (the leaderboard's
+    variants set it so)."""
+    if not os.path.isdir(cache):
+        return None
+    want = sorted([o for o in overrides if not o.startswith("method")] + [f'objects.0.material.model="{model}"'])
+    for name in sorted(os.listdir(cache)):
+        if not (name.startswith("bssrdf_") and name.endswith(".meta.json")):
+            continue
+        meta = json.load(open(os.path.join(cache, name)))
+        got = sorted(o for o in meta.get("overrides", []) if not o.startswith("method"))
+        if meta.get("scene") == scene_path and got == want and meta.get("samples_per_pixel", 0) >= spp:
+            return os.path.join(cache, name[: -len(".meta.json")] + ".exr")
+    return None
+
+
 def run(cmd):
     result = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     if result.returncode != 0:
@@ -80,7 +99,9 @@ def main():
     ap.add_argument("--bssrdf-spp", type=int, default=1024)
     ap.add_argument("--volpath-spp", type=int, default=256)
     ap.add_argument("--run", nargs="*", default=None)
+    ap.add_argument("--models", nargs="*", default=MODELS, choices=MODELS)
     args = ap.parse_args()
+    models = args.models
     bench = json.load(open(os.path.join(ROOT, "bench/leaderboard.json")))
     os.makedirs(os.path.join(ROOT, args.out), exist_ok=True)
     size_sets = bench.get("set", [])
@@ -100,12 +121,22 @@ def main():
             run(cmd)
         scene = json.load(open(os.path.join(ROOT, r["scene"])))
         row = {"run": r["name"], "volpath": os.path.relpath(volpath, ROOT) if os.path.isabs(volpath) else volpath}
-        for model in MODELS:
+        single = sum(1 for o in scene.get("objects", []) if "material" in o) == 1
+        for model in models:
+            exr = os.path.join(args.out, f"{r['name']}_bssrdf_{model}.exr")
+            cached = find_bssrdf(os.path.join(ROOT, args.cache), r["scene"], size_sets + sets, model, args.bssrdf_spp)
+            if single and cached:
+                exr = cached
+            if single and cached or os.path.exists(os.path.join(ROOT, exr)):
+                j = json.loads(run([args.lucent, "compare", exr, volpath, "--json"]))["linear"]
+                noise = j["reference_noise_rms"] * 3 ** 0.5
+                row[model] = {"rmse": j["rmse_rgb"], "corrected": max(0.0, j["rmse_rgb"] ** 2 - noise ** 2) ** 0.5,
+                              "noise": noise, "mean_error": j["mean_error"], "mean_error_se": j["mean_error_se"]}
+                continue
             # Beside the scene file, so that its relative paths resolve as they do for the scene itself.
             tmp = os.path.join(os.path.dirname(r["scene"]), f".model_suite_{model}.json")
             with open(os.path.join(ROOT, tmp), "w") as f:
                 json.dump(scene_with_model(scene, sets, model), f)
-            exr = os.path.join(args.out, f"{r['name']}_bssrdf_{model}.exr")
             try:
                 cmd = [args.lucent, "reference", tmp, "--integrator", "bssrdf", "--spp", str(args.bssrdf_spp), "-q",
                        "-o", exr]
@@ -119,23 +150,23 @@ def main():
             row[model] = {"rmse": j["rmse_rgb"], "corrected": max(0.0, j["rmse_rgb"] ** 2 - noise ** 2) ** 0.5,
                           "noise": noise, "mean_error": j["mean_error"], "mean_error_se": j["mean_error_se"]}
         results.append(row)
-        print(f"{r['name']}: " + ", ".join(f"{m} {row[m]['corrected']:.4f}" for m in MODELS), file=sys.stderr)
+        print(f"{r['name']}: " + ", ".join(f"{m} {row[m]['corrected']:.4f}" for m in models), file=sys.stderr)
     json.dump(results, open(os.path.join(ROOT, args.out, "model_suite.json"), "w"), indent=1)
 
-    print("| scene | " + " | ".join(MODELS) + " | closest |")
-    print("|---|" + "---|" * (len(MODELS) + 1))
-    wins = {m: 0 for m in MODELS}
+    print("| scene | " + " | ".join(models) + " | closest |")
+    print("|---|" + "---|" * (len(models) + 1))
+    wins = {m: 0 for m in models}
     for row in results:
-        best = min(MODELS, key=lambda m: row[m]["corrected"])
+        best = min(models, key=lambda m: row[m]["corrected"])
         wins[best] += 1
-        cells = [f"{row[m]['corrected']:.4f}, {row[m]['mean_error']:+.4f}" for m in MODELS]
-        cells = [f"**{c}**" if m == best else c for c, m in zip(cells, MODELS)]
+        cells = [f"{row[m]['corrected']:.4f}, {row[m]['mean_error']:+.4f}" for m in models]
+        cells = [f"**{c}**" if m == best else c for c, m in zip(cells, models)]
         print(f"| {row['run']} | " + " | ".join(cells) + f" | {best} |")
-    means = {m: sum(row[m]["corrected"] for row in results) / len(results) for m in MODELS}
-    bias = {m: sum(abs(row[m]["mean_error"]) for row in results) / len(results) for m in MODELS}
-    print("| mean corrected RMSE, mean abs(bias) | " + " | ".join(f"{means[m]:.4f}, {bias[m]:.4f}" for m in MODELS) +
-          f" | {min(MODELS, key=means.get)} |")
-    print("| closest on | " + " | ".join(str(wins[m]) for m in MODELS) + " | |")
+    means = {m: sum(row[m]["corrected"] for row in results) / len(results) for m in models}
+    bias = {m: sum(abs(row[m]["mean_error"]) for row in results) / len(results) for m in models}
+    print("| mean corrected RMSE, mean abs(bias) | " + " | ".join(f"{means[m]:.4f}, {bias[m]:.4f}" for m in models) +
+          f" | {min(models, key=means.get)} |")
+    print("| closest on | " + " | ".join(str(wins[m]) for m in models) + " | |")
 
 
 if __name__ == "__main__":

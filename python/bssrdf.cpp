@@ -67,7 +67,7 @@ Material material_of(const py::handle& material, const std::string& model, const
   const std::optional<BssrdfModel> parsed = parse_bssrdf_model(model);
   if (!parsed)
     throw Error(fmt::format(
-        "model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, tabulated", model));
+        "model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, tabulated, multipole", model));
   m.model = *parsed;
   validate_material(m, "bssrdf");
   return m;
@@ -114,7 +114,7 @@ void bind_bssrdf(py::module_& m) {
         py::arg("no") = py::make_tuple(0, 0, 1),
         "S_d [mm^-2] per band of a diffusion model as `lucent bssrdf --json` prints it. material: a preset name "
         "(lucent.materials()) or a dict with sigma_a and sigma_s (and g) or sigma_s_prime, each a number or 3 "
-        "[mm^-1], and optionally eta; model: standard (the default) | directional | photon-beam | better-dipole | tabulated; "
+        "[mm^-1], and optionally eta; model: standard (the default) | directional | photon-beam | better-dipole | tabulated | multipole; "
         "xi, xo: entry and exit points [mm]; ni, no: their normals; wi: toward the light. Returns {\"model\", "
         "\"material\", \"eta\", \"S_d\", \"T12\", \"units\"}.");
   m.def("bssrdf_total", &bssrdf_total, py::arg("material"), py::kw_only(), py::arg("model") = std::string(lucent::to_string(lucent::kDefaultBssrdfModel)),

@@ -25,6 +25,7 @@ struct BssrdfOptions {
   std::string material;
   std::vector<float> sigma_a, sigma_s, sigma_s_prime, g;
   std::optional<float> eta;
+  float thickness_mm = 0.0f;
   std::vector<float> xi{0, 0, 0}, ni{0, 0, 1}, wi{0, 0, 1}, xo{1, 0, 0}, no{0, 0, 1};
   bool json = false;
   bool total = false;
@@ -62,8 +63,9 @@ Material material_of(const BssrdfOptions& o) {
   if (o.eta) m.eta = *o.eta;
   auto model = parse_bssrdf_model(o.model);
   if (!model)
-    throw Error(fmt::format("--model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, tabulated", o.model));
+    throw Error(fmt::format("--model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, tabulated, multipole", o.model));
   m.model = *model;
+  m.thickness_mm = o.thickness_mm;
   validate_material(m, "bssrdf");
   return m;
 }
@@ -120,7 +122,7 @@ std::string doc(std::string_view name) {
 void add_bssrdf_command(CLI::App& app) {
   auto options = std::make_shared<BssrdfOptions>();
   CLI::App* cmd = app.add_subcommand("bssrdf", "evaluate S_d of a diffusion model at one point (mm, mm^-1)");
-  cmd->add_option("--model", options->model, doc("model") + ": directional | standard | photon-beam | better-dipole | tabulated")
+  cmd->add_option("--model", options->model, doc("model") + ": directional | standard | photon-beam | better-dipole | tabulated | multipole")
       ->capture_default_str();
   cmd->add_option("--material", options->material, doc("preset"));
   cmd->add_option("--sigma-a", options->sigma_a, doc("sigma_a") + ", R,G,B")->delimiter(',')->check(number_in(argument_ranges::kCoefficient));
@@ -128,6 +130,7 @@ void add_bssrdf_command(CLI::App& app) {
   cmd->add_option("--sigma-s-prime", options->sigma_s_prime, doc("sigma_s_prime") + ", R,G,B")->delimiter(',')->check(number_in(argument_ranges::kCoefficient));
   cmd->add_option("--g", options->g, doc("g"))->delimiter(',')->check(number_in(argument_ranges::kAnisotropy));
   cmd->add_option("--eta", options->eta, doc("eta"))->check(number_in(argument_ranges::kEta));
+  cmd->add_option("--thickness-mm", options->thickness_mm, doc("thickness_mm"))->check(number_in(argument_ranges::kPointMm));
   cmd->add_option("--xi", options->xi, "entry point X,Y,Z [mm]")->delimiter(',')->check(number_in(argument_ranges::kPointMm))->capture_default_str();
   cmd->add_option("--ni", options->ni, "entry normal")->delimiter(',')->check(number_in(argument_ranges::kDirection))->capture_default_str();
   cmd->add_option("--wi", options->wi, "direction toward the light")->delimiter(',')->check(number_in(argument_ranges::kDirection))->capture_default_str();

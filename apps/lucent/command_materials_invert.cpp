@@ -91,7 +91,7 @@ void run_shader_block(const InvertOptions& o) {
   nlohmann::json material = {{key, parse_json(text, where)}, {"model", o.model}};
   if (!parse_bssrdf_model(o.model))
     throw Error(fmt::format("--model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, "
-                            "tabulated", o.model));
+                            "tabulated, multipole", o.model));
   Material m = read_shader_material(material, {fmt::format("materials invert --{}", key), ""}, o.scale_mm);
   Material curve = m;
   curve.model = inversion_curve_model(m.model);
@@ -122,7 +122,7 @@ void run(const InvertOptions& o) {
   auto model = parse_bssrdf_model(o.model);
   if (!model)
     throw Error(fmt::format("--model: unknown model '{}'; known: directional, standard, photon-beam, better-dipole, "
-                            "tabulated", o.model));
+                            "tabulated, multipole", o.model));
   a.model = *model;
   const ArtistInversion inv = invert_artist_parameters(a, "materials invert");
   const glm::dvec3 tabulated = a.model == BssrdfModel::Tabulated ? tabulated_total(inv.material) : glm::dvec3(0.0);
@@ -148,7 +148,7 @@ void add_materials_invert_command(CLI::App& materials) {
       ->delimiter(',')->check(any);
   cmd->add_option("--g", o->g, "Henyey-Greenstein g, one number or R,G,B")->delimiter(',')->check(any)->capture_default_str();
   cmd->add_option("--eta", o->eta, "relative refractive index n_material / n_outside")->check(any)->capture_default_str();
-  cmd->add_option("--model", o->model, "directional | standard | photon-beam | better-dipole | tabulated")
+  cmd->add_option("--model", o->model, "directional | standard | photon-beam | better-dipole | tabulated | multipole")
       ->capture_default_str();
   CLI::Option* principled = cmd->add_option(
       "--principled", o->principled,
