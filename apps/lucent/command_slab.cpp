@@ -45,6 +45,10 @@ void run(SlabOptions o) {
   o.config.incidence = o.incidence == "normal" ? reference::Incidence::Normal : reference::Incidence::Diffuse;
   if (!o.model.empty() && o.model != "multipole")
     throw Error(fmt::format("--model: '{}' is not multipole (the half-space models' totals: lucent materials)", o.model));
+  const double a = o.config.albedo, g = o.config.g;
+  const double alpha_prime = a * (1.0 - g) / (1.0 - a * g), reduced = 1.0 - a * g;  // reduced albedo, sigma_t'/sigma_t
+  if (!o.model.empty() && !(alpha_prime > 0.0 && alpha_prime < 1.0))
+    throw Error(fmt::format("--model multipole: the reduced albedo {} is outside (0, 1)", alpha_prime));
   reference::SlabResult r = reference::simulate_slab(o.config);
   // The model's totals per refracted power, against the transport's diffuse ones (unscattered light removed).
   glm::vec2 model(0.0f);
@@ -53,10 +57,6 @@ void run(SlabOptions o) {
   const reference::Estimate exact_T{(r.transmittance.mean - r.unscattered_transmittance.mean) / refracted,
                                     r.transmittance.standard_error / refracted};
   if (!o.model.empty()) {
-    const double a = o.config.albedo, g = o.config.g;
-    const double alpha_prime = a * (1.0 - g) / (1.0 - a * g), reduced = 1.0 - a * g;  // sigma_t' / sigma_t
-    if (!(alpha_prime > 0.0 && alpha_prime < 1.0))
-      throw Error(fmt::format("--model multipole: the reduced albedo {} is outside (0, 1)", alpha_prime));
     const float d = std::isfinite(o.config.thickness) ? static_cast<float>(o.config.thickness * reduced) : 0.0f;
     model = multipole_table_totals(static_cast<float>(alpha_prime), static_cast<float>(o.config.eta), d);
   }

@@ -51,6 +51,28 @@ TEST(CliReferences, SlabRejectsBadAlbedoAndPrintsJson) {
               4.0 * j["diffuse_reflectance"]["standard_error"].get<double>());
 }
 
+// `lucent slab --model multipole`: the multipole model's totals of the same slab beside exact transport's, within
+// 5% at reduced albedo 0.99 (2 mean free paths, eta 1.4: measured 1.021 and 0.983); the transport's transmittance
+// is the diffuse one, the unscattered light removed. A dark medium or another model: one line, exit 1.
+TEST(CliReferences, SlabPrintsTheMultipoleModelsTotals) {
+  Result ok = run("slab --albedo 0.99 --eta 1.4 --thickness 2 --photons 20000 --model multipole --json");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  auto j = nlohmann::json::parse(ok.output);
+  const double refracted = 1.0 - j["specular_reflectance"]["mean"].get<double>();
+  const double T = (j["transmittance"]["mean"].get<double>() - j["unscattered_transmittance"]["mean"].get<double>()) /
+                   refracted;
+  EXPECT_NEAR(j["model"]["transport_diffuse_transmittance_per_refracted"]["mean"].get<double>(), T, 1e-9);
+  EXPECT_NEAR(j["model"]["diffuse_reflectance_per_refracted"].get<double>() /
+                  j["diffuse_reflectance_per_refracted"]["mean"].get<double>(), 1.0, 0.05);
+  EXPECT_NEAR(j["model"]["diffuse_transmittance_per_refracted"].get<double>() / T, 1.0, 0.05);
+  Result other = run("slab --albedo 0.9 --model standard");
+  EXPECT_NE(other.exit_code, 0);
+  EXPECT_EQ(other.output, "lucent: --model: 'standard' is not multipole (the half-space models' totals: lucent materials)\n");
+  Result white = run("slab --albedo 1 --model multipole");
+  EXPECT_NE(white.exit_code, 0);
+  EXPECT_EQ(white.output, "lucent: --model multipole: the reduced albedo 1 is outside (0, 1)\n");
+}
+
 // `lucent bssrdf --total`: the model's flat half-space total per refracted power, per channel under "total": for
 // the standard dipole with its exit normalisation, Jensen's closed-form R_total (within the 2e-3 of the Fresnel
 // moment's polynomial fit); --incidence-deg only with --total.
