@@ -54,28 +54,14 @@ def scene_with_model(scene, sets, model):
     return s
 
 
-def find_volpath(cache, scene_path, overrides, spp):
+def find_cached(cache, integrator, scene_path, overrides, spp):
+    """A reference in the leaderboard's cache of this integrator, scene and overrides (method overrides aside), with at
+    least spp samples per pixel; None if there is none."""
     if not os.path.isdir(cache):
         return None
     want = sorted(o for o in overrides if not o.startswith("method"))
     for name in sorted(os.listdir(cache)):
-        if not (name.startswith("volpath_") and name.endswith(".meta.json")):
-            continue
-        meta = json.load(open(os.path.join(cache, name)))
-        got = sorted(o for o in meta.get("overrides", []) if not o.startswith("method"))
-        if meta.get("scene") == scene_path and got == want and meta.get("samples_per_pixel", 0) >= spp:
-            return os.path.join(cache, name[: -len(".meta.json")] + ".exr")
-    return None
-
-
-def find_bssrdf(cache, scene_path, overrides, model, spp):
-    """A cached bssrdf reference of the scene with its first object's model set to `model` (the leaderboard's
-    variants set it so)."""
-    if not os.path.isdir(cache):
-        return None
-    want = sorted([o for o in overrides if not o.startswith("method")] + [f'objects.0.material.model="{model}"'])
-    for name in sorted(os.listdir(cache)):
-        if not (name.startswith("bssrdf_") and name.endswith(".meta.json")):
+        if not (name.startswith(integrator + "_") and name.endswith(".meta.json")):
             continue
         meta = json.load(open(os.path.join(cache, name)))
         got = sorted(o for o in meta.get("overrides", []) if not o.startswith("method"))
@@ -111,7 +97,7 @@ def main():
         if args.run and r["name"] not in args.run:
             continue
         sets = r.get("set", [])
-        volpath = find_volpath(os.path.join(ROOT, args.cache), r["scene"], size_sets + sets, args.volpath_spp)
+        volpath = find_cached(os.path.join(ROOT, args.cache), "volpath", r["scene"], size_sets + sets, args.volpath_spp)
         if volpath is None:
             volpath = os.path.join(args.out, f"{r['name']}_volpath.exr")
             cmd = [args.lucent, "reference", r["scene"], "--integrator", "volpath", "--spp", str(args.volpath_spp), "-q",
@@ -124,7 +110,9 @@ def main():
         single = sum(1 for o in scene.get("objects", []) if "material" in o) == 1
         for model in models:
             exr = os.path.join(args.out, f"{r['name']}_bssrdf_{model}.exr")
-            cached = find_bssrdf(os.path.join(ROOT, args.cache), r["scene"], size_sets + sets, model, args.bssrdf_spp)
+            # The leaderboard's variants set the first object's model so.
+            cached = find_cached(os.path.join(ROOT, args.cache), "bssrdf", r["scene"],
+                                 size_sets + sets + [f'objects.0.material.model="{model}"'], args.bssrdf_spp)
             if single and cached:
                 exr = cached
             if single and cached or os.path.exists(os.path.join(ROOT, exr)):
