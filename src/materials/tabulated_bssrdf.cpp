@@ -67,7 +67,7 @@ class TableStore {
     if (int offset = find(albedo, g, eta); offset >= 0) return offset;
     const int count = count_.load(std::memory_order_relaxed);
     if (count >= kBssrdfTableCapacity)
-      throw Error(fmt::format("the tabulated model holds at most {} distinct band media in one process",
+      throw Error(fmt::format("the tabulated and multipole models hold at most {} distinct band media in one process",
                               kBssrdfTableCapacity));
     BssrdfTableStats stats;
     std::vector<float> table = load_or_build(albedo, g, eta, stats);
@@ -275,7 +275,8 @@ std::vector<float> bssrdf_table_array() {
     if (entries[static_cast<std::size_t>(k + shader::kBssrdfTableSameAlbedo)].a -
             entries[static_cast<std::size_t>(k)].a <=
         2e-5f * entries[static_cast<std::size_t>(k)].a)
-      throw Error(fmt::format("the tabulated model tells at most {} band media of one albedo ({}) apart on the GPU",
+      throw Error(fmt::format("the tabulated and multipole models tell at most {} band media of one albedo ({}) "
+                              "apart on the GPU",
                               shader::kBssrdfTableSameAlbedo, entries[static_cast<std::size_t>(k)].a));
   for (std::size_t k = 0; k < entries.size(); ++k) {
     float* e = &gpu[1 + 4 * k];

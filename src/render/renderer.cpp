@@ -17,6 +17,7 @@
 #include "methods/method.h"
 #include "methods/precompute.h"
 #include "platform/gl_capabilities.h"
+#include "render/light_gbuffer.h"
 #include "render/environment_texture.h"
 #include "render/scene_gpu.h"
 #include "shared/shader_io.h"
@@ -72,6 +73,7 @@ bool same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
 bool same_material(const Material& a, const Material& b) {
   const MediumField &f = a.field, &g = b.field;
   return a.sigma_a == b.sigma_a && a.sigma_s == b.sigma_s && a.g == b.g && a.eta == b.eta && a.model == b.model &&
+         a.thickness_mm == b.thickness_mm &&
          f.type == g.type && f.scale_mm == g.scale_mm && f.contrast == g.contrast && f.file == g.file &&
          f.volume == g.volume && f.has_bounds == g.has_bounds && f.bounds_lower == g.bounds_lower &&
          f.bounds_upper == g.bounds_upper;
@@ -99,6 +101,9 @@ SceneChange classify_change(const Scene& built, const Scene& now) {
     return SceneChange::Rebuild;
   // scale_mm converts point-light intensities and media fields as well as materials: a rebuild.
   if (built.scale_mm != now.scale_mm) return SceneChange::Rebuild;
+  // The shaders compile the scene's models (one model alone, the table models' code): a model change that moves
+  // their defines rebuilds.
+  if (render::light_sampling_defines(built) != render::light_sampling_defines(now)) return SceneChange::Rebuild;
   bool materials = false;
   for (std::size_t i = 0; i < built.objects.size(); ++i) {
     const SceneObject &a = built.objects[i], &b = now.objects[i];

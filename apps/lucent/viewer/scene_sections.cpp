@@ -87,9 +87,11 @@ bool material_editor(Material& m) {
       if (ImGui::Selectable(preset.name, m.name == preset.name)) {
         BssrdfModel model = m.model;
         MediumField field = m.field;
+        const float thickness_mm = m.thickness_mm;  // the part's, not the medium's: kept like the model
         m = material_from_preset(preset);
         m.model = model;
         m.field = field;
+        m.thickness_mm = thickness_mm;
         changed = true;
       }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s%s%s", preset.source, *preset.note ? "\n" : "", preset.note);
@@ -127,6 +129,10 @@ bool material_editor(Material& m) {
       m.model = parse_bssrdf_model(values.text("model")).value_or(m.model);
       changed = true;
     }
+  }
+  if (m.model == BssrdfModel::Multipole && scene_float("objects[].material", "thickness_mm", m.thickness_mm, 0.01f)) {
+    m.thickness_mm = std::max(m.thickness_mm, 0.0f);
+    changed = true;
   }
   if (textured) ImGui::EndDisabled();
   // Heterogeneous medium (voxel-paths and volpath; the diffusion models ignore it): the field's type, feature size

@@ -72,7 +72,7 @@ Scene prepare_meshes(const Scene& scene, const std::function<void(double)>& prog
   return local_global::remeshed_scene(scene, local_global::settings_from(scene.method_params), progress);
 }
 
-constexpr PrecomputeDecl kPrecompute{"local-global", 4, precompute};
+constexpr PrecomputeDecl kPrecompute{"local-global", 5, precompute};
 
 }  // namespace
 

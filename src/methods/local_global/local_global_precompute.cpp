@@ -163,8 +163,9 @@ double RadialProfile::Rd(glm::dvec3 x_i, glm::dvec3 n_i, glm::dvec3 x_o, glm::dv
   if (model_ != LUCENT_MODEL_MULTIPOLE) return Rd(glm::length(x_o - x_i));  // the distance in double, as before
   shader::BandMedium m = shader::make_band_medium(sigma_a_, sigma_s_, g_);
   m.thickness = thickness_;
+  // The difference in double (far from the origin float loses it), x_i at the origin.
   return static_cast<double>(
-      shader::bssrdf_pair_Rd(model_, m, eta_, glm::vec3(x_i), glm::vec3(n_i), glm::vec3(x_o), glm::vec3(n_o)));
+      shader::bssrdf_pair_Rd(model_, m, eta_, glm::vec3(0.0f), glm::vec3(n_i), glm::vec3(x_o - x_i), glm::vec3(n_o)));
 }
 
 double RadialProfile::disk_integral(double rho) const {
@@ -348,7 +349,15 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
       welded[v] = id;
     }
     g.vertex_area.assign(g.vertex_position.size(), 0.0);
+    // The mesh's own normals (outward, as the GPU methods read them), to world space and summed over welded copies;
+    // the triangles' winding where the mesh has none (the loader may flip normals without reordering triangles, and
+    // a mirroring transform reverses the winding).
     g.vertex_normal.assign(g.vertex_position.size(), glm::dvec3(0.0));
+    const bool own_normals = mesh.normals.size() == mesh.positions.size();
+    const glm::dmat3 normal_to_world = glm::transpose(glm::inverse(glm::dmat3(glm::mat3(object.world_from_object))));
+    if (own_normals)
+      for (std::size_t v = 0; v < mesh.normals.size(); ++v)
+        g.vertex_normal[welded[v]] += normal_to_world * glm::dvec3(mesh.normals[v]);
     g.corner_vertex.resize(mesh.indices.size());
     for (std::size_t c = 0; c + 2 < mesh.indices.size(); c += 3) {
       const std::uint32_t a = welded[mesh.indices[c]], b = welded[mesh.indices[c + 1]], d = welded[mesh.indices[c + 2]];
@@ -357,8 +366,10 @@ LocalGlobalData compute(const Scene& scene, const texture_space::SceneAtlas& atl
       g.vertex_area[a] += area;
       g.vertex_area[b] += area;
       g.vertex_area[d] += area;
-      const glm::dvec3 n = glm::cross(g.vertex_position[b] - g.vertex_position[a], g.vertex_position[d] - g.vertex_position[a]);
-      g.vertex_normal[a] += n, g.vertex_normal[b] += n, g.vertex_normal[d] += n;
+      if (!own_normals) {
+        const glm::dvec3 n = glm::cross(g.vertex_position[b] - g.vertex_position[a], g.vertex_position[d] - g.vertex_position[a]);
+        g.vertex_normal[a] += n, g.vertex_normal[b] += n, g.vertex_normal[d] += n;
+      }
       g.corner_vertex[c] = a;
       g.corner_vertex[c + 1] = b;
       g.corner_vertex[c + 2] = d;
