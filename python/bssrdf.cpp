@@ -36,8 +36,9 @@ glm::vec3 unit(const py::handle& value, const std::string& name) {
 Material coefficients(const py::dict& d) {
   for (auto [key, value] : d) {
     const std::string k = py::str(key);
-    if (k != "sigma_a" && k != "sigma_s" && k != "sigma_s_prime" && k != "g" && k != "eta")
-      throw Error(fmt::format("material: unknown key '{}'; known: sigma_a, sigma_s, sigma_s_prime, g, eta", k));
+    if (k != "sigma_a" && k != "sigma_s" && k != "sigma_s_prime" && k != "g" && k != "eta" && k != "thickness_mm")
+      throw Error(
+          fmt::format("material: unknown key '{}'; known: sigma_a, sigma_s, sigma_s_prime, g, eta, thickness_mm", k));
   }
   if (!d.contains("sigma_a") || d.contains("sigma_s") == d.contains("sigma_s_prime"))
     throw Error("material: give a preset name, or sigma_a with one of sigma_s (and g) or sigma_s_prime");
@@ -48,6 +49,8 @@ Material coefficients(const py::dict& d) {
                                     : rgb(d["sigma_s_prime"], kCoefficient, "sigma_s_prime");
   if (d.contains("g")) m.g = rgb(d["g"], kAnisotropy, "g");
   if (d.contains("eta")) m.eta = static_cast<float>(number_argument(d["eta"], kEta, "eta"));
+  // The multipole model's part thickness [mm]; validate_material refuses a negative one.
+  if (d.contains("thickness_mm")) m.thickness_mm = static_cast<float>(number_argument(d["thickness_mm"], kPointMm, "thickness_mm"));
   return m;
 }
 
