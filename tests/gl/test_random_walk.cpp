@@ -467,3 +467,26 @@ TEST(RandomWalk, AcceptsSeparateMediaAndRefusesBlobs) {
 }
 
 }  // namespace
+
+namespace {
+
+// A frame whose paths do not all leave within method.max_dispatches trace dispatches is refused with one line, not
+// kept forever (nothing bounds a path's length in a medium without absorption). A dense pure scatterer (radius 1 mm,
+// sigma_s 200 mm^-1: paths of tens of thousands of steps) cannot finish in one dispatch of llvmpipe's 4096 steps or
+// NVIDIA's 65536; the default bound renders it.
+TEST(RandomWalk, AFrameThatDoesNotFinishIsRefused) {
+  lucent::test::ensure_gl_context();
+  const char* medium = R"({ "sigma_a": [0, 0, 0], "sigma_s": [200, 200, 200], "g": 0, "eta": 1.4 })";
+  const char* light = R"({ "direction": [-0.4, -0.3, -1], "radiance": [1, 1, 1] })";
+  lucent::Scene scene = walk_sphere(medium, light, R"(, "max_dispatches": 1, "sphere_jumps": false)");
+  lucent::OffscreenFramebuffer framebuffer(scene.render.width, scene.render.height);
+  lucent::Renderer renderer(scene);
+  try {
+    renderer.render(scene.camera, {framebuffer.id(), scene.render.width, scene.render.height});
+    ADD_FAILURE() << "a frame whose paths outlast max_dispatches rendered";
+  } catch (const lucent::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("random-walk: paths still in flight after"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

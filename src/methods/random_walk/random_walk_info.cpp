@@ -19,6 +19,9 @@ constexpr ParamDecl kParams[] = {
      kLive},
     {"distance_grid", ParamType::Int, "64", "cells/axis", 8, 256, "",
      "resolution of the distance field that bounds the sphere jumps (cells along the longest axis)"},
+    {"max_dispatches", ParamType::Int, "65536", "dispatches", 1, 1 << 30, "",
+     "a frame whose paths have not all left after this many trace dispatches is refused with an error (a path that "
+     "never leaves a medium without absorption would otherwise keep the frame forever)"},
     {"time_dispatches", ParamType::Bool, "false", "", 0, 1, "",
      "measurement: wait for each trace dispatch and time it by wall clock, reading the counters after each (slower: "
      "a read-back per dispatch), to report the share of the trace time spent in sparse dispatches"},
