@@ -38,21 +38,26 @@ LUCENT_INLINE float multipole_source_term(float z, float r, float sigma_tr) {
   return z * (1.0f + sigma_tr * dist) * exp(-sigma_tr * dist) / (dist * dist * dist);
 }
 
+// One source at depth z and its row of mirrored dipoles (kMultipolePairs pairs on each side), without alpha' / (4 pi):
+// x through the top face, y through the bottom face at distance r.
+LUCENT_INLINE vec2 multipole_row(float z, float z_b, float thickness, float r, float sigma_tr) {
+  float period = 2.0f * (thickness + 2.0f * z_b);
+  vec2 sum = vec2(0.0f);
+  for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
+    float shift = float(k - kMultipolePairs) * period;
+    float z_r = shift + z, z_v = shift - z - 2.0f * z_b;
+    sum.x += multipole_source_term(z_r, r, sigma_tr) - multipole_source_term(z_v, r, sigma_tr);
+    sum.y += multipole_source_term(thickness - z_r, r, sigma_tr) - multipole_source_term(thickness - z_v, r, sigma_tr);
+  }
+  return sum;
+}
+
 // The reflectance and transmittance profiles (x: R(r), y: T(r)) [1/length^2] of a slab `thickness` thick
 // [length] (one band): T at distance r along the bottom face from the point below the entry point.
 LUCENT_INLINE vec2 multipole_profiles(BandMedium m, float eta, float thickness, float r) {
   float z_b = 2.0f * standard_dipole_A(eta) * m.D;
   float l = 1.0f / m.sigma_t_prime;
-  float period = 2.0f * (thickness + 2.0f * z_b);
-  vec2 sum = vec2(0.0f);
-  for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
-    float shift = float(k - kMultipolePairs) * period;
-    float z_r = shift + l, z_v = shift - l - 2.0f * z_b;
-    sum.x += multipole_source_term(z_r, r, m.sigma_tr) - multipole_source_term(z_v, r, m.sigma_tr);
-    sum.y += multipole_source_term(thickness - z_r, r, m.sigma_tr) -
-             multipole_source_term(thickness - z_v, r, m.sigma_tr);
-  }
-  return m.alpha_prime / (4.0f * kPi) * sum;
+  return m.alpha_prime / (4.0f * kPi) * multipole_row(l, z_b, thickness, r, m.sigma_tr);
 }
 
 LUCENT_INLINE float multipole_Rd(BandMedium m, float eta, float thickness, float r) {
@@ -116,18 +121,11 @@ LUCENT_INLINE vec2 multipole_beam_totals(float alpha_prime, float eta, float opt
 // costly per sample for a renderer, which would tabulate it.
 LUCENT_INLINE vec2 multipole_beam_profiles(BandMedium m, float eta, float thickness, float r, int depth_steps) {
   float z_b = 2.0f * standard_dipole_A(eta) * m.D;
-  float period = 2.0f * (thickness + 2.0f * z_b);
   float u_end = 1.0f - exp(-m.sigma_t_prime * thickness);
   vec2 sum = vec2(0.0f);
   for (int s = 0; s < kMultipoleBeamSteps && s < depth_steps; ++s) {
     float z = -log(1.0f - (float(s) + 0.5f) / float(depth_steps) * u_end) / m.sigma_t_prime;
-    for (int k = 0; k < 2 * kMultipolePairs + 1; ++k) {
-      float shift = float(k - kMultipolePairs) * period;
-      float z_r = shift + z, z_v = shift - z - 2.0f * z_b;
-      sum.x += multipole_source_term(z_r, r, m.sigma_tr) - multipole_source_term(z_v, r, m.sigma_tr);
-      sum.y += multipole_source_term(thickness - z_r, r, m.sigma_tr) -
-               multipole_source_term(thickness - z_v, r, m.sigma_tr);
-    }
+    sum += multipole_row(z, z_b, thickness, r, m.sigma_tr);
   }
   return m.alpha_prime / (4.0f * kPi) * u_end / float(depth_steps) * sum;
 }
