@@ -1,10 +1,13 @@
 // embed_renderer.cpp: how an application embeds lucent: its own GL context (here headless EGL), its own
 // framebuffer and its own orbiting camera; lucent renders frames into that framebuffer and reports timings.
 //
-//   embed_renderer [SCENE] [OUTPUT.ppm]
+//   embed_renderer [SCENE|-] [OUTPUT.png]       (- : the built-in default scene)
+//
+// It builds inside lucent's tree and, as any other program would, against an installed lucent: see
+// examples/CMakeLists.txt (find_package) and docs/install.md (pkg-config).
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <string>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -14,7 +17,8 @@
 int main(int argc, char** argv) {
   try {
     auto context = lucent::create_headless_context();
-    lucent::Scene scene = argc > 1 ? lucent::load_scene(argv[1]) : lucent::default_scene({"render.width=160",
+    const bool own_scene = argc > 1 && std::string(argv[1]) != "-";
+    lucent::Scene scene = own_scene ? lucent::load_scene(argv[1]) : lucent::default_scene({"render.width=160",
         "render.height=100", "method.K=6", "method.N=4", "method.map_size=64", "method.light_map_size=128"});
     const int width = scene.render.width, height = scene.render.height;
 
@@ -39,20 +43,22 @@ int main(int argc, char** argv) {
                   renderer.accumulated_frames());
     }
 
-    // Read the application's framebuffer back and write it as a binary PPM.
-    std::vector<unsigned char> pixels(static_cast<std::size_t>(width) * height * 4);
+    // Read the application's framebuffer back (OpenGL's rows bottom first) and write it as a PNG.
+    lucent::ImageRGBA8 image{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
+    std::vector<unsigned char> rows(image.pixels.size());
     glNamedFramebufferReadBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    const std::size_t row_bytes = static_cast<std::size_t>(width) * 4;
     double sum = 0.0;
-    for (std::size_t i = 0; i < pixels.size(); i += 4) sum += pixels[i] + pixels[i + 1] + pixels[i + 2];
+    for (int y = 0; y < height; ++y)
+      for (std::size_t i = 0; i < row_bytes; ++i) {
+        const unsigned char value = rows[static_cast<std::size_t>(height - 1 - y) * row_bytes + i];
+        image.pixels[static_cast<std::size_t>(y) * row_bytes + i] = value;
+        if (i % 4 != 3) sum += value;
+      }
     std::printf("mean pixel value %.2f\n", sum / (3.0 * width * height));
-    if (argc > 2) {
-      std::ofstream ppm(argv[2], std::ios::binary);
-      ppm << "P6\n" << width << " " << height << "\n255\n";
-      for (int y = height - 1; y >= 0; --y)
-        for (int x = 0; x < width; ++x) ppm.write(reinterpret_cast<const char*>(&pixels[(static_cast<std::size_t>(y) * width + x) * 4]), 3);
-    }
+    if (argc > 2) lucent::write_png(argv[2], image);
     glDeleteFramebuffers(1, &framebuffer);
     glDeleteRenderbuffers(1, &color);
     if (renderer.accumulated_frames() != 4) return 4;  // only the camera moved: all frames accumulate
