@@ -6,9 +6,12 @@
 # What is written (docs/blender.md):
 # - every visible mesh object, modifiers applied, in Blender's world coordinates (metres x unit scale) as
 #   <scene>_<object>.ply (positions and vertex normals), with "up_axis": "z" so lucent turns Blender's +Z up to +Y;
-# - the material: the first material slot's Principled BSDF (Blender 3.x sockets) as {"principled": {...}} when its
-#   Subsurface is above 0, else an opaque object with the Base Color as its albedo; texture links are not followed
-#   (the socket's own value is used, with a note on stderr);
+# - the material: the first material slot's Principled BSDF as {"principled": {...}} when it has subsurface
+#   scattering, else an opaque object with the Base Color as its albedo. Blender 3.x: the Subsurface, Subsurface
+#   Color, Subsurface IOR ... sockets (subsurface above 0). Blender 4 (bpy.app.version >= 4.0, the Principled v2
+#   node): "version": 4 with Subsurface Weight, Subsurface Radius, Subsurface Scale, IOR, Subsurface IOR,
+#   Subsurface Anisotropy and the node's subsurface_method (weight and scale above 0). Texture links are not
+#   followed (the socket's own value is used, with a note on stderr);
 # - the scene camera (perspective) as eye, target, up and the vertical field of view of the render's aspect;
 # - sun lights as directional lights: radiance = Strength x Color (W/m^2, the irradiance on a surface facing it, as
 #   in Cycles); point lights as point lights: intensity = Power x Color / (4 pi) (W/sr, the radiant intensity of an
@@ -38,9 +41,16 @@ bl_info = {
     "category": "Import-Export",
 }
 
+# Blender 3.x's subsurface_method values, and Blender 4's: 4.0 renamed Random Walk (radius from the colour) to
+# Random Walk (Skin) and Random Walk (Fixed Radius) to Random Walk.
 SUBSURFACE_METHODS = {
     "RANDOM_WALK": "random_walk",
     "RANDOM_WALK_FIXED_RADIUS": "random_walk_fixed_radius",
+    "BURLEY": "burley",
+}
+SUBSURFACE_METHODS_V2 = {
+    "RANDOM_WALK": "random_walk",
+    "RANDOM_WALK_SKIN": "random_walk_skin",
     "BURLEY": "burley",
 }
 
@@ -122,8 +132,8 @@ def material_entry(obj):
         note(f"{obj.name}: no Principled BSDF; exported as opaque grey")
         return {"albedo": [0.8, 0.8, 0.8]}
     what = f"{obj.name} / {material.name}"
-    if node.inputs.get("Subsurface Weight") is not None:
-        raise RuntimeError(f"{what}: a Blender 4 Principled BSDF; this exporter reads Blender 3.x's sockets")
+    if bpy.app.version >= (4, 0, 0):
+        return principled_v2_entry(node, material, what)
     base = rounded(socket_value(node, "Base Color", what)[:3])
     subsurface = float(socket_value(node, "Subsurface", what))
     if subsurface <= 0.0:
@@ -137,6 +147,31 @@ def material_entry(obj):
         "subsurface_anisotropy": round(float(socket_value(node, "Subsurface Anisotropy", what)), 6),
         "subsurface_method": SUBSURFACE_METHODS[node.subsurface_method],
     }
+    return {"material": {"principled": block, "name": material.name}}
+
+
+def principled_v2_entry(node, material, what):
+    """Blender 4's Principled BSDF (v2): the same as material_entry's Blender 3.x block, with v2's sockets."""
+    base = rounded(min(max(float(x), 0.0), 1.0) for x in socket_value(node, "Base Color", what)[:3])  # as Cycles
+    weight = float(socket_value(node, "Subsurface Weight", what))
+    scale = float(socket_value(node, "Subsurface Scale", what))
+    if weight <= 0.0 or scale <= 0.0:
+        return {"albedo": base}
+    if weight < 1.0:
+        note(f"{what}: Subsurface Weight {weight:g} mixes a diffuse surface in; lucent renders weight 1 only")
+    block = {
+        "version": 4,
+        "base_color": base,
+        "subsurface_weight": round(weight, 6),
+        "subsurface_radius": rounded(socket_value(node, "Subsurface Radius", what)),
+        "subsurface_scale": round(scale, 9),
+        "ior": round(float(socket_value(node, "IOR", what)), 6),
+        "subsurface_anisotropy": round(float(socket_value(node, "Subsurface Anisotropy", what)), 6),
+        "subsurface_method": SUBSURFACE_METHODS_V2[node.subsurface_method],
+    }
+    subsurface_ior = socket_value(node, "Subsurface IOR", what)  # used by random_walk_skin
+    if subsurface_ior is not None:
+        block["subsurface_ior"] = round(float(subsurface_ior), 6)
     return {"material": {"principled": block, "name": material.name}}
 
 
