@@ -9,7 +9,8 @@
 #   <prefix>/<python dir>/lucent.*.so        the Python module (python/CMakeLists.txt), where that prefix's Python
 #                                            finds it: lib/python3/dist-packages under /usr (Debian's packaged
 #                                            modules), lib/python3.X/dist-packages under any other prefix (Debian's
-#                                            /usr/local scheme), or the interpreter's own scheme elsewhere.
+#                                            /usr/local scheme), or the interpreter's own scheme elsewhere; the
+#                                            folder is chosen when installing, from the prefix given then.
 # Everything is relocatable: `cmake --install build --prefix DIR` anywhere gives working package files.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -59,19 +60,20 @@ configure_file(cmake/lucent.pc.in "${CMAKE_BINARY_DIR}/install/lucent.pc" @ONLY)
 install(FILES "${CMAKE_BINARY_DIR}/install/lucent.pc" DESTINATION "${LUCENT_PKGCONFIG_DIR}")
 install(FILES README.md DESTINATION "${CMAKE_INSTALL_DOCDIR}")
 
-# ---- the Debian package (cpack -G DEB, from a build configured with -DCMAKE_INSTALL_PREFIX=/usr) ----------------
+# ---- the Debian package: cpack -G DEB (in the build folder), installing under /usr ---------------------------------
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME lucent)
 set(CPACK_PACKAGE_VENDOR lucent)
 set(CPACK_PACKAGE_CONTACT "lucent developers <lucent@localhost>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
     "real-time subsurface scattering for translucent materials, with CPU ground truth")
-set(CPACK_PACKAGING_INSTALL_PREFIX "${CMAKE_INSTALL_PREFIX}")  # the Python module's folder was chosen for it
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)  # the shared libraries' packages, from dpkg-shlibdeps
 # The headers' own dependencies and the Python module's (the interpreter it was built for, numpy).
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libglm-dev, nlohmann-json3-dev")
+# libepoxy opens libEGL and libGL at run time (no DT_NEEDED for dpkg-shlibdeps to see).
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl1, libgl1, libglm-dev, nlohmann-json3-dev")
 # An EGL driver: Mesa's llvmpipe renders without a GPU; a GPU's vendor driver replaces it.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri")
 if(LUCENT_PYTHON_MODULE_DEPENDS)
