@@ -14,6 +14,7 @@ void bind_tonemap(py::module_& m);    // tonemap
 void bind_images(py::module_& m);     // read_exr, write_exr, write_png
 void bind_scene(py::module_& m);      // Scene, load_scene
 void bind_render(py::module_& m);     // render
+void bind_renderer(py::module_& m);   // Renderer
 void bind_reference(py::module_& m);  // reference
 void bind_compare(py::module_& m);    // compare
 void bind_bssrdf(py::module_& m);     // bssrdf, bssrdf_total

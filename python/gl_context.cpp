@@ -18,6 +18,7 @@ struct ModuleContext {
   std::unique_ptr<GLContext> context;  // none before the first render and after release()
   int device = -1;                     // the EGL device of the next context (-1: the default display)
   unsigned generation = 0;             // counts the contexts created, so that a Context closes only its own
+  std::vector<ContextResident*> residents;  // objects kept in the context between calls
 };
 
 // Never destroyed: tearing EGL down while the interpreter exits (after the driver's own atexit handlers may have
@@ -34,7 +35,16 @@ void open(ModuleContext& state) {
   ++state.generation;
 }
 
-void close(ModuleContext& state) { state.context.reset(); }
+// Destroys the context; the caller holds state.mutex. Residents drop their objects first, with it current here.
+void close(ModuleContext& state) {
+  if (state.context && !state.residents.empty()) {
+    state.context->make_current();
+    for (ContextResident* resident : state.residents) resident->drop_gl_objects();
+    state.context->release_current();
+  }
+  state.residents.clear();
+  state.context.reset();
+}
 
 // lucent.Context: opens the module's context on a device now (a bad device raises here, not at the render).
 class PyContext {
@@ -89,7 +99,15 @@ CurrentContext::CurrentContext() : lock_(module_context().mutex) {
   ModuleContext& state = module_context();
   if (!state.context) open(state);
   context_ = state.context.get();
+  generation_ = state.generation;
   context_->make_current();
+}
+
+void add_resident(ContextResident* resident) { module_context().residents.push_back(resident); }
+
+void remove_resident(ContextResident* resident) {
+  std::vector<ContextResident*>& residents = module_context().residents;
+  std::erase(residents, resident);
 }
 
 CurrentContext::~CurrentContext() { context_->release_current(); }

@@ -2,6 +2,7 @@
 // after lucent.Context(device=...) or lucent.release(), and current on one thread at a time.
 #pragma once
 #include <mutex>
+#include <vector>
 
 #include "lucent/context.h"
 
@@ -16,9 +17,26 @@ class CurrentContext {
   CurrentContext(const CurrentContext&) = delete;
   CurrentContext& operator=(const CurrentContext&) = delete;
 
+  // Counts the contexts the module has created: objects made in this one belong to this generation only.
+  unsigned generation() const { return generation_; }
+
  private:
   std::unique_lock<std::mutex> lock_;
   GLContext* context_;
+  unsigned generation_ = 0;
 };
+
+// What keeps OpenGL objects in the module's context across calls (a lucent.Renderer): before the context is
+// destroyed (lucent.release(), a new lucent.Context) each resident drops its objects, with the context current on
+// the releasing thread. Register and unregister while holding a CurrentContext.
+class ContextResident {
+ public:
+  virtual void drop_gl_objects() = 0;
+
+ protected:
+  ~ContextResident() = default;
+};
+void add_resident(ContextResident* resident);
+void remove_resident(ContextResident* resident);
 
 }  // namespace lucent::python

@@ -138,3 +138,61 @@ void run_long_call(const std::function<void(LongCallControl&)>& work, const py::
 }
 
 }  // namespace lucent::python
+
+namespace lucent::python {
+
+void LongCallControl::set_step(std::string_view name) {
+  const std::lock_guard<std::mutex> lock(step_mutex_);
+  step_ = name;
+}
+
+std::string LongCallControl::step() const {
+  const std::lock_guard<std::mutex> lock(step_mutex_);
+  return step_;
+}
+
+void run_staged_call(std::function<void(LongCallControl&)> work, const py::handle& progress) {
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw py::type_error("progress: expected a callable taking (step, fraction), or None");
+  auto control = std::make_shared<LongCallControl>();
+  auto state = std::make_shared<AbandonableState>();
+  std::thread([state, control, work = std::move(work)] {
+    std::exception_ptr failure;
+    try {
+      work(*control);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    const std::lock_guard<std::mutex> lock(state->mutex);
+    state->failure = failure;
+    state->finished = true;
+    state->finished_cv.notify_all();
+  }).detach();
+
+  std::pair<std::string, double> reported{"", -1.0};
+  const auto wait = [&](std::chrono::milliseconds interval) {
+    const py::gil_scoped_release unlocked;
+    std::unique_lock<std::mutex> lock(state->mutex);
+    return state->finished_cv.wait_for(lock, interval, [&] { return state->finished; });
+  };
+  for (bool finished = false; !finished;) {
+    finished = wait(kPollInterval);
+    try {
+      if (!finished && PyErr_CheckSignals() != 0) throw py::error_already_set();
+      std::pair<std::string, double> now{control->step(), control->fraction.load()};
+      if (!progress.is_none() && now.second >= 0.0 && now != reported) {
+        reported = now;
+        progress(now.first, now.second);
+      }
+      emit_warnings();
+    } catch (...) {
+      control->stop = true;  // the work stops at its next poll; what it has not finished by then is abandoned
+      wait(std::chrono::milliseconds(static_cast<int>(1000 * kAbandonAfterInterruptSeconds)));
+      throw;
+    }
+  }
+  emit_warnings();
+  if (state->failure) std::rethrow_exception(state->failure);
+}
+
+}  // namespace lucent::python

@@ -5,6 +5,9 @@
 #pragma once
 #include <atomic>
 #include <functional>
+#include <mutex>
+#include <string>
+#include <string_view>
 
 #include <pybind11/pybind11.h>
 
@@ -14,6 +17,13 @@ namespace lucent::python {
 struct LongCallControl {
   std::atomic<bool> stop{false};      // set when the call is interrupted: the work returns early, its result unused
   std::atomic<double> fraction{-1.0};  // the work's progress in [0, 1] (negative: none reported yet)
+  // run_staged_call only: the step `fraction` belongs to (set_step before the step's fractions).
+  void set_step(std::string_view name);
+  std::string step() const;
+
+ private:
+  mutable std::mutex step_mutex_;
+  std::string step_;
 };
 
 // Runs `work` and waits for it. A signal handler that raises (KeyboardInterrupt), or a progress callback that
@@ -27,5 +37,13 @@ void run_long_call(const std::function<void(LongCallControl&)>& work, const pybi
 // work to finish on its own thread, its result unused. `work` therefore owns everything it uses (captures by value,
 // shared_ptr for its result).
 void run_abandonable(std::function<void()> work);
+
+// For work in steps that polls control.stop only between its parts (a lucent.Renderer's build: the texture atlas,
+// the method's precomputation, shader compiles): runs as run_long_call does, with `progress` None or a callable
+// taking (step, fraction). On an interrupt it sets control.stop, waits at most kAbandonAfterInterrupt for the work
+// to return and then raises, leaving the work to finish on its own thread, its result unused: `work` owns what it
+// uses (captures by value, shared_ptr for its result; the control is shared with it).
+constexpr double kAbandonAfterInterruptSeconds = 0.5;
+void run_staged_call(std::function<void(LongCallControl&)> work, const pybind11::handle& progress);
 
 }  // namespace lucent::python

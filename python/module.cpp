@@ -14,6 +14,7 @@ PYBIND11_MODULE(lucent, m) {
   bind_tonemap(m);
   bind_scene(m);
   bind_render(m);
+  bind_renderer(m);
   bind_reference(m);
   bind_compare(m);
   bind_bssrdf(m);

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "frame_timings.h"
 #include "image_arrays.h"
 #include "gl_context.h"
 #include "long_call.h"
@@ -40,15 +41,6 @@ RenderResult render_frames(const Scene& scene, LongCallControl& control) {
   return result;
 }
 
-py::dict frame_dict(const FrameTimings& t) {
-  py::dict passes, stats;
-  for (const PassTiming& p : t.passes) passes[py::str(p.name)] = p.ms;
-  for (const FrameStatistic& s : t.stats) stats[py::str(s.name)] = s.value;
-  py::dict frame;
-  frame["frame"] = t.frame, frame["total_ms"] = t.total_ms, frame["passes"] = passes, frame["stats"] = stats;
-  return frame;
-}
-
 py::object render(const SceneHandle& handle, const RenderArguments& arguments, bool timings,
                   const py::handle& progress) {
   const Scene scene = emitting_warnings([&] { return handle.with(render_overrides(arguments)); });
@@ -56,11 +48,7 @@ py::object render(const SceneHandle& handle, const RenderArguments& arguments, b
   run_long_call([&](LongCallControl& control) { result = render_frames(scene, control); }, progress);
   py::array_t<float> image = to_array(result.radiance);
   if (!timings) return image;
-  py::list frames;
-  for (const FrameTimings& t : result.frames) frames.append(frame_dict(t));
-  py::dict info;
-  info["device"] = result.device, info["frames"] = frames;
-  return py::make_tuple(image, info);
+  return py::make_tuple(image, timings_dict(result.device, result.frames));
 }
 
 }  // namespace

@@ -56,17 +56,15 @@ Scene load_in_python_terms(const std::optional<std::string>& path, const std::ve
   }
 }
 
-// `scene.set(key, value)`: the override "key=<value as JSON>"; the scene is parsed again at once, so a bad key or
-// value raises here and leaves the scene as it was.
-SceneHandle& set(SceneHandle& handle, const std::string& key, const py::handle& value) {
+}  // namespace
+
+SceneHandle& set_value(SceneHandle& handle, const std::string& key, const py::handle& value) {
   std::vector<std::string> overrides = handle.overrides;
   overrides.push_back(fmt::format("{}={}", key, to_json_text(value)));
   handle.scene = emitting_warnings([&] { return load_in_python_terms(handle.path, overrides); });
   handle.overrides = std::move(overrides);
   return handle;
 }
-
-}  // namespace
 
 SceneHandle::SceneHandle(std::optional<std::string> path_, std::vector<std::string> overrides_)
     : path(std::move(path_)),
@@ -84,7 +82,7 @@ void bind_scene(py::module_& m) {
   py::class_<SceneHandle>(m, "Scene", "A scene file (or the built-in default scene) with --set style overrides.")
       .def_readonly("path", &SceneHandle::path, "the scene file; None for the built-in default scene")
       .def_readonly("overrides", &SceneHandle::overrides, "the \"key.path=value\" overrides, in order")
-      .def("set", &set, py::arg("key"), py::arg("value"), py::return_value_policy::reference,
+      .def("set", &set_value, py::arg("key"), py::arg("value"), py::return_value_policy::reference,
            "Overrides a scene value as `lucent render --set key=value` does (value: a number, string, bool, "
            "list, dict or numpy array, written as JSON), e.g. set(\"objects.bunny.material\", \"Marble\"), "
            "set(\"objects.0.material.eta\", 1.4), set(\"method.K\", 8). Array elements by index or by their "

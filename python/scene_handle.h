@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <pybind11/pybind11.h>
+
 #include "lucent/scene.h"
 
 namespace lucent::python {
@@ -19,5 +21,9 @@ struct SceneHandle {
   // The scene with `extra` overrides after this handle's own; throws lucent::Error as load_scene does.
   Scene with(const std::vector<std::string>& extra) const;
 };
+
+// `scene.set(key, value)`: the override "key=<value as JSON>"; the scene is parsed again at once, so a bad key or
+// value raises (TypeError, ValueError or lucent.Error, as Scene.set documents) and leaves the handle as it was.
+SceneHandle& set_value(SceneHandle& handle, const std::string& key, const pybind11::handle& value);
 
 }  // namespace lucent::python

@@ -63,7 +63,8 @@ struct VirtualPointLight {
 // Progress of the CPU work a method needs before its first frame (texture-space methods' atlas, a method's
 // precomputation): `step` names the work ("texture atlas", or the method's precompute kind), `fraction` runs from
 // 0 to 1 within a step (non-decreasing, 1 last; at once when the precompute cache had it). Called on the thread
-// that constructs the renderer or calls scene_changed(). Methods that precompute nothing never call it.
+// that constructs the renderer or calls scene_changed(). Methods that precompute nothing never call it. It may throw
+// to abandon the work (an application's cancel button): the exception leaves the constructor or scene_changed().
 using RenderProgress = std::function<void(std::string_view step, double fraction)>;
 
 class Renderer {

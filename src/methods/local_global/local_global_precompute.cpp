@@ -47,14 +47,16 @@ void parallel_for(std::size_t n, const std::function<void(double)>& progress, Bo
       const std::size_t end = std::min(n, begin + chunk);
       try {
         for (std::size_t i = begin; i < end; ++i) body(i);
+        const std::size_t total = done.fetch_add(end - begin) + (end - begin);
+        // A progress callback may throw to abandon the work (lucent.Renderer's Ctrl-C): caught here like a body's
+        // exception, so that the pool's threads are joined before it is rethrown.
+        if (report && progress) progress(static_cast<double>(total) / static_cast<double>(n));
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
         next = n;
         return;
       }
-      const std::size_t total = done.fetch_add(end - begin) + (end - begin);
-      if (report && progress) progress(static_cast<double>(total) / static_cast<double>(n));
     }
   };
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
