@@ -6,6 +6,7 @@
 #   <prefix>/include/lucent/*.h              the public headers
 #   <prefix>/<libdir>/cmake/lucent/          find_package(lucent CONFIG): the imported target lucent::lucent
 #   <prefix>/<libdir>/pkgconfig/lucent.pc    pkg-config --cflags --libs lucent
+#   <prefix>/share/lucent/scenes/            the example scenes
 #   <prefix>/<python dir>/lucent.*.so        the Python module (python/CMakeLists.txt), where that prefix's Python
 #                                            finds it: lib/python3/dist-packages under /usr (Debian's packaged
 #                                            modules), lib/python3.X/dist-packages under any other prefix (Debian's
@@ -59,6 +60,8 @@ file(RELATIVE_PATH LUCENT_PKGCONFIG_TO_PREFIX "/prefix/${LUCENT_PKGCONFIG_DIR}" 
 configure_file(cmake/lucent.pc.in "${CMAKE_BINARY_DIR}/install/lucent.pc" @ONLY)
 install(FILES "${CMAKE_BINARY_DIR}/install/lucent.pc" DESTINATION "${LUCENT_PKGCONFIG_DIR}")
 install(FILES README.md DESTINATION "${CMAKE_INSTALL_DOCDIR}")
+# The example scenes with their maps, volumes and environment maps (the bunny and horse meshes are glmark2-data's).
+install(DIRECTORY scenes/ DESTINATION "${CMAKE_INSTALL_DATADIR}/lucent/scenes")
 
 # ---- the Debian package: cpack -G DEB (in the build folder), installing under /usr ---------------------------------
 set(CPACK_GENERATOR DEB)
@@ -76,6 +79,7 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)  # the shared libraries' packages, from d
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl1, libgl1, libglm-dev, nlohmann-json3-dev")
 # An EGL driver: Mesa's llvmpipe renders without a GPU; a GPU's vendor driver replaces it.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "glmark2-data")  # the bunny and horse meshes of the example scenes
 if(LUCENT_PYTHON_MODULE_DEPENDS)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", ${LUCENT_PYTHON_MODULE_DEPENDS}")
 endif()

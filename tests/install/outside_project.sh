@@ -4,7 +4,7 @@
 #   2. examples/ built as an outside CMake project with find_package(lucent), run from another folder;
 #   3. the same program built with pkg-config alone (c++ $(pkg-config --cflags --libs lucent epoxy));
 #   4. both render the default scene to PNGs identical to the in-tree build's;
-#   5. the installed `lucent` command renders the default scene;
+#   5. the installed `lucent` command renders the default scene; the example scenes are installed;
 #   6. the installed Python module imports in a clean environment (env -i, nothing of the build tree on any path),
 #      from the folder Debian's Python searches under the prefix (PYTHON_MODULE_DIR, relative to the prefix).
 # Exits non-zero, naming the step, on the first difference.
@@ -58,6 +58,7 @@ import lucent, sys
 assert lucent.__file__.startswith('$module_dir'), lucent.__file__
 image = lucent.render(lucent.load_scene(), width=32, height=20, frames=1)
 assert image.shape == (20, 32, 3) and image.mean() > 0, image.mean()
+lucent.load_scene('$prefix/share/lucent/scenes/marble_textured.json')  # an installed scene with its maps
 ") || fail "the installed Python module does not import and render"
   # Installed under /usr/local, the same folder is on Debian's Python's own path: no PYTHONPATH needed.
   if [ "$python_dir" != "lib/python3/dist-packages" ]; then
