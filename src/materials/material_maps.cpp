@@ -73,6 +73,15 @@ double AlbedoCurve::alpha(double albedo) const {
   return -std::expm1(u0 + t * (u1 - u0));
 }
 
+double AlbedoCurve::total(double alpha) const {
+  const double lo = std::log1p(-kArtistAlphaMin), hi = std::log1p(-kArtistAlphaMax);
+  const double x = (std::log1p(-std::clamp(alpha, kArtistAlphaMin, kArtistAlphaMax)) - lo) / (hi - lo) *
+                   (kAlbedoCurveNodes - 1);  // the node position, spaced evenly in log(1 - alpha)
+  const int k = std::clamp(static_cast<int>(std::floor(x)), 0, kAlbedoCurveNodes - 2);
+  const double t = std::clamp(x - k, 0.0, 1.0);
+  return totals_[k] + t * (totals_[k + 1] - totals_[k]);
+}
+
 MapImage read_material_map(const std::string& file, bool colour, const std::string& where) {
   if (const std::string problem = file_path_problem(file); !problem.empty())
     throw Error(fmt::format("{}: {}: {}", where, printable_text(file), problem));

@@ -34,6 +34,9 @@ class AlbedoCurve {
   double highest() const { return totals_.back(); }    // total at kArtistAlphaMax
   // alpha with total(alpha) = albedo, for albedo in [lowest(), highest()] (clamped to them).
   double alpha(double albedo) const;
+  // The flat total at alpha, interpolated between the same nodes as alpha() (its exact inverse there; alpha
+  // clamped to [kArtistAlphaMin, kArtistAlphaMax]): a map's albedo back from its alpha texels (the glTF export).
+  double total(double alpha) const;
   // `albedo` clamped a thousandth of the reachable range inside [lowest(), min(highest(), 1)].
   double reachable(double albedo) const;
   double g() const { return g_; }

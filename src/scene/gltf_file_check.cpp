@@ -28,9 +28,10 @@ using nlohmann::json;
 
 // The extensions lucent reads (materials: scene/gltf_material.cpp; lights: its scene export); a file that requires
 // any other is refused, as the specification asks of a loader.
-constexpr std::array<std::string_view, 6> kGltfReadExtensions = {
+constexpr std::array<std::string_view, 7> kGltfReadExtensions = {
     "KHR_materials_volume",   "KHR_materials_transmission",         "KHR_materials_ior",
-    "KHR_lights_punctual",    "KHR_materials_diffuse_transmission", "KHR_materials_volume_scatter"};
+    "KHR_lights_punctual",    "KHR_materials_diffuse_transmission", "KHR_materials_volume_scatter",
+    "KHR_texture_transform"};
 
 // A file at least this large that stores less than an eighth of its size is sparse: its size is no promise of data.
 constexpr std::uintmax_t kSparseCheckBytes = std::uintmax_t{1} << 24;

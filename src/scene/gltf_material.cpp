@@ -2,6 +2,7 @@
 #include "scene/gltf_material.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -148,16 +149,74 @@ void note_sampler(const tinygltf::Model& model, int texture, GltfMaterial& m) {
     m.ignored.push_back(fmt::format("/samplers/{}/minFilter {} (maps are bilinear)", s, sampler.minFilter));
 }
 
+// A whole number >= 0 at `key` (a texture coordinate set).
+int read_set(const json& object, const char* key, int fallback, const JsonLocation& where) {
+  if (!object.contains(key)) return fallback;
+  const json& v = object[key];
+  if (!v.is_number_unsigned() || v.get<std::uint64_t>() > 1000000)
+    fail(where.child(key), fmt::format("expected a texture coordinate set (a whole number >= 0), got {}", excerpt(v)));
+  return static_cast<int>(v.get<std::uint64_t>());
+}
+
+// Two finite numbers at `key`, or `fallback` where absent.
+glm::dvec2 read_pair(const json& object, const char* key, glm::dvec2 fallback, const JsonLocation& where) {
+  if (!object.contains(key)) return fallback;
+  const json& v = object[key];
+  if (!v.is_array() || v.size() != 2) fail(where.child(key), fmt::format("expected 2 numbers, got {}", excerpt(v)));
+  glm::dvec2 pair;
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
+      fail(where.child(key).child(i), fmt::format("{} is not a finite number", excerpt(v[i])));
+    pair[static_cast<int>(i)] = v[i].get<double>();
+  }
+  return pair;
+}
+
+// The sets a mesh loader reads: assimp keeps 8 (AI_MAX_NUMBER_OF_TEXTURECOORDS).
+constexpr int kTextureCoordinateSets = 8;
+
+// The set `set` must be an attribute of every primitive (lucent's mesh is all of the file's primitives).
+void require_texture_coordinate_set(const tinygltf::Model& model, int set, const JsonLocation& where) {
+  if (set >= kTextureCoordinateSets)
+    fail(where, fmt::format("{}: lucent reads texture coordinate sets 0 to {}", set, kTextureCoordinateSets - 1));
+  const std::string attribute = fmt::format("TEXCOORD_{}", set);
+  for (std::size_t m = 0; m < model.meshes.size(); ++m)
+    for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p)
+      if (!model.meshes[m].primitives[p].attributes.count(attribute))
+        fail(where, fmt::format("{}: /meshes/{}/primitives/{} has no attribute {}", set, m, p, attribute));
+}
+
+// textureInfo.texCoord and KHR_texture_transform (its texCoord overrides the textureInfo's).
+GltfTextureCoordinates read_texture_coordinates(const tinygltf::Model& model, const tinygltf::TextureInfo& info,
+                                                const json& extensions, const JsonLocation& at) {
+  GltfTextureCoordinates c;
+  if (info.texCoord < 0) fail(at.child("texCoord"), fmt::format("{} is not a texture coordinate set", info.texCoord));
+  c.set = info.texCoord;
+  JsonLocation set_at = at.child("texCoord");
+  if (extensions.contains("KHR_texture_transform")) {
+    const JsonLocation t_at = at.child("extensions").child("KHR_texture_transform");
+    const json& t = member_object(extensions, "KHR_texture_transform", at.child("extensions"));
+    c.transformed = true;
+    c.offset = read_pair(t, "offset", glm::dvec2(0.0), t_at);
+    c.scale = read_pair(t, "scale", glm::dvec2(1.0), t_at);
+    c.rotation = read_number(t, "rotation", 0.0, -HUGE_VAL, HUGE_VAL, t_at);
+    if (!std::isfinite(c.rotation)) fail(t_at.child("rotation"), fmt::format("{} is not a finite number", c.rotation));
+    if (t.contains("texCoord")) c.set = read_set(t, "texCoord", c.set, t_at), set_at = t_at.child("texCoord");
+  }
+  if (c.set != 0) require_texture_coordinate_set(model, c.set, set_at);
+  return c;
+}
+
 void read_base_color_texture(const GltfFile& file, const tinygltf::TextureInfo& info, GltfMaterial& m) {
   const JsonLocation at = material_at(m).child("pbrMetallicRoughness").child("baseColorTexture");
-  if (info.texCoord != 0)
-    fail(at.child("texCoord"), fmt::format("{}: lucent reads the texture coordinates of set 0 (TEXCOORD_0)", info.texCoord));
+  const json extensions = gltf_json(info.extensions_json_string, at.child("extensions"));
+  m.base_color_coordinates = read_texture_coordinates(file.model, info, extensions, at);
+  m.base_color_texture_at = at.pointer;
   m.base_color_texture = read_gltf_texture(file, info.index, at, fmt::format("{}#{}/pbrMetallicRoughness/baseColorTexture",
                                                                            m.path, location(m)));
   note_sampler(file.model, info.index, m);
-  const json extensions = gltf_json(info.extensions_json_string, at.child("extensions"));
   for (auto it = extensions.begin(); it != extensions.end(); ++it)
-    m.ignored.push_back("baseColorTexture." + printable_text(it.key()));
+    if (it.key() != "KHR_texture_transform") m.ignored.push_back("baseColorTexture." + printable_text(it.key()));
 }
 
 // The core fields lucent does not use, named when the file sets them to something lucent does not reproduce.
@@ -411,6 +470,34 @@ json absorbing_medium(const GltfMaterial& m, const json& extras, GltfLucentMater
   return j;
 }
 
+// extras.lucent.albedo_map "baseColorTexture" (lucent's export of a textured material): the surface albedo per
+// texel is the base colour itself (factor x texel), the medium extras.lucent's (mfp_mm, g, eta, model); the glTF
+// extensions are for other tools.
+json textured_lucent_medium(const GltfMaterial& m, const json& extras, GltfLucentMaterial& out) {
+  const JsonLocation at = material_at(m).child("extras").child("lucent");
+  if (extras["albedo_map"] != "baseColorTexture")
+    fail(at.child("albedo_map"), fmt::format("{}: in a glTF material albedo_map can only be \"baseColorTexture\" (the "
+                                             "material's base colour texture is the surface albedo)",
+                                             excerpt(extras["albedo_map"])));
+  if (!m.base_color_texture) fail(at.child("albedo_map"), "the material has no baseColorTexture");
+  if (!extras.contains("mfp_mm")) fail(at, "albedo_map needs mfp_mm, the mean free path the map's albedos scatter at");
+  MapImage map = *m.base_color_texture;
+  for (glm::vec3& texel : map.texels) texel *= m.base_color;
+  const glm::vec3 mean = map_mean(map);
+  const CurveParameters p = curve_parameters(m);
+  glm::vec3 reachable;
+  for (int b = 0; b < 3; ++b) {
+    if (!(mean[b] > 0.0f)) fail(zero_albedo_key(m, b), "makes the surface albedo 0; lucent's media reflect light");
+    reachable[b] = static_cast<float>(AlbedoCurve(inversion_curve_model(p.model), p.g[b], p.eta).reachable(mean[b]));
+  }
+  out.albedo_map = std::move(map);
+  json j = extras;
+  j.erase("albedo_map");
+  j["albedo"] = array(reachable);
+  if (!j.contains("eta")) j["eta"] = m.ior;
+  return j;
+}
+
 }  // namespace
 
 double single_scatter_albedo(double multiscatter) {
@@ -459,6 +546,10 @@ GltfLucentMaterial lucent_material(const GltfMaterial& m) {
   const json extras = m.lucent.is_null() ? json::object() : m.lucent;
   const bool coefficients = extras.contains("preset") || extras.contains("sigma_a") || extras.contains("sigma_s") ||
                             extras.contains("sigma_s_prime");
+  if (extras.contains("albedo_map")) {
+    out.material = textured_lucent_medium(m, extras, out);
+    return out;
+  }
   if (coefficients) {
     out.material = {{"eta", m.ior}};
     if (m.base_color_texture) out.ignored.push_back("baseColorTexture (extras.lucent gives the coefficients)");
@@ -469,6 +560,30 @@ GltfLucentMaterial lucent_material(const GltfMaterial& m) {
   }
   out.material.update(extras);
   return out;
+}
+
+glm::dvec2 GltfTextureCoordinates::gltf(glm::dvec2 st) const {
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const glm::dvec2 scaled = scale * st;
+  return {c * scaled.x + s * scaled.y + offset.x, -s * scaled.x + c * scaled.y + offset.y};
+}
+
+glm::dvec2 GltfTextureCoordinates::lucent(glm::vec2 uv) const {
+  const glm::dvec2 st = gltf({static_cast<double>(uv.x), 1.0 - static_cast<double>(uv.y)});
+  return {st.x, 1.0 - st.y};
+}
+
+void transform_texture_coordinates(const GltfMaterial& m, std::vector<glm::vec2>& uvs) {
+  const GltfTextureCoordinates& c = m.base_color_coordinates;
+  if (!c.transformed) return;
+  for (std::size_t i = 0; i < uvs.size(); ++i) {
+    const glm::dvec2 uv = c.lucent(uvs[i]);
+    if (!(std::abs(uv.x) <= FLT_MAX && std::abs(uv.y) <= FLT_MAX))
+      fail({m.path, m.base_color_texture_at + "/extensions/KHR_texture_transform"},
+           fmt::format("turns vertex {}'s texture coordinates ({:g}, {:g}) into ({:g}, {:g}), beyond a float", i,
+                       uvs[i].x, 1.0f - uvs[i].y, uv.x, 1.0 - uv.y));
+    uvs[i] = glm::vec2(uv);
+  }
 }
 
 std::string ignored_fields_warning(const GltfMaterial& m, const std::vector<std::string>& ignored) {

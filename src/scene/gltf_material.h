@@ -27,6 +27,20 @@
 
 namespace lucent {
 
+// The texture coordinates a texture reads: the set (textureInfo.texCoord, or KHR_texture_transform's texCoord, which
+// overrides it) and KHR_texture_transform's matrix T(offset) R(rotation) S(scale) applied to glTF's (s, t, 1):
+//   s' = cos(r) scale.x s + sin(r) scale.y t + offset.x,   t' = -sin(r) scale.x s + cos(r) scale.y t + offset.y.
+// lucent's coordinates are glTF's with t flipped, (u, v) = (s, 1 - t).
+struct GltfTextureCoordinates {
+  int set = 0;                  // TEXCOORD_<set>
+  bool transformed = false;     // the texture has KHR_texture_transform
+  glm::dvec2 offset{0.0};
+  double rotation = 0.0;        // [radians]
+  glm::dvec2 scale{1.0};
+  glm::dvec2 gltf(glm::dvec2 st) const;   // glTF's (s, t) -> the transformed (s', t')
+  glm::dvec2 lucent(glm::vec2 uv) const;  // lucent's (u, v) -> lucent's coordinates of the transformed ones
+};
+
 // What the file says, as glTF defines it (defaults filled in).
 struct GltfMaterial {
   std::string path;                            // the glTF file
@@ -35,6 +49,9 @@ struct GltfMaterial {
   glm::vec3 base_color{1.0f};                  // baseColorFactor rgb (linear)
   bool has_base_color_factor = false;
   std::optional<MapImage> base_color_texture;  // decoded, linear, rows from v = 0 up
+  GltfTextureCoordinates base_color_coordinates;  // the set and transform the texture reads (checked: the set
+                                                  // exists on every primitive, the transform's values are finite)
+  std::string base_color_texture_at;           // the textureInfo's JSON pointer, for messages
   bool has_transmission = false;               // KHR_materials_transmission
   float transmission_factor = 0.0f;
   bool has_volume = false;                     // KHR_materials_volume
@@ -73,6 +90,11 @@ struct GltfLucentMaterial {
 // Throws lucent::Error("<path>: <pointer>: ...") at a key of the file when a translucent material lacks what lucent
 // needs or a value leaves the ranges lucent's media take.
 GltfLucentMaterial lucent_material(const GltfMaterial& material);
+
+// The object's texture coordinates for an albedo map from the base colour texture: `uvs` (lucent's, of set
+// base_color_coordinates.set) through the texture's transform (none: unchanged). Throws lucent::Error("<path>: <pointer of the transform>: ...") when a transformed
+// coordinate is not a finite float.
+void transform_texture_coordinates(const GltfMaterial& material, std::vector<glm::vec2>& uvs);
 
 // "<path>: /materials/<i> ('<name>'): lucent ignores ..." (one line), or "" when nothing is ignored.
 std::string ignored_fields_warning(const GltfMaterial& material, const std::vector<std::string>& ignored);

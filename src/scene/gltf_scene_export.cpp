@@ -3,11 +3,13 @@
 // are (scene_writer.cpp); tests read it back through tinygltf.
 //
 //   node "<scene stem>" (scale scale_mm / 1000: glTF's unit is the metre)
-//     one node and mesh per object, named after it, its transform as a matrix, its material (gltf_material.h)
+//     one node and mesh per object, named after it, its transform as a matrix, its material (gltf_material.h);
+//     an albedo map as the material's baseColorTexture, a PNG (in the buffer of a .glb, beside a .gltf)
 //   node "camera": a perspective camera (yfov, the render's aspect ratio)
 //   one node per light: KHR_lights_punctual; radiance [W/m^2] -> lux and intensity [W/sr] -> candela at 683 lm/W
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -20,10 +22,14 @@
 
 #include "io/base64.h"
 #include "lucent/error.h"
+#include "lucent/image.h"
 #include "lucent/output_file.h"
 #include "lucent/scene_writer.h"
 #include "lucent/warning.h"
+#include "materials/artist_parameters.h"
+#include "materials/material_maps.h"
 #include "scene/gltf_material.h"
+#include "shared/tonemap.h"
 
 namespace lucent {
 namespace {
@@ -58,6 +64,13 @@ class BufferBuilder {
     accessors_.push_back(accessor);
     return static_cast<int>(accessors_.size()) - 1;
   }
+  // A view of raw bytes (an embedded image): its index.
+  int add_view(const std::string& bytes) {
+    while (bytes_.size() % 4 != 0) bytes_.push_back(0);
+    views_.push_back({{"buffer", 0}, {"byteOffset", bytes_.size()}, {"byteLength", bytes.size()}});
+    bytes_.insert(bytes_.end(), bytes.begin(), bytes.end());
+    return static_cast<int>(views_.size()) - 1;
+  }
   const std::vector<std::uint8_t>& bytes() const { return bytes_; }
   const json& views() const { return views_; }
   const json& accessors() const { return accessors_; }
@@ -73,9 +86,9 @@ json primitive(const TriangleMesh& mesh, BufferBuilder& buffer) {
   for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   json attributes = {{"POSITION", buffer.add(mesh.positions, kFloat, "VEC3", kArrayBuffer, {{"min", vec(lo)}, {"max", vec(hi)}})},
                      {"NORMAL", buffer.add(mesh.normals, kFloat, "VEC3", kArrayBuffer)}};
-  if (!mesh.uvs.empty()) {  // glTF's texture origin is the image's top left, lucent's the bottom left
+  if (!mesh.map_uvs().empty()) {  // glTF's texture origin is the image's top left, lucent's the bottom left
     std::vector<glm::vec2> texcoords;
-    for (glm::vec2 uv : mesh.uvs) texcoords.emplace_back(uv.x, 1.0f - uv.y);
+    for (glm::vec2 uv : mesh.map_uvs()) texcoords.emplace_back(uv.x, 1.0f - uv.y);
     attributes["TEXCOORD_0"] = buffer.add(texcoords, kFloat, "VEC2", kArrayBuffer);
   }
   return {{"attributes", attributes}, {"indices", buffer.add(mesh.indices, kUnsignedInt, "SCALAR", kElementArrayBuffer)},
@@ -88,19 +101,104 @@ float scene_roughness(const Scene& scene) {
   return static_cast<float>(std::sqrt(std::max(scene.method_params.number("roughness"), 0.0)));
 }
 
-json object_material(const SceneObject& object, float roughness, const std::string& path) {
+// The textures of a scene: the albedo maps as PNG images (one per map, however many objects share it).
+struct Textures {
+  bool binary = false;                   // .glb: images in the buffer; .gltf: files beside it
+  std::filesystem::path folder;          // the .gltf's folder
+  std::string stem;
+  std::vector<const MaterialMaps*> maps;  // image i is maps[i]'s albedo
+  json images = json::array(), textures = json::array();
+  std::vector<std::pair<std::string, std::string>> files;  // .gltf: (path, PNG bytes)
+};
+
+// The file name of image `index` beside a .gltf named `stem`.
+std::string image_file_name(const std::string& stem, std::size_t index) {
+  return fmt::format("{}_albedo_{}.png", stem, index);
+}
+
+// A relative URI for a file name: bytes outside RFC 3986's unreserved characters percent-encoded.
+std::string uri_of(const std::string& name) {
+  std::string uri;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~') uri += static_cast<char>(c);
+    else uri += fmt::format("%{:02X}", c);
+  }
+  return uri;
+}
+
+// The albedo a map's alpha texels render (the flat total of the inversion curve they were made with, the same
+// curve the import inverts), 8-bit sRGB, top row first as image files and glTF's texture origin have it.
+ImageRGBA8 albedo_image(const MaterialMaps& maps) {
+  const BssrdfModel model = inversion_curve_model(maps.made_with_model);
+  std::vector<AlbedoCurve> curves;
+  for (int c = 0; c < 3; ++c) curves.emplace_back(model, maps.made_with_g[c], maps.made_with_eta);
+  ImageRGBA8 image;
+  image.width = maps.alpha_size.x, image.height = maps.alpha_size.y;
+  image.pixels.assign(4 * maps.alpha.size(), 255);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const glm::vec3 alpha = maps.alpha[static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x)];
+      std::uint8_t* p = image.at(x, image.height - 1 - y);  // the maps' rows run from v = 0 up
+      for (int c = 0; c < 3; ++c) {
+        const auto albedo = static_cast<float>(std::clamp(curves[static_cast<std::size_t>(c)].total(alpha[c]), 0.0, 1.0));
+        p[c] = static_cast<std::uint8_t>(std::lround(shader::srgb_encode(albedo) * 255.0f));
+      }
+    }
+  return image;
+}
+
+// The texture index of a material's albedo map, its image added once.
+int albedo_texture(const MaterialMaps& maps, Textures& textures, BufferBuilder& buffer) {
+  const auto known = std::find(textures.maps.begin(), textures.maps.end(), &maps);
+  if (known != textures.maps.end()) return static_cast<int>(known - textures.maps.begin());
+  const std::size_t index = textures.maps.size();
+  const std::string png = encode_png(albedo_image(maps));
+  json image = json::object();
+  if (textures.binary) {
+    image["bufferView"] = buffer.add_view(png);
+    image["mimeType"] = "image/png";
+  } else {
+    const std::string name = image_file_name(textures.stem, index);
+    image["uri"] = uri_of(name);
+    textures.files.emplace_back((textures.folder / name).string(), png);
+  }
+  textures.maps.push_back(&maps);
+  textures.images.push_back(image);
+  textures.textures.push_back({{"source", index}});  // no sampler: glTF's default repeats, as lucent's maps do
+  return static_cast<int>(index);
+}
+
+json object_material(const SceneObject& object, float roughness, const std::string& path, Textures& textures,
+                     BufferBuilder& buffer) {
   if (!object.material) {
     json m = gltf_opaque_material_json(object.albedo, roughness);
     m["name"] = object.name;
     return m;
   }
-  if (object.material->textured())
-    warn(fmt::format("{}: object '{}': its material maps are not written (the glTF material holds the maps' mean; "
-                     "the scene file keeps the maps)", path, object.name));
   glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
   for (const glm::vec3& p : object.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const glm::vec3 size = glm::max(hi - lo, glm::vec3(0.0f));
-  return gltf_material_json(*object.material, std::min({size.x, size.y, size.z}), roughness);
+  json material = gltf_material_json(*object.material, std::min({size.x, size.y, size.z}), roughness);
+  const MaterialMaps* maps = object.material->maps.get();
+  if (!maps) return material;
+  if (!maps->mfp_mm.empty())
+    warn(fmt::format("{}: object '{}': its mfp_map is not written (glTF has no texture for the mean free path; the "
+                     "glTF material holds the map's mean; the scene file keeps the map)", path, object.name));
+  if (maps->alpha.empty()) return material;
+  // The albedo map as the base colour texture; extras.lucent as the scene file's textured material (the mean free
+  // path and what the texels were inverted with), which lucent's import reads back with the texture.
+  json& pbr = material["pbrMetallicRoughness"];
+  pbr["baseColorFactor"] = json::array({1.0, 1.0, 1.0, 1.0});
+  pbr["baseColorTexture"] = {{"index", albedo_texture(*maps, textures, buffer)}};
+  json& lucent = material["extras"]["lucent"];
+  lucent.erase("sigma_a"), lucent.erase("sigma_s");
+  const glm::vec3 mfp = maps->base_mfp_mm, g = maps->made_with_g;
+  lucent["albedo_map"] = "baseColorTexture";
+  lucent["mfp_mm"] = json::array({mfp.x, mfp.y, mfp.z});
+  lucent["g"] = json::array({g.x, g.y, g.z});
+  lucent["eta"] = maps->made_with_eta;
+  lucent["model"] = std::string(to_string(maps->made_with_model));
+  return material;
 }
 
 // A node whose local -z axis is `direction` (lights), at `position`.
@@ -160,7 +258,8 @@ void add_camera(const Scene& scene, float metres_per_unit, json& doc) {
 }
 
 // The objects under one node that scales scene units to metres.
-void add_objects(const Scene& frozen, const std::string& name, const std::string& path, BufferBuilder& buffer, json& doc) {
+void add_objects(const Scene& frozen, const std::string& name, const std::string& path, BufferBuilder& buffer,
+                 Textures& textures, json& doc) {
   const float roughness = scene_roughness(frozen);
   // The file's coordinates (Scene::origin added back), then metres.
   const glm::dvec3 origin_m = frozen.origin * (static_cast<double>(frozen.scale_mm) / 1000.0);
@@ -168,7 +267,7 @@ void add_objects(const Scene& frozen, const std::string& name, const std::string
                {"extras", {{"lucent", {{"scale_mm", frozen.scale_mm}}}}}};
   std::vector<std::string> extensions;
   for (const SceneObject& object : frozen.objects) {
-    const json material = object_material(object, roughness, path);
+    const json material = object_material(object, roughness, path, textures, buffer);
     for (const std::string& e : gltf_material_extensions(material))
       if (std::find(extensions.begin(), extensions.end(), e) == extensions.end()) extensions.push_back(e);
     doc["materials"].push_back(material);
@@ -202,9 +301,17 @@ std::string glb(const json& doc, const std::vector<std::uint8_t>& bytes) {
 
 }  // namespace
 
-std::string scene_gltf(const Scene& scene, const std::string& path) {
+namespace {
+
+// The file's bytes and, for a .gltf, its image files.
+struct GltfExport {
+  std::string bytes;
+  std::vector<std::pair<std::string, std::string>> images;
+};
+
+GltfExport export_gltf(const Scene& scene, const std::string& path) {
   static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
-  const bool binary = std::filesystem::path(path).extension() == ".glb";
+  const bool binary = lowercase_extension(path) == ".glb";
   const Scene frozen = scene_at_time(scene, 0.0);  // deformations applied, blob surfaces extracted
   json doc = {{"asset", {{"version", "2.0"}, {"generator", "lucent save_scene_gltf"}}},
               {"scene", 0},
@@ -212,24 +319,49 @@ std::string scene_gltf(const Scene& scene, const std::string& path) {
               {"nodes", json::array()}, {"meshes", json::array()}, {"materials", json::array()},
               {"extensionsUsed", json::array()}};
   BufferBuilder buffer;
+  Textures textures;
+  textures.binary = binary;
+  textures.folder = std::filesystem::path(path).parent_path();
+  textures.stem = std::filesystem::path(path).stem().string();
   const float metres_per_unit = scene.scale_mm / 1000.0f;
-  add_objects(frozen, std::filesystem::path(path).stem().string(), path, buffer, doc);
+  add_objects(frozen, std::filesystem::path(path).stem().string(), path, buffer, textures, doc);
   add_camera(frozen, metres_per_unit, doc);
   add_lights(frozen, metres_per_unit, doc);
   if (doc["extensionsUsed"].empty()) doc.erase("extensionsUsed");
+  if (!textures.images.empty()) doc["images"] = textures.images, doc["textures"] = textures.textures;
   doc["bufferViews"] = buffer.views();
   doc["accessors"] = buffer.accessors();
   json buffer_json = {{"byteLength", buffer.bytes().size()}};
   if (!binary) buffer_json["uri"] = "data:application/octet-stream;base64," + base64(buffer.bytes());
   doc["buffers"] = json::array({buffer_json});
-  return binary ? glb(doc, buffer.bytes()) : doc.dump() + "\n";
+  return {binary ? glb(doc, buffer.bytes()) : doc.dump() + "\n", std::move(textures.files)};
 }
 
+}  // namespace
+
+std::string scene_gltf(const Scene& scene, const std::string& path) { return export_gltf(scene, path).bytes; }
+
 void save_scene_gltf(const Scene& scene, const std::string& path) {
-  const std::vector<OutputPath> outputs = {{path, "glTF scene", {".gltf", ".glb"}}};
+  std::vector<OutputPath> outputs = {{path, "glTF scene", {".gltf", ".glb"}}};
+  // A .gltf's images: one per distinct albedo map, named before anything is written so that the checks see them.
+  if (lowercase_extension(path) == ".gltf") {
+    std::vector<const MaterialMaps*> maps;
+    for (const SceneObject& object : scene.objects)
+      if (object.material && object.material->maps && !object.material->maps->alpha.empty() &&
+          std::find(maps.begin(), maps.end(), object.material->maps.get()) == maps.end())
+        maps.push_back(object.material->maps.get());
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    for (std::size_t i = 0; i < maps.size(); ++i)
+      outputs.push_back({(folder / image_file_name(std::filesystem::path(path).stem().string(), i)).string(),
+                         "glTF scene's image", {".png"}});
+  }
   check_outputs(outputs, scene_input_files(scene));
   const OutputLock lock(outputs);
-  write_file(path, scene_gltf(scene, path));
+  GltfExport exported = export_gltf(scene, path);
+  OutputSet set;
+  set.add(path, std::move(exported.bytes));
+  for (auto& [file, bytes] : exported.images) set.add(file, std::move(bytes));
+  set.commit();
 }
 
 void save_scene_as(const Scene& scene, const std::string& path) {

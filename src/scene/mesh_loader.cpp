@@ -24,6 +24,7 @@
 #include "lucent/mesh.h"
 #include "scene/gltf_file_check.h"
 #include "scene/import_guard.h"
+#include "scene/mesh_loader.h"
 #include "scene/ply_size_check.h"
 
 namespace lucent {
@@ -52,15 +53,15 @@ std::string one_line(std::string text) {
 
 // Appends the triangles of one assimp mesh; faces that are not triangles (points, lines) are skipped. Indices
 // are checked against the mesh's own vertices (after offsetting they could land on another mesh's). With
-// `with_uvs`, texture channel 0 (u, v; a third component is ignored) is appended too: the mesh must have it.
-void append_mesh(const aiMesh& src, TriangleMesh& dst, bool with_uvs, const std::string& path) {
+// `with_uvs`, texture channel `uv_set` (u, v; a third component is ignored) is appended too: the mesh must have it.
+void append_mesh(const aiMesh& src, TriangleMesh& dst, bool with_uvs, unsigned uv_set, const std::string& path) {
   if (src.mNumVertices > std::numeric_limits<std::uint32_t>::max() - dst.positions.size())
     throw Error(path + ": cannot read mesh: more than 2^32 vertices");
   const auto base = static_cast<std::uint32_t>(dst.positions.size());
   for (unsigned i = 0; i < src.mNumVertices; ++i) {
     dst.positions.push_back(to_glm(src.mVertices[i]));
     dst.normals.push_back(src.mNormals ? to_glm(src.mNormals[i]) : glm::vec3(0.0f));
-    if (with_uvs) dst.uvs.emplace_back(src.mTextureCoords[0][i].x, src.mTextureCoords[0][i].y);
+    if (with_uvs) dst.uvs.emplace_back(src.mTextureCoords[uv_set][i].x, src.mTextureCoords[uv_set][i].y);
   }
   for (unsigned f = 0; f < src.mNumFaces; ++f) {
     const aiFace& face = src.mFaces[f];
@@ -99,7 +100,7 @@ void repair_normals(TriangleMesh& mesh) {
 }
 
 // The importer's triangles, as the child process builds them (normals not yet repaired).
-TriangleMesh import_triangles(const std::string& path) {
+TriangleMesh import_triangles(const std::string& path, unsigned uv_set) {
   Assimp::Importer importer;
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices | aiProcess_SortByPType;
@@ -119,19 +120,21 @@ TriangleMesh import_triangles(const std::string& path) {
     if (scene->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) triangle_meshes.push_back(scene->mMeshes[m]);
   // Texture coordinates are all or nothing: a vertex without them has no meaningful value to fill in.
   const auto textured = std::count_if(triangle_meshes.begin(), triangle_meshes.end(),
-                                      [](const aiMesh* m) { return m->HasTextureCoords(0); });
+                                      [&](const aiMesh* m) { return m->HasTextureCoords(uv_set); });
   const bool with_uvs = !triangle_meshes.empty() && textured == std::ssize(triangle_meshes);
   if (textured > 0 && !with_uvs)  // printed by the importer's process, on the same stderr
     warn(fmt::format("{}: texture coordinates dropped: only {} of {} meshes have them", path, textured,
                      triangle_meshes.size()));
   TriangleMesh mesh;
-  for (const aiMesh* m : triangle_meshes) append_mesh(*m, mesh, with_uvs, path);
+  for (const aiMesh* m : triangle_meshes) append_mesh(*m, mesh, with_uvs, uv_set, path);
   return mesh;
 }
 
 }  // namespace
 
-TriangleMesh load_mesh(const std::string& path) {
+TriangleMesh load_mesh(const std::string& path) { return load_mesh_with_uv_set(path, 0); }
+
+TriangleMesh load_mesh_with_uv_set(const std::string& path, unsigned uv_set) {
   check_file_path(path);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
@@ -145,7 +148,7 @@ TriangleMesh load_mesh(const std::string& path) {
   ImportLimits limits = mesh_import_limits();
   const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
   limits.memory_bytes = std::max<std::uint64_t>(std::uint64_t{4} << 30, ec ? 0 : 200 * std::uint64_t{file_size});
-  TriangleMesh mesh = import_in_child(path, [&] { return import_triangles(path); }, limits);
+  TriangleMesh mesh = import_in_child(path, [&] { return import_triangles(path, uv_set); }, limits);
 
   if (mesh.indices.empty()) throw Error(path + ": the file holds no triangles");
   validate_mesh(mesh, path);

@@ -28,6 +28,7 @@
 #include "materials/shader_material_json.h"
 #include "scene/gltf_material.h"
 #include "scene/gltf_reader.h"
+#include "scene/mesh_loader.h"
 #include "geometry/closest_point.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
@@ -532,6 +533,15 @@ void read_mesh_material(SceneObject& object, const JsonLocation& where) {
     const JsonLocation at{object.mesh_file, fmt::format("/materials/{}", gltf.index)};
     object.material = read_material(mapped.material, at, mesh.parent_path().string());
     if (!gltf.name.empty() && !mapped.material.contains("preset")) object.material->name = gltf.name;
+    if (mapped.albedo_map) {  // the texture's coordinates: its set (the mesh was read with set 0) and transform
+      if (const int set = gltf.base_color_coordinates.set; set != 0) {
+        TriangleMesh with_set = load_mesh_with_uv_set(object.mesh_file, static_cast<unsigned>(set));
+        if (with_set.positions.size() != object.mesh.positions.size() || with_set.uvs.size() != with_set.positions.size())
+          throw Error(fmt::format("{}: TEXCOORD_{}: the mesh read with this set differs from the mesh", object.mesh_file, set));
+        object.mesh.uvs = std::move(with_set.uvs);
+      }
+      transform_texture_coordinates(gltf, object.mesh.uvs);
+    }
   } catch (const Error& e) {
     fail(where.child("material"), e.what());
   }

@@ -389,6 +389,125 @@ TEST(GltfMaterial, MalformedContainersGiveOneLine) {
             "s.json: /objects/0/material: \"from_mesh\" needs a glTF mesh (.gltf or .glb)");
 }
 
+// ---- texture coordinates: textureInfo.texCoord and KHR_texture_transform ----
+
+// A textured translucent triangle: vertices (0,0,0), (1,0,0), (0,1,0) with TEXCOORD_0 (s, t) = (0, 1), (1, 1),
+// (0, 0) (write_gltf's, lucent's (0, 0), (1, 0), (0, 1) with t = 1 - v) and TEXCOORD_1 (0.25, 0.5), (0.75, 0.5),
+// (0.25, 1); `texture_info` is the material's baseColorTexture.
+json two_set_gltf(const json& texture_info) {
+  json material = kArtistMaterial;
+  material["pbrMetallicRoughness"]["baseColorTexture"] = texture_info;
+  json doc = triangle_gltf(material);
+  ImageRGBA8 image;
+  image.width = 2, image.height = 1;
+  image.pixels = {128, 100, 80, 255, 200, 150, 120, 255};
+  doc["textures"] = json::array({{{"source", 0}}});
+  doc["images"] = json::array({{{"uri", "data:image/png;base64," + base64_text(encode_png(image))}}});
+  const float set1[6] = {0.25f, 0.5f, 0.75f, 0.5f, 0.25f, 1.0f};
+  const std::string bytes(reinterpret_cast<const char*>(set1), sizeof set1);
+  doc["buffers"].push_back({{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64_text(bytes)}});
+  doc["bufferViews"].push_back({{"buffer", doc["buffers"].size() - 1}, {"byteOffset", 0}, {"byteLength", bytes.size()}});
+  doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", 3},
+                              {"type", "VEC2"}});
+  doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = doc["accessors"].size() - 1;
+  return doc;
+}
+
+// The object's texture coordinates at the triangle's vertices (0,0,0), (1,0,0), (0,1,0), in that order.
+std::vector<glm::vec2> vertex_uvs(const SceneObject& object) {
+  std::vector<glm::vec2> uvs;
+  for (const glm::vec3 corner : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)})
+    for (std::size_t i = 0; i < object.mesh.positions.size(); ++i)
+      if (object.mesh.positions[i] == corner) uvs.push_back(object.mesh.uvs.at(i));
+  return uvs;
+}
+
+void expect_uvs(const std::vector<glm::vec2>& got, const std::vector<glm::vec2>& expected) {
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_NEAR(got[i].x, expected[i].x, 1e-6f) << "vertex " << i;
+    EXPECT_NEAR(got[i].y, expected[i].y, 1e-6f) << "vertex " << i;
+  }
+}
+
+// KHR_texture_transform, offset (0.5, 0.25), rotation pi/2, scale (2, 0.5): T R S (s, t, 1) with R's rows
+// (cos, sin), (-sin, cos) gives s' = 0.5 t + 0.5 and t' = -2 s + 0.25, so the vertices' (s, t) = (0, 1), (1, 1),
+// (0, 0) become (1, 0.25), (1, -1.75), (0.5, 0.25), lucent's (u, v) = (s', 1 - t') = (1, 0.75), (1, 2.75),
+// (0.5, 0.75). The file requires the extension, which is now read.
+TEST(GltfMaterial, TextureTransformGivesTheHandComputedCoordinates) {
+  json doc = two_set_gltf(json::parse(R"({"index": 0, "extensions": {"KHR_texture_transform":
+      {"offset": [0.5, 0.25], "rotation": 1.5707963267948966, "scale": [2, 0.5]}}})"));
+  doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({"KHR_texture_transform"});
+  test::TempFile file(".gltf");
+  write_text(file.path(), doc.dump());
+  std::vector<std::string> warnings;
+  const SceneObject object = from_mesh(file.path(), &warnings);
+  ASSERT_TRUE(object.material && object.material->textured());
+  expect_uvs(vertex_uvs(object), {{1.0f, 0.75f}, {1.0f, 2.75f}, {0.5f, 0.75f}});
+  for (const std::string& w : warnings) EXPECT_EQ(w.find("KHR_texture_transform"), std::string::npos) << w;
+  // Without the transform the coordinates are the file's TEXCOORD_0 (u, 1 - t).
+  doc = two_set_gltf({{"index", 0}});
+  write_text(file.path(), doc.dump());
+  expect_uvs(vertex_uvs(from_mesh(file.path())), {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}});
+}
+
+// texCoord 1 reads TEXCOORD_1: (s, t) = (0.25, 0.5), (0.75, 0.5), (0.25, 1) -> (u, v) = (0.25, 0.5), (0.75, 0.5),
+// (0.25, 0); KHR_texture_transform's texCoord overrides the textureInfo's, here with offset (0.5, 0): (0.75, 0.5),
+// (1.25, 0.5), (0.75, 0).
+TEST(GltfMaterial, TexCoordOneSelectsTheSecondSet) {
+  test::TempFile file(".gltf");
+  write_text(file.path(), two_set_gltf({{"index", 0}, {"texCoord", 1}}).dump());
+  expect_uvs(vertex_uvs(from_mesh(file.path())), {{0.25f, 0.5f}, {0.75f, 0.5f}, {0.25f, 0.0f}});
+  write_text(file.path(), two_set_gltf(json::parse(R"({"index": 0, "texCoord": 0, "extensions":
+      {"KHR_texture_transform": {"texCoord": 1, "offset": [0.5, 0]}}})")).dump());
+  expect_uvs(vertex_uvs(from_mesh(file.path())), {{0.75f, 0.5f}, {1.25f, 0.5f}, {0.75f, 0.0f}});
+}
+
+// A set the primitives do not have, a set or transform value that is not one: one line at the key.
+TEST(GltfMaterial, BadTextureCoordinatesGiveOneLineAtTheKey) {
+  test::TempFile file(".gltf");
+  const std::string p = file.path(), prefix = "s.json: /objects/0/material: " + p;
+  auto error = [&](const json& texture_info) {
+    write_text(p, two_set_gltf(texture_info).dump());
+    return from_mesh_error(p);
+  };
+  const std::string at = ": /materials/0/pbrMetallicRoughness/baseColorTexture";
+  EXPECT_EQ(error({{"index", 0}, {"texCoord", 2}}),
+            prefix + at + "/texCoord: 2: /meshes/0/primitives/0 has no attribute TEXCOORD_2");
+  json transform = {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 9}}}}}};
+  EXPECT_EQ(error(transform),
+            prefix + ": /materials/0/pbrMetallicRoughness/baseColorTexture/extens...: 9: lucent reads "
+                     "texture coordinate sets 0 to 7");
+  transform["extensions"]["KHR_texture_transform"] = {{"texCoord", -1}};
+  EXPECT_EQ(error(transform),
+            prefix + ": /materials/0/pbrMetallicRoughness/baseColorTexture/extens...: expected a "
+                     "texture coordinate set (a whole number >= 0), got -1");
+  transform["extensions"]["KHR_texture_transform"] = {{"offset", {0.5, "a"}}};
+  EXPECT_EQ(error(transform),
+            prefix + ": /materials/0/pbrMetallicRoughness/baseColorTexture/extens...: \"a\" is not a "
+                     "finite number");
+  transform["extensions"]["KHR_texture_transform"] = {{"scale", {2.0}}};
+  EXPECT_EQ(error(transform),
+            prefix + ": /materials/0/pbrMetallicRoughness/baseColorTexture/extens...: expected 2 "
+                     "numbers, got [2.0]");
+  transform["extensions"]["KHR_texture_transform"] = {{"rotation", "half"}};
+  EXPECT_EQ(error(transform),
+            prefix + ": /materials/0/pbrMetallicRoughness/baseColorTexture/extens...: expected a "
+                     "number, got \"half\"");
+  // Finite values whose coordinates leave the float range.
+  transform["extensions"]["KHR_texture_transform"] = {{"scale", {1e300, 1.0}}};
+  EXPECT_EQ(error(transform),
+            prefix + ": /materials/0/pbrMetallicRoughness/baseColorTexture/extens...: turns vertex "
+                     "1's texture coordinates (1, 1) into (1e+300, 1), beyond a float");
+  // A number beyond a double (JSON has no NaN or infinity): one line naming the file.
+  write_text(p, std::string(two_set_gltf({{"index", 0}}).dump()).replace(
+                    two_set_gltf({{"index", 0}}).dump().find("\"index\":0"), 9,
+                    R"("index":0,"extensions":{"KHR_texture_transform":{"rotation":1e999}})"));
+  const std::string overflow = from_mesh_error(p);
+  EXPECT_EQ(overflow.find('\n'), std::string::npos) << overflow;
+  EXPECT_NE(overflow.find(p), std::string::npos) << overflow;
+}
+
 // A .glb: the JSON chunk (padded to 4 bytes, as the container requires) and the binary chunk.
 TEST(GltfMaterial, BinaryGltf) {
   json doc = triangle_gltf(kArtistMaterial);

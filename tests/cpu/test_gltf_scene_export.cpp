@@ -2,7 +2,10 @@
 // tinygltf: names, transforms, materials (the exact coefficients in extras.lucent; sigma_t, alpha and eta through
 // the standard extensions), the camera and the lights with the documented unit conversions, in .gltf and .glb.
 #include <cmath>
+#include <filesystem>
 #include <string>
+
+#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -12,8 +15,10 @@
 #include "../cli_runner.h"
 #include "../test_paths.h"
 #include "../test_support.h"
+#include "lucent/image.h"
 #include "lucent/scene.h"
 #include "lucent/scene_writer.h"
+#include "materials/material_maps.h"
 #include "scene/gltf_material.h"
 #include "scene/gltf_reader.h"
 
@@ -144,6 +149,116 @@ TEST(GltfSceneExport, RefusesToOverwriteItsInputs) {
   EXPECT_NE(test::error_message([&] { save_scene_gltf(scene, "/proc/lucent_no/such.gltf"); }).find("/proc/lucent_no"),
             std::string::npos);
   EXPECT_NE(test::error_message([&] { save_scene_gltf(scene, "out.obj"); }).find(".obj"), std::string::npos);
+}
+
+// ---- textures: the albedo map as the base colour texture ----
+
+// A 7 x 5 albedo map, each texel its own 8-bit colour, all inside the surface albedos the model reaches (linear
+// 0.021 to 0.51), and a scene of one box taking it.
+Scene textured_scene(const std::string& map_path, const std::string& scene_path) {
+  ImageRGBA8 image;
+  image.width = 7, image.height = 5;
+  image.pixels.resize(4 * 35);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 7; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      p[0] = static_cast<std::uint8_t>(40 + 25 * x), p[1] = static_cast<std::uint8_t>(50 + 30 * y);
+      p[2] = static_cast<std::uint8_t>(60 + 3 * (x + 7 * y)), p[3] = 255;
+    }
+  write_png(map_path, image);
+  const json scene = {
+      {"scale_mm", 1000}, {"lights", json::array({{{"direction", {0, -1, 0}}}})},
+      {"objects", json::array({{{"name", "block"}, {"shape", "box"}, {"size", {1.0, 0.5, 0.8}},
+                                {"material", {{"albedo_map", std::filesystem::path(map_path).filename().string()},
+                                              {"mfp_mm", {1.0, 0.5, 0.25}}, {"g", 0.3}, {"eta", 1.4}}}}})}};
+  return parse_scene(scene.dump(), scene_path, std::filesystem::path(map_path).parent_path().string());
+}
+
+// Export, then the file read back as an object's mesh and "from_mesh" material: the base colour texture is the
+// map, texel for texel (the decoded 8-bit values equal, so the same bytes; and the re-imported material's alpha per
+// texel equal, exactly), and each vertex's texture coordinates within 1e-6 (glTF stores 1 - v; 1 - (1 - v) is
+// within an ulp of 1).
+void check_texture_round_trip(const std::string& exported) {
+  const std::filesystem::path folder = std::filesystem::path(testing::TempDir()) / ("lucent_texture_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  const std::string map = (folder / "albedo.png").string();
+  const Scene scene = textured_scene(map, (folder / "s.json").string());
+  const SceneObject& original = scene.objects[0];
+  ASSERT_TRUE(original.material && original.material->textured());
+  save_scene_gltf(scene, exported);
+
+  const MapImage source = read_material_map(map, true, "test");
+  const GltfMaterial gltf = read_gltf_material(exported);
+  ASSERT_TRUE(gltf.base_color_texture.has_value());
+  ASSERT_EQ(gltf.base_color_texture->size, source.size);
+  for (std::size_t i = 0; i < source.texels.size(); ++i)
+    EXPECT_EQ(gltf.base_color_texture->texels[i], source.texels[i]) << "texel " << i;
+
+  const json reimport = {{"scale_mm", 1000}, {"lights", json::array({{{"direction", {0, -1, 0}}}})},
+                          {"objects", json::array({{{"mesh", exported}, {"material", "from_mesh"}}})}};
+  const Scene again = parse_scene(reimport.dump(), (folder / "t.json").string(), folder.string());
+  const SceneObject& object = again.objects[0];
+  ASSERT_TRUE(object.material && object.material->textured());
+  const MaterialMaps& a = *original.material->maps;
+  const MaterialMaps& b = *object.material->maps;
+  ASSERT_EQ(b.alpha_size, a.alpha_size);
+  for (std::size_t i = 0; i < a.alpha.size(); ++i) EXPECT_EQ(b.alpha[i], a.alpha[i]) << "texel " << i;
+  EXPECT_EQ(object.material->g, original.material->g);
+  EXPECT_EQ(object.material->eta, original.material->eta);
+  EXPECT_EQ(b.base_mfp_mm, a.base_mfp_mm);
+
+  // Vertices: the box's 24 (4 a face), told apart by position and normal (the object's transform is the identity
+  // and scale_mm 1000 makes the file's metres the scene's units).
+  ASSERT_EQ(object.mesh.positions.size(), original.mesh.positions.size());
+  for (std::size_t i = 0; i < original.mesh.positions.size(); ++i) {
+    std::size_t found = 0;
+    for (std::size_t j = 0; j < object.mesh.positions.size(); ++j) {
+      if (glm::length(object.mesh.positions[j] - original.mesh.positions[i]) > 1e-6f ||
+          glm::dot(object.mesh.normals[j], original.mesh.normals[i]) < 0.999f)
+        continue;
+      ++found;
+      EXPECT_NEAR(object.mesh.uvs[j].x, original.mesh.uvs[i].x, 1e-6f) << "vertex " << i;
+      EXPECT_NEAR(object.mesh.uvs[j].y, original.mesh.uvs[i].y, 1e-6f) << "vertex " << i;
+    }
+    EXPECT_EQ(found, 1u) << "vertex " << i;
+  }
+  std::filesystem::remove_all(folder);
+}
+
+TEST(GltfSceneExport, AlbedoMapIsTheBaseColourTextureInAGlb) {
+  test::TempFile glb(".glb");
+  check_texture_round_trip(glb.path());
+  const GltfFile file = read_gltf_file(glb.path());
+  ASSERT_EQ(file.model.images.size(), 1u);
+  EXPECT_EQ(file.model.images[0].mimeType, "image/png");
+  EXPECT_GE(file.model.images[0].bufferView, 0);  // in the binary chunk, no file beside it
+}
+
+TEST(GltfSceneExport, AlbedoMapIsAPngBesideAGltf) {
+  test::TempFile gltf(".gltf");
+  const std::string png = std::filesystem::path(gltf.path()).replace_extension("").string() + "_albedo_0.png";
+  check_texture_round_trip(gltf.path());
+  const GltfFile file = read_gltf_file(gltf.path());
+  ASSERT_EQ(file.model.images.size(), 1u);
+  EXPECT_EQ(file.model.images[0].uri, std::filesystem::path(png).filename().string());
+  EXPECT_TRUE(std::filesystem::is_regular_file(png));
+  std::filesystem::remove(png);
+}
+
+// The image beside a .gltf is an output like the file: one that would replace the scene's own map is refused,
+// and the map is left as it was.
+TEST(GltfSceneExport, AnImageThatWouldReplaceAnInputIsRefused) {
+  const std::filesystem::path folder = std::filesystem::path(testing::TempDir()) / ("lucent_texture_in_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  const std::string map = (folder / "x_albedo_0.png").string();
+  const Scene scene = textured_scene(map, (folder / "s.json").string());
+  const std::string before = test::read_text(map);
+  const std::string message = test::error_message([&] { save_scene_gltf(scene, (folder / "x.gltf").string()); });
+  EXPECT_NE(message.find(map), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_EQ(test::read_text(map), before);
+  EXPECT_FALSE(std::filesystem::exists(folder / "x.gltf"));
+  std::filesystem::remove_all(folder);
 }
 
 // `lucent export`: the scene file as one .glb that tinygltf reads, with the scene's object names; another output
