@@ -136,4 +136,48 @@ PrincipledConversion principled_subsurface_material(const PrincipledSubsurface& 
   return out;
 }
 
+PrincipledSubsurface principled_v1_equivalent(const PrincipledV2Subsurface& p, const std::string& where) {
+  check_unit_colour(p.base_color, "base_color", where);
+  // The Principled node gives the subsurface closure base_color * weight and a diffuse closure
+  // base_color * (1 - weight) (svm/closure.h): a mix lucent cannot put on one translucent object.
+  if (p.subsurface_weight != 1.0f)
+    fail(where, fmt::format("subsurface_weight = {}: Blender 4 mixes a diffuse surface (1 - weight) with the "
+                            "subsurface medium (weight); lucent renders the medium alone (weight 1); a weight of 0 "
+                            "is an opaque object (give it an albedo)", p.subsurface_weight));
+  // Cycles skips the subsurface closure at scale 0 (PrincipledBsdfNode::has_surface_bssrdf).
+  if (!(p.subsurface_scale > 0.0f && std::isfinite(p.subsurface_scale)))
+    fail(where, fmt::format("subsurface_scale = {} is out of range; allowed range (0, inf) scene units (0 is an "
+                            "opaque diffuse surface: give the object an albedo instead)", p.subsurface_scale));
+  for (int band = 0; band < 3; ++band)
+    if (!(p.subsurface_radius[band] > 0.0f && std::isfinite(p.subsurface_radius[band])))
+      fail(where, fmt::format("subsurface_radius[{}] = {} is out of range; allowed range (0, inf) (times "
+                              "subsurface_scale)", band, p.subsurface_radius[band]));
+  for (int band = 0; band < 3; ++band)
+    if (!(p.base_color[band] > 0.0f))
+      fail(where, fmt::format("base_color[{}] = 0: Blender 4's subsurface albedo is the base colour, and a black "
+                              "medium does not scatter; give the object an albedo instead", band));
+  if (!std::isfinite(p.ior)) fail(where, "ior is not finite");
+  PrincipledSubsurface v1;
+  v1.base_color = p.base_color;
+  v1.subsurface = 1.0f;
+  v1.subsurface_color = p.base_color;  // v2's subsurface albedo is the clamped base colour
+  v1.subsurface_radius = p.subsurface_radius * p.subsurface_scale;
+  v1.subsurface_anisotropy = p.subsurface_anisotropy;
+  if (p.method == PrincipledV2Method::RandomWalkSkin) {
+    // bssrdf_setup_radius's albedo-dependent branch, at Subsurface IOR: Blender 3's random_walk.
+    v1.method = PrincipledMethod::RandomWalk;
+    v1.subsurface_ior = p.subsurface_ior;
+  } else {
+    // bssrdf_setup_radius's 1 / (4 pi) branch: Blender 3's random_walk_fixed_radius; the IOR is not used.
+    v1.method = PrincipledMethod::RandomWalkFixedRadius;
+    v1.subsurface_ior = p.ior;
+  }
+  return v1;
+}
+
+PrincipledConversion principled_v2_subsurface_material(const PrincipledV2Subsurface& p, double scale_mm,
+                                                       const std::string& where) {
+  return principled_subsurface_material(principled_v1_equivalent(p, where), scale_mm, where);
+}
+
 }  // namespace lucent

@@ -1,5 +1,6 @@
-// principled_subsurface.h: the medium behind Blender 3.4's Principled BSDF subsurface (Cycles random walk), as
-// lucent coefficients.
+// principled_subsurface.h: the medium behind Blender's Principled BSDF subsurface (Cycles random walk), as lucent
+// coefficients: Blender 3.4's inputs (PrincipledSubsurface) and Blender 4's Principled v2 inputs
+// (PrincipledV2Subsurface, which becomes the Blender 3.4 inputs of the same medium; see the end of this file).
 //
 // Source: Blender 3.4 Cycles, intern/cycles/kernel/svm/svm_closure.h (Principled node),
 // kernel/closure/bssrdf.h (bssrdf_setup_radius) and kernel/integrator/subsurface_random_walk.h
@@ -63,5 +64,42 @@ double cycles_single_scattering_albedo(double albedo, double g);
 // <= 0, a colour outside [0, 1].
 PrincipledConversion principled_subsurface_material(const PrincipledSubsurface& p, double scale_mm,
                                                     const std::string& where);
+
+// Blender 4's Principled BSDF (v2). Read from Cycles 4.x: intern/cycles/scene/shader_nodes.cpp
+// (PrincipledBsdfNode: sockets and compile), kernel/svm/closure.h (svm_node_closure_bsdf, the Principled case's
+// subsurface part), kernel/closure/bssrdf.h (bssrdf_setup, bssrdf_setup_radius), and Blender's
+// source/blender/nodes/shader/nodes/node_shader_bsdf_principled.cc (socket defaults and ranges):
+//   closure weight base_color * subsurface_weight (a diffuse closure takes 1 - subsurface_weight: a mix);
+//   radius   = max(subsurface_radius * subsurface_scale, 0)   (the weight no longer scales it)
+//   albedo   = base_color clamped to [0, 1]                   (no Subsurface Color socket)
+//   ior      = the main IOR (after the Specular IOR Level adjustment), or Subsurface IOR under
+//              random_walk_skin; bssrdf_setup clamps it to [1.01, 3.8] and g to [0, 0.9]
+//   random_walk:      radius *= 1 / (4 pi)                    (Blender 3's random_walk_fixed_radius)
+//   random_walk_skin: radius *= sqrt(3 (1 - alpha'(albedo, ior)))  (Blender 3's random_walk)
+//   burley:           the Christensen-Burley disk profile, no medium.
+// The walk itself (integrator/subsurface_random_walk.h) is Blender 3.4's: the same remap of albedo and radius to
+// sigma_t and alpha, and a path leaves where it first crosses the surface; the IOR only bends the entry direction
+// (integrator/subsurface.h, subsurface_entry_bounce) under random_walk, and sets the radius under
+// random_walk_skin. So a v2 block is the v1 block subsurface 1, subsurface_color = base_color,
+// subsurface_radius = radius * scale, with the method renamed.
+enum class PrincipledV2Method { RandomWalk, RandomWalkSkin };
+
+struct PrincipledV2Subsurface {
+  glm::vec3 base_color{0.8f};                             // linear RGB [0, 1]: the subsurface albedo
+  float subsurface_weight = 1.0f;                         // [0, 1]; lucent renders 1 only (no diffuse mix)
+  glm::vec3 subsurface_radius{1.0f, 0.2f, 0.1f};          // per band, times subsurface_scale [scene units]
+  float subsurface_scale = 0.05f;                         // [scene units]
+  float ior = 1.5f;                                       // random_walk's entry only: no effect on the medium
+  float subsurface_ior = 1.4f;                            // random_walk_skin: sets the radius
+  float subsurface_anisotropy = 0.0f;                     // [0, 0.9] after Cycles' clamp
+  PrincipledV2Method method = PrincipledV2Method::RandomWalk;
+};
+
+// The Blender 3.4 inputs of the same medium; throws lucent::Error("<where>: <field> ...") for a weight other than 1,
+// a scale <= 0, a radius <= 0, a NaN.
+PrincipledSubsurface principled_v1_equivalent(const PrincipledV2Subsurface& p, const std::string& where);
+// principled_subsurface_material(principled_v1_equivalent(p)).
+PrincipledConversion principled_v2_subsurface_material(const PrincipledV2Subsurface& p, double scale_mm,
+                                                       const std::string& where);
 
 }  // namespace lucent

@@ -1,13 +1,16 @@
-// test_shader_materials.cpp: Blender 3.4 Principled and OpenPBR subsurface inputs as lucent materials
+// test_shader_materials.cpp: Blender 3.4 and Blender 4 (Principled v2) Principled and OpenPBR subsurface inputs
+// as lucent materials
 // (materials/principled_subsurface.h, materials/openpbr_subsurface.h, materials/shader_material_json.h), the
 // advice that names the models reaching an out-of-range albedo, and the objects' up_axis.
 //
 // Expected values: the Principled case below was computed by a separate Python script from the formulas in
 // docs/materials.md (bisection to 1e-30 on Jensen's R_d, double precision); the OpenPBR round trip by the model's
-// flat total of the converted material (an independent forward evaluation); the fit of Wrenninge et al. against
+// flat total of the converted material (an independent forward evaluation); the Blender 4 case likewise, by a
+// separate Python script from Cycles 4.x's formulas (below); the fit of Wrenninge et al. against
 // van de Hulst's independent formula for the same index-matched half-space; up_axis against a hand-computed vertex.
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -288,6 +291,143 @@ TEST(BlenderExport, ExampleSceneInLucentsFrame) {
   EXPECT_EQ(s.objects[0].material->sigma_a, expected.sigma_a);
   EXPECT_EQ(s.objects[0].material->name, "skin");
   EXPECT_FALSE(s.objects[1].material.has_value());
+}
+
+// Blender 4's Principled BSDF (v2), with Cycles 4.x's formulas: svm/closure.h (svm_node_closure_bsdf, Principled
+// case): radius = max(Subsurface Radius * Subsurface Scale, 0), albedo = Base Color clamped to [0, 1], ior = IOR
+// (Subsurface IOR under random_walk_skin), g = Subsurface Anisotropy; closure/bssrdf.h (bssrdf_setup): ior clamped
+// to [1.01, 3.8], g to [0, 0.9]; bssrdf_setup_radius: random_walk d *= 1 / (4 pi), random_walk_skin
+// d *= sqrt(3 (1 - alpha')) with alpha' solving Jensen's R_d(alpha') = A at the ior;
+// integrator/subsurface_random_walk.h (subsurface_random_walk_remap): sigma_t = 1 / (d (1 - g)), alpha from the
+// Wrenninge-Villemin-Hery fit at A and g.
+//
+// The case: base (0.85, 0.6, 0.4), weight 1, radius (1, 0.5, 0.25) x scale 0.004 m = (4, 2, 1) mm at scale_mm 1000,
+// IOR 1.5, Subsurface IOR 1.4, anisotropy 0.3. Computed with /usr/bin/python3 from those formulas (double precision,
+// bisection to convergence; not lucent's code):
+//   eta 1.4: F_dr = -1.44/1.96 + 0.71/1.4 + 0.668 + 0.0636 * 1.4 = 0.52949, 4/3 A_F = 4/3 * 1.52949 / 0.47051 = 4.3343
+//   random_walk_skin: alpha' = (0.999060005, 0.989000215, 0.955632533)
+//     d = (4, 2, 1) mm * sqrt(3 (1 - alpha')) = (0.21241416, 0.363314488, 0.364832018) mm
+//   alpha(A, 0.3) = (0.996930188, 0.965662742, 0.892002218) (both methods: the same A and g)
+//   sigma_t = 1 / (0.7 d) = (6.72540583, 3.93205193, 3.91569643) mm^-1
+//     sigma_s = alpha sigma_t = (6.7047601, 3.79703604, 3.4928099), sigma_a = (0.0206457295, 0.135015879, 0.422886529)
+//   random_walk: d = (4, 2, 1) mm / (4 pi) = (0.318309886, 0.159154943, 0.0795774715) mm (IOR not used)
+//     sigma_s = (4.47421222, 8.66776851, 16.0131864), sigma_a = (0.0137772827, 0.308210503, 1.93877165)
+// Tolerance 1e-5 relative (the inputs are floats: 0.004f is 0.004 (1 + 5e-8); the coefficients are stored as floats).
+constexpr double kV2SkinAlphaPrime[3] = {0.999060005, 0.989000215, 0.955632533};
+constexpr double kV2SkinRadiusMm[3] = {0.21241416, 0.363314488, 0.364832018};
+constexpr double kV2Alpha[3] = {0.996930188, 0.965662742, 0.892002218};
+constexpr double kV2SkinSigmaS[3] = {6.7047601, 3.79703604, 3.4928099};
+constexpr double kV2SkinSigmaA[3] = {0.0206457295, 0.135015879, 0.422886529};
+constexpr double kV2WalkRadiusMm[3] = {0.318309886, 0.159154943, 0.0795774715};
+constexpr double kV2WalkSigmaS[3] = {4.47421222, 8.66776851, 16.0131864};
+constexpr double kV2WalkSigmaA[3] = {0.0137772827, 0.308210503, 1.93877165};
+
+json principled_v2_block(const char* method) {
+  return {{"base_color", {0.85, 0.6, 0.4}}, {"subsurface_weight", 1}, {"subsurface_radius", {1, 0.5, 0.25}},
+          {"subsurface_scale", 0.004}, {"ior", 1.5}, {"subsurface_ior", 1.4}, {"subsurface_anisotropy", 0.3},
+          {"subsurface_method", method}};
+}
+
+TEST(PrincipledV2, RandomWalkSkinMatchesCycles4Formulas) {
+  PrincipledV2Subsurface p;
+  p.base_color = {0.85f, 0.6f, 0.4f};
+  p.subsurface_radius = {1.0f, 0.5f, 0.25f};
+  p.subsurface_scale = 0.004f;
+  p.ior = 1.5f;
+  p.subsurface_ior = 1.4f;
+  p.subsurface_anisotropy = 0.3f;
+  p.method = PrincipledV2Method::RandomWalkSkin;
+  const PrincipledConversion c = principled_v2_subsurface_material(p, 1000.0, "test");
+  const Scene scene = shader_test_scene({{"principled", principled_v2_block("random_walk_skin")}}, 1000.0);
+  const Material& m = *scene.objects[0].material;
+  for (int b = 0; b < 3; ++b) {
+    EXPECT_NEAR(c.alpha_prime[b], kV2SkinAlphaPrime[b], 1e-6) << "band " << b;
+    EXPECT_NEAR(c.radius_mm[b], kV2SkinRadiusMm[b], 1e-5 * kV2SkinRadiusMm[b]) << "band " << b;
+    EXPECT_NEAR(c.alpha[b], kV2Alpha[b], 1e-6) << "band " << b;
+    EXPECT_NEAR(m.sigma_s[b], kV2SkinSigmaS[b], 1e-5 * kV2SkinSigmaS[b]) << "band " << b;
+    EXPECT_NEAR(m.sigma_a[b], kV2SkinSigmaA[b], 1e-5 * kV2SkinSigmaA[b]) << "band " << b;
+  }
+  EXPECT_EQ(m.g, glm::vec3(0.3f));
+  EXPECT_EQ(m.eta, 1.0f);  // Cycles 4's walk leaves where it first crosses the surface, as 3.4's
+}
+
+TEST(PrincipledV2, RandomWalkUsesTheRadiusAsGiven) {
+  const Scene scene = shader_test_scene({{"principled", principled_v2_block("random_walk")}}, 1000.0);
+  const Material& m = *scene.objects[0].material;
+  for (int b = 0; b < 3; ++b) {
+    const double sigma_t_prime = (double(m.sigma_a[b]) + m.sigma_s[b]) * (1.0 - 0.3);
+    EXPECT_NEAR(1.0 / sigma_t_prime, kV2WalkRadiusMm[b], 1e-5 * kV2WalkRadiusMm[b]) << "band " << b;
+    EXPECT_NEAR(m.sigma_s[b], kV2WalkSigmaS[b], 1e-5 * kV2WalkSigmaS[b]) << "band " << b;
+    EXPECT_NEAR(m.sigma_a[b], kV2WalkSigmaA[b], 1e-5 * kV2WalkSigmaA[b]) << "band " << b;
+    EXPECT_NEAR(m.sigma_s[b] / (double(m.sigma_a[b]) + m.sigma_s[b]), kV2Alpha[b], 1e-6) << "band " << b;
+  }
+  // The main IOR only bends random_walk's entry: another IOR, the same medium.
+  json other_ior = principled_v2_block("random_walk");
+  other_ior["ior"] = 2.5;
+  const Material& m2 = *shader_test_scene({{"principled", other_ior}}, 1000.0).objects[0].material;
+  EXPECT_EQ(m2.sigma_s, m.sigma_s);
+  EXPECT_EQ(m2.sigma_a, m.sigma_a);
+}
+
+// One look in both versions' inputs: Blender 3.4's subsurface 1, subsurface_color C, radius r, subsurface_ior n is
+// Blender 4's weight 1, base_color C, radius r / s at scale s, with Blender 3's random_walk renamed random_walk_skin
+// (Subsurface IOR n) and random_walk_fixed_radius renamed random_walk. Relative 1e-6 (r / s * s in floats).
+TEST(PrincipledV2, SameLookAsBlender3Inputs) {
+  const json v1_walk = {{"base_color", 0.3}, {"subsurface", 1}, {"subsurface_color", {0.9, 0.5, 0.2}},
+                        {"subsurface_radius", {0.004, 0.002, 0.001}}, {"subsurface_ior", 1.3},
+                        {"subsurface_anisotropy", 0.5}};
+  const json v2_skin = {{"base_color", {0.9, 0.5, 0.2}}, {"subsurface_weight", 1},
+                        {"subsurface_radius", {0.08, 0.04, 0.02}}, {"subsurface_scale", 0.05}, {"ior", 1.45},
+                        {"subsurface_ior", 1.3}, {"subsurface_anisotropy", 0.5}, {"subsurface_method", "random_walk_skin"}};
+  json v1_fixed = v1_walk;
+  v1_fixed["subsurface_method"] = "random_walk_fixed_radius";
+  json v2_walk = v2_skin;
+  v2_walk["subsurface_method"] = "random_walk";
+  json v2_explicit = {{"version", 4}, {"base_color", {0.9, 0.5, 0.2}}, {"subsurface_radius", {0.08, 0.04, 0.02}},
+                      {"subsurface_scale", 0.05}, {"subsurface_anisotropy", 0.5}};  // weight 1 by default
+  const std::pair<json, json> pairs[] = {{v1_walk, v2_skin}, {v1_fixed, v2_walk}, {v1_fixed, v2_explicit}};
+  for (const auto& [v1, v2] : pairs) {
+    const Material a = *shader_test_scene({{"principled", v1}}, 1000.0).objects[0].material;
+    const Material b = *shader_test_scene({{"principled", v2}}, 1000.0).objects[0].material;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(b.sigma_s[k], a.sigma_s[k], 1e-6 * a.sigma_s[k]) << v2.dump() << " band " << k;
+      EXPECT_NEAR(b.sigma_a[k], a.sigma_a[k], 1e-6 * a.sigma_a[k]) << v2.dump() << " band " << k;
+    }
+    EXPECT_EQ(b.g, a.g);
+    EXPECT_EQ(b.eta, a.eta);
+  }
+  // Blender 3's random_walk and Blender 4's random_walk (a different radius scaling under one name) differ.
+  const Material v3 = *shader_test_scene({{"principled", v1_walk}}, 1000.0).objects[0].material;
+  const Material v4 = *shader_test_scene({{"principled", v2_walk}}, 1000.0).objects[0].material;
+  EXPECT_GT(std::abs(v4.sigma_s[0] / v3.sigma_s[0] - 1.0f), 0.1f);
+}
+
+TEST(PrincipledV2, SceneBlockErrors) {
+  EXPECT_EQ(shader_test_error({{"principled", {{"subsurface", 1}, {"subsurface_color", 0.5}, {"subsurface_scale", 0.1},
+                                               {"subsurface_method", "random_walk_skin"}}}}),
+            "s.json: /objects/0/material/principled: Blender 3's keys (subsurface, subsurface_color) and Blender 4's "
+            "keys (subsurface_scale, subsurface_method \"random_walk_skin\") in one block; give one version's inputs");
+  EXPECT_EQ(shader_test_error({{"principled", {{"version", 3}, {"subsurface_weight", 1}}}}),
+            "s.json: /objects/0/material/principled/version: 3 (Blender 3.4's Principled BSDF) with Blender 4's keys "
+            "(subsurface_weight); give one version's inputs");
+  EXPECT_EQ(shader_test_error({{"principled", {{"version", 4}, {"subsurface_method", "random_walk_fixed_radius"}}}}),
+            "s.json: /objects/0/material/principled/version: 4 (Blender 4's Principled BSDF) with Blender 3's keys "
+            "(subsurface_method \"random_walk_fixed_radius\"); give one version's inputs");
+  EXPECT_EQ(shader_test_error({{"principled", {{"subsurface_weight", 1.5}}}}),
+            "s.json: /objects/0/material/principled/subsurface_weight: 1.5 is out of range; allowed range [0, 1]");
+  EXPECT_EQ(shader_test_error({{"principled", {{"subsurface_weight", 1}, {"subsurface_scale", -0.1}}}}),
+            "s.json: /objects/0/material/principled/subsurface_scale: -0.1 is out of range; allowed range [0, 1e+30] "
+            "units");
+  EXPECT_EQ(shader_test_error({{"principled", {{"subsurface_weight", 0.5}}}}),
+            "s.json: /objects/0/material/principled: subsurface_weight = 0.5: Blender 4 mixes a diffuse surface "
+            "(1 - weight) with the subsurface medium (weight); lucent renders the medium alone (weight 1); a weight "
+            "of 0 is an opaque object (give it an albedo)");
+  EXPECT_EQ(shader_test_error({{"principled", {{"subsurface_weight", 1}, {"subsurface_scale", 0}}}}),
+            "s.json: /objects/0/material/principled: subsurface_scale = 0 is out of range; allowed range (0, inf) "
+            "scene units (0 is an opaque diffuse surface: give the object an albedo instead)");
+  EXPECT_EQ(shader_test_error({{"principled", {{"version", 4}, {"subsurface_method", "burley"}}}}),
+            "s.json: /objects/0/material/principled/subsurface_method: burley: Cycles' Christensen-Burley profile "
+            "has no medium to convert; use random_walk or random_walk_skin");
 }
 
 }  // namespace
