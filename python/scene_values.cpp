@@ -107,6 +107,7 @@ py::dict material_dict(const Material& m) {
   d["sigma_a"] = rgb(m.sigma_a), d["sigma_s"] = rgb(m.sigma_s), d["g"] = rgb(m.g);
   d["sigma_s_prime"] = rgb(m.sigma_s_prime()), d["sigma_t"] = rgb(m.sigma_t());
   d["eta"] = decimal(m.eta);
+  d["thickness_mm"] = decimal(m.thickness_mm);  // the multipole model's reflectance thickness (0: a half-space)
   d["textured"] = m.textured();
   d["field"] = std::string(to_string(m.field.type));
   return d;

@@ -1,12 +1,15 @@
 // scene_loader.cpp: JSON scene files -> Scene, validated against the parameter declarations.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <span>
 
 #include <fmt/format.h>
 #include <glm/gtc/constants.hpp>
@@ -29,7 +32,9 @@
 #include "scene/gltf_material.h"
 #include "scene/gltf_reader.h"
 #include "scene/mesh_loader.h"
+#include "cache/precompute_cache.h"
 #include "geometry/closest_point.h"
+#include "geometry/shape_diameter.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
@@ -109,6 +114,7 @@ constexpr ParamDecl kMaterialParams[] = {
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated|multipole", "diffusion model S_d (default: kDefaultBssrdfModel, the closest to volpath measured)"},
     {"thickness_mm", ParamType::Float, "0", "mm", 0, 1e30, "", "the thickness of the part, for the multipole model's reflectance (its transmittance takes the distance between the faces a light path joins); 0: reflect as a half-space"},
+    {"thickness_from_mesh", ParamType::Bool, "false", "", 0, 1, "", "thickness_mm measured on the object's mesh: the area-weighted median of its shape diameter, read as a slab's thickness"},
     {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the thick-slab total diffuse reflectance (with mfp_mm, instead of coefficients); a thinner object than the diffusion length shows less of it"},
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
     {"albedo_map", ParamType::String, "\"\"", "", 0, 0, "",
@@ -570,6 +576,41 @@ void warn_about_gltf_mean_free_paths(const json& objects, const Scene& scene) {
   }
 }
 
+bool thickness_from_mesh(const json& material) {
+  return material.is_object() && material.value("thickness_from_mesh", false);
+}
+
+// `"thickness_from_mesh": true`: the part's thickness from its mesh (after its transform, in mm), the shape diameter
+// read as a slab's thickness (geometry/shape_diameter.h).
+float measured_thickness_mm(const SceneObject& object, const JsonLocation& where, double scale_mm) {
+  if (object.material->thickness_mm > 0.0f)
+    fail(where.child("thickness_from_mesh"), "not with thickness_mm: the thickness is given or measured, not both");
+  if (object.blob_resolution > 0) fail(where.child("thickness_from_mesh"), "not for blobs (their surface is extracted per frame)");
+  // Cached with the precomputations (13 s for the 69k-triangle bunny on two cores): the median and the area share.
+  cache::Key key("shape-diameter", 1);
+  key.mesh(object.mesh);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) key.number(object.world_from_object[c][r]);
+  ShapeDiameter diameter;
+  std::array<double, 2> cached{};
+  if (std::optional<std::vector<std::byte>> bytes = cache::load(key); bytes && bytes->size() == sizeof(cached)) {
+    std::memcpy(cached.data(), bytes->data(), sizeof(cached));
+    diameter.median = cached[0], diameter.measured_area_fraction = cached[1];
+  } else {
+    try {
+      diameter = shape_diameter(object.mesh, object.world_from_object);
+    } catch (const Error& e) {
+      fail(where.child("thickness_from_mesh"), e.what());
+    }
+    cached = {diameter.median, diameter.measured_area_fraction};
+    cache::store(key, std::as_bytes(std::span(cached)));
+  }
+  if (diameter.measured_area_fraction < 0.9)
+    warn(fmt::format("{}: thickness_from_mesh: rays from {:.0f}% of the surface met nothing (an open mesh?); the "
+                     "thickness is the median of the rest", where.str(), 100.0 * (1.0 - diameter.measured_area_fraction)));
+  return static_cast<float>(diameter.median / kShapeDiameterOfUnitSlab * scale_mm);
+}
+
 SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir, double scale_mm) {
   ParamValues v = read_params(j, {"object", kObjectParams}, where, {"material", "profile", "deform"});
   SceneObject object;
@@ -605,6 +646,8 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
     if (j.at("material") == kFromMesh) read_mesh_material(object, where);
     else object.material = read_material(j.at("material"), where.child("material"), base_dir, scale_mm);
     if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
+    if (object.material && thickness_from_mesh(j.at("material")))
+      object.material->thickness_mm = measured_thickness_mm(object, where.child("material"), scale_mm);
     if (object.material && object.material->textured())
       if (const std::string problem = texture_coordinates_problem(object); !problem.empty())
         fail(where.child("material").child(map_key(*object.material->maps)), problem);

@@ -4,6 +4,9 @@
 // (lucent slab's Monte Carlo) for reflectance and transmittance.
 #include <cmath>
 #include <cstdio>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +14,11 @@
 #include "bssrdf/multipole.h"
 #include "bssrdf/multipole_table.h"
 #include "bssrdf/standard_dipole.h"
+#include "geometry/shape_diameter.h"
+#include "lucent/error.h"
+#include "lucent/mesh.h"
+#include "lucent/scene.h"
+#include "temp_cache_dir.h"
 #include "lucent/material.h"
 #include "transport/slab.h"
 
@@ -276,3 +284,57 @@ TEST(MultipoleTable, AThickSlabReflectsAsTheStandardDipoleForWhiteMedia) {
 }
 
 }  // namespace
+
+// The shape diameter (CGAL's sdf_values, raw ray lengths) of shapes whose thickness is known: a slab, the wall of a
+// hollow sphere, a solid sphere.
+TEST(ShapeDiameter, MeasuresSlabsShellsAndSpheres) {
+  // A 1 x 20 x 20 slab: rays in a 60-degree half-cone across a thickness d have lengths d / cos(theta); most of the
+  // area is far from the rims, so the median lies between d and d / cos(60) = 2d.
+  const lucent::ShapeDiameter slab = lucent::shape_diameter(lucent::make_box({1.0f, 20.0f, 20.0f}), glm::mat4(1.0f));
+  EXPECT_GT(slab.median, 1.0);
+  EXPECT_LT(slab.median, 1.3);
+  // The calibration that reads a diameter as a slab's thickness: this slab, and a thinner one (1 x 40 x 40).
+  EXPECT_NEAR(slab.median / lucent::kShapeDiameterOfUnitSlab, 1.0, 0.02);
+  const lucent::ShapeDiameter thin = lucent::shape_diameter(lucent::make_box({1.0f, 40.0f, 40.0f}), glm::mat4(1.0f));
+  EXPECT_NEAR(thin.median / lucent::kShapeDiameterOfUnitSlab, 1.0, 0.02);
+  EXPECT_GT(slab.measured_area_fraction, 0.99);
+  // Scaled by the object's transform: values in scene units.
+  const lucent::ShapeDiameter scaled =
+      lucent::shape_diameter(lucent::make_box({1.0f, 20.0f, 20.0f}), glm::scale(glm::mat4(1.0f), glm::vec3(3.0f)));
+  EXPECT_NEAR(scaled.median, 3.0 * slab.median, 0.03 * slab.median);
+  // A shell of wall 0.5 (radius 10): the wall reads as a slab of 0.5 (the curvature bends rays little).
+  const lucent::ShapeDiameter shell = lucent::shape_diameter(lucent::make_shell(10.0f, 9.5f, 48), glm::mat4(1.0f));
+  EXPECT_NEAR(shell.median / lucent::kShapeDiameterOfUnitSlab, 0.5, 0.5 * 0.05);
+  // A solid sphere of radius 1: chords 2 cos(theta) for rays at theta from the inward normal: between 1 and 2.
+  const lucent::ShapeDiameter sphere = lucent::shape_diameter(lucent::make_sphere(1.0f, 24, 48), glm::mat4(1.0f));
+  EXPECT_GT(sphere.median, 1.0);
+  EXPECT_LT(sphere.median, 2.0);
+  std::printf("shape diameter: slab 1 -> %.3f, shell wall 0.5 -> %.3f, sphere radius 1 -> %.3f\n", slab.median,
+              shell.median, sphere.median);
+  // Inward normals: no ray meets the mesh again.
+  lucent::TriangleMesh inside_out = lucent::make_box({1.0f, 2.0f, 2.0f});
+  for (std::size_t t = 0; t + 2 < inside_out.indices.size(); t += 3) std::swap(inside_out.indices[t + 1], inside_out.indices[t + 2]);
+  EXPECT_THROW(lucent::shape_diameter(inside_out, glm::mat4(1.0f)), lucent::Error);
+}
+
+// "thickness_from_mesh": a material's multipole thickness measured on its object's mesh: a slab 0.2 scene units
+// thick at 10 mm per unit reads 2 mm, 6 mm when the object is scaled by 3; given and measured together is refused.
+TEST(ShapeDiameter, ThicknessFromMeshInAScene) {
+  lucent::test::TempCacheDir cache;  // measured, not read from a cache of another run
+  const std::string slab = R"({"scale_mm": 10, "objects": [{"shape": "box", "size": [2, 2, 0.2],
+      "material": {"preset": "Skin1", "model": "multipole", "thickness_from_mesh": true}}]})";
+  const lucent::Scene scene = lucent::parse_scene(slab, "slab.json", "/");
+  EXPECT_NEAR(scene.objects[0].material->thickness_mm, 2.0, 0.04);
+  // Scaled by the object's transform (scale 3): 6 mm.
+  const std::string scaled = R"({"scale_mm": 10, "objects": [{"shape": "box", "size": [2, 2, 0.2], "scale": 3,
+      "material": {"preset": "Skin1", "model": "multipole", "thickness_from_mesh": true}}]})";
+  EXPECT_NEAR(lucent::parse_scene(scaled, "slab.json", "/").objects[0].material->thickness_mm, 6.0, 0.12);
+  const std::string both = R"({"objects": [{"shape": "box", "size": [2, 2, 0.2],
+      "material": {"preset": "Skin1", "thickness_mm": 2, "thickness_from_mesh": true}}]})";
+  try {
+    lucent::parse_scene(both, "slab.json", "/");
+    ADD_FAILURE() << "thickness_mm and thickness_from_mesh together were accepted";
+  } catch (const lucent::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("thickness_from_mesh: not with thickness_mm"), std::string::npos) << e.what();
+  }
+}
