@@ -1,6 +1,7 @@
 // shader_material_json.h: a material given as another renderer's shader parameters, read from JSON (a scene
 // file's material object, `lucent materials invert --principled/--openpbr`):
-//   {"principled": {<Blender 3.4 Principled BSDF subsurface inputs>}}  (materials/principled_subsurface.h)
+//   {"principled": {<Principled BSDF subsurface inputs: Blender 3.4, or Blender 4 with "version": 4>}}
+//                                                       (materials/principled_subsurface.h)
 //   {"openpbr": {<OpenPBR Surface subsurface inputs>}, "model": "standard"}  (materials/openpbr_subsurface.h)
 // Lengths are in scene units, turned into mm by the scene's scale_mm. Keys and defaults: kPrincipledParams and
 // kOpenPbrParams (docs/materials.md).
