@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "bssrdf/multipole.h"
 #include "io/printable_text.h"
 #include "lucent/error.h"
 #include "materials/artist_parameters.h"
@@ -173,12 +174,12 @@ glm::dvec2 read_pair(const json& object, const char* key, glm::dvec2 fallback, c
 }
 
 // The sets a mesh loader reads: assimp keeps 8 (AI_MAX_NUMBER_OF_TEXTURECOORDS).
-constexpr int kTextureCoordinateSets = 8;
+constexpr int kUvSetsRead = 8;
 
 // The set `set` must be an attribute of every primitive (lucent's mesh is all of the file's primitives).
 void require_texture_coordinate_set(const tinygltf::Model& model, int set, const JsonLocation& where) {
-  if (set >= kTextureCoordinateSets)
-    fail(where, fmt::format("{}: lucent reads texture coordinate sets 0 to {}", set, kTextureCoordinateSets - 1));
+  if (set >= kUvSetsRead)
+    fail(where, fmt::format("{}: lucent reads texture coordinate sets 0 to {}", set, kUvSetsRead - 1));
   const std::string attribute = fmt::format("TEXCOORD_{}", set);
   for (std::size_t m = 0; m < model.meshes.size(); ++m)
     for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p)
@@ -470,6 +471,90 @@ json absorbing_medium(const GltfMaterial& m, const json& extras, GltfLucentMater
   return j;
 }
 
+// A thin-walled material, KHR_materials_diffuse_transmission without a volume: glTF's surface reflects (1 - f) B
+// diffusely and transmits f D. lucent renders it as a sheet of the multipole model (a slab of thickness d whose
+// faces are both the surface) whose reflectance and transmittance totals are those, per band: the reduced albedo
+// alpha' and optical thickness tau with multipole_beam_totals(alpha', eta, tau) = (R, T); then sigma_t' = tau / d.
+constexpr double kDefaultSheetThicknessMm = 0.5;  // a leaf, paper or a lampshade's fabric: tenths of a millimetre
+constexpr double kSheetTauMin = 0.25, kSheetTauMax = 64.0;  // the multipole tables' optical thicknesses
+constexpr double kSheetAlphaMax = 0.999999;
+
+// The optical thickness with transmittance T at reduced albedo a. The light a sheet scatters through it rises from
+// nothing at tau 0 (nothing scattered yet) to a peak and falls: the thicker of the two solutions, on the falling
+// side, clamped to the peak when T is more than any thickness transmits and to the tables' range.
+glm::vec2 sheet_totals(double a, double eta, double tau) {
+  const shader::vec2 t = shader::multipole_beam_totals(static_cast<float>(a), static_cast<float>(eta), static_cast<float>(tau));
+  return {t.x, t.y};
+}
+
+double sheet_tau(double a, double eta, double T) {
+  constexpr int kScan = 48;
+  double peak = kSheetTauMin, peak_T = -1.0;
+  for (int i = 0; i < kScan; ++i) {
+    const double tau = kSheetTauMin * std::pow(kSheetTauMax / kSheetTauMin, i / (kScan - 1.0));
+    if (const double t = sheet_totals(a, eta, tau).y; t > peak_T) peak = tau, peak_T = t;
+  }
+  if (T >= peak_T) return peak;
+  double lo = peak, hi = kSheetTauMax;
+  for (int i = 0; i < 40; ++i) {
+    const double mid = std::sqrt(lo * hi);  // geometric: tau spans decades
+    (sheet_totals(a, eta, mid).y > T ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+json thin_sheet(const GltfMaterial& m, const json& extras, GltfLucentMaterial& out) {
+  double d_mm = kDefaultSheetThicknessMm;
+  if (extras.contains("thickness_mm")) {
+    const json& t = extras["thickness_mm"];
+    if (!t.is_number() || !(t.get<double>() > 0.0 && t.get<double>() <= 1e6))
+      fail(material_at(m).child("extras").child("lucent").child("thickness_mm"),
+           fmt::format("{}: the sheet's thickness in mm, a number in (0, 1e6]", excerpt(t)));
+    d_mm = t.get<double>();
+  } else {
+    out.notes.push_back(fmt::format("thin-walled (KHR_materials_diffuse_transmission without KHR_materials_volume): "
+                                    "rendered as a sheet {:g} mm thick; extras.lucent.thickness_mm sets it",
+                                    d_mm));
+  }
+  if (m.has_volume) out.ignored.push_back("KHR_materials_volume (thicknessFactor 0: thin-walled)");
+  glm::vec3 base = m.base_color;
+  if (m.base_color_texture) {
+    base *= map_mean(*m.base_color_texture);
+    out.ignored.push_back("baseColorTexture (a thin-walled sheet is one medium: the texture's mean times the factor)");
+  }
+  const double f = m.diffuse_transmission_factor, eta = m.ior;
+  glm::dvec3 sigma_a, sigma_s_prime;
+  for (int b = 0; b < 3; ++b) {
+    const double R = (1.0 - f) * base[b], T = f * m.diffuse_transmission_color[b];
+    if (!(T > 0.0)) fail(zero_albedo_key(m, b), "makes the sheet's transmittance 0 in a band; a sheet needs both");
+    if (!(R > 0.0)) fail(zero_albedo_key(m, b), "makes the sheet's reflectance 0 in a band; lucent's media reflect light");
+    // Along the curve of alpha' that keeps T, R rises with alpha' (less absorbed, more reflected): bisection.
+    double lo = 0.0, hi = kSheetAlphaMax;
+    for (int i = 0; i < 40; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (sheet_totals(mid, eta, sheet_tau(mid, eta, T)).x < R ? lo : hi) = mid;
+    }
+    const double alpha = 0.5 * (lo + hi), tau = sheet_tau(alpha, eta, T);
+    const glm::vec2 got = sheet_totals(alpha, eta, tau);
+    if (std::abs(got.x - R) > 0.01 || std::abs(got.y - T) > 0.01)
+      out.clamped.push_back(fmt::format("band {}: the sheet's reflectance and transmittance ({:.3f}, {:.3f}) moved to "
+                                        "({:.3f}, {:.3f}), the nearest a {:g} mm multipole sheet at eta {:.3g} gives "
+                                        "(optical thickness {:g} to {:g})",
+                                        b, R, T, got.x, got.y, d_mm, eta, kSheetTauMin, kSheetTauMax));
+    const double sigma_t = tau / d_mm;
+    sigma_s_prime[b] = alpha * sigma_t;
+    sigma_a[b] = (1.0 - alpha) * sigma_t;
+  }
+  out.sheet_thickness_mm = d_mm;
+  return {{"sigma_a", array(sigma_a)}, {"sigma_s_prime", array(sigma_s_prime)}, {"eta", eta},
+          {"model", "multipole"}, {"thickness_mm", d_mm}};
+}
+
+bool thin_walled_diffuse(const GltfMaterial& m, const json& extras) {
+  return m.has_diffuse_transmission && m.diffuse_transmission_factor > 0.0f && !(m.transmission_factor > 0.0f) &&
+         !m.has_volume_scatter && !(m.has_volume && m.thickness_factor > 0.0f) && !extras.contains("mfp_mm");
+}
+
 // extras.lucent.albedo_map "baseColorTexture" (lucent's export of a textured material): the surface albedo per
 // texel is the base colour itself (factor x texel), the medium extras.lucent's (mfp_mm, g, eta, model); the glTF
 // extensions are for other tools.
@@ -553,6 +638,16 @@ GltfLucentMaterial lucent_material(const GltfMaterial& m) {
   if (coefficients) {
     out.material = {{"eta", m.ior}};
     if (m.base_color_texture) out.ignored.push_back("baseColorTexture (extras.lucent gives the coefficients)");
+  } else if (thin_walled_diffuse(m, extras)) {
+    out.material = thin_sheet(m, extras, out);
+    json rest = extras;
+    rest.erase("thickness_mm");  // the sheet's, already in the material
+    if (rest.contains("model") && rest["model"] != "multipole")
+      out.ignored.push_back(fmt::format("extras.lucent.model {} (a thin-walled sheet is the multipole model's)",
+                                        excerpt(rest["model"])));
+    rest.erase("model");
+    out.material.update(rest);
+    return out;
   } else if (m.has_volume_scatter) {
     out.material = scattering_medium(m, out);
   } else {

@@ -86,6 +86,10 @@ struct GltfLucentMaterial {
   std::optional<MapImage> albedo_map;     // the surface albedo A per texel (translucent, textured)
   std::vector<std::string> ignored;       // the material's ignored fields, with the mapping's own
   std::vector<std::string> clamped;       // surface albedos moved into the model's range, for a warning
+  // A thin-walled material (KHR_materials_diffuse_transmission without a volume): the sheet's thickness [mm], which
+  // the object's surface is thickened to (geometry/sheet_solid.h); 0 for a material with a volume.
+  double sheet_thickness_mm = 0.0;
+  std::vector<std::string> notes;         // other warnings about the mapping (the sheet's default thickness)
 };
 // Throws lucent::Error("<path>: <pointer>: ...") at a key of the file when a translucent material lacks what lucent
 // needs or a value leaves the ranges lucent's media take.

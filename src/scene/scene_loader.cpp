@@ -35,6 +35,7 @@
 #include "cache/precompute_cache.h"
 #include "geometry/closest_point.h"
 #include "geometry/shape_diameter.h"
+#include "geometry/sheet_solid.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
@@ -519,7 +520,7 @@ void attach_albedo_map(Material& m, const MapImage& albedo, const JsonLocation& 
 // "material": "from_mesh": the material of the object's glTF mesh (scene/gltf_material.h); an opaque glTF material
 // makes the object opaque with its base colour. One warning line names the fields lucent does not use.
 constexpr const char* kFromMesh = "from_mesh";
-void read_mesh_material(SceneObject& object, const JsonLocation& where) {
+void read_mesh_material(SceneObject& object, const JsonLocation& where, double scale_mm) {
   const std::filesystem::path mesh = object.mesh_file;
   std::string extension = mesh.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -532,6 +533,7 @@ void read_mesh_material(SceneObject& object, const JsonLocation& where) {
     if (const std::string fields = ignored_fields_warning(gltf, mapped.ignored); !fields.empty()) warn(fields);
     for (const std::string& clamped : mapped.clamped)
       warn(fmt::format("{}: /materials/{}: {}", object.mesh_file, gltf.index, clamped));
+    for (const std::string& note : mapped.notes) warn(fmt::format("{}: /materials/{}: {}", object.mesh_file, gltf.index, note));
     if (mapped.material.is_null()) {
       object.albedo = mapped.opaque_albedo;
       return;
@@ -539,6 +541,10 @@ void read_mesh_material(SceneObject& object, const JsonLocation& where) {
     const JsonLocation at{object.mesh_file, fmt::format("/materials/{}", gltf.index)};
     object.material = read_material(mapped.material, at, mesh.parent_path().string());
     if (!gltf.name.empty() && !mapped.material.contains("preset")) object.material->name = gltf.name;
+    if (mapped.sheet_thickness_mm > 0.0) {  // thin-walled: the surface thickened into a sheet (or a hollow shell)
+      const double object_scale = std::cbrt(std::abs(glm::determinant(glm::mat3(object.world_from_object))));
+      object.mesh = sheet_solid(object.mesh, static_cast<float>(mapped.sheet_thickness_mm / scale_mm / object_scale));
+    }
     if (mapped.albedo_map) {  // the texture's coordinates: its set (the mesh was read with set 0) and transform
       if (const int set = gltf.base_color_coordinates.set; set != 0) {
         TriangleMesh with_set = load_mesh_with_uv_set(object.mesh_file, static_cast<unsigned>(set));
@@ -569,6 +575,7 @@ void warn_about_gltf_mean_free_paths(const json& objects, const Scene& scene) {
     const float extent_mm = std::min({size.x, size.y, size.z}) * scene.scale_mm;
     const glm::vec3 mfp = 1.0f / object.material->sigma_t();
     if (std::max({mfp.x, mfp.y, mfp.z}) < kComparableMeanFreePath * extent_mm) continue;
+    if (object.material->model == BssrdfModel::Multipole) continue;  // its slab has the part's thickness
     warn(fmt::format("{}: /objects/{}: the mean free path ({:.3g}, {:.3g}, {:.3g}) mm of {}'s material is comparable to "
                      "or larger than the object, {:.3g} mm across at its thinnest (scale_mm {:g}): light crosses it in "
                      "a few scattering steps, which the diffusion models do not see (volpath does)",
@@ -643,11 +650,16 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
   object.albedo = v.vec3("albedo");
   if (j.contains("material")) {
     if (j.contains("albedo")) fail(where.child("albedo"), "an object is translucent (material) or opaque (albedo)");
-    if (j.at("material") == kFromMesh) read_mesh_material(object, where);
+    if (j.at("material") == kFromMesh) read_mesh_material(object, where, scale_mm);
     else object.material = read_material(j.at("material"), where.child("material"), base_dir, scale_mm);
     if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
-    if (object.material && thickness_from_mesh(j.at("material")))
-      object.material->thickness_mm = measured_thickness_mm(object, where.child("material"), scale_mm);
+    if (object.material && thickness_from_mesh(j.at("material"))) {
+      if (object.material->model == BssrdfModel::Multipole)
+        object.material->thickness_mm = measured_thickness_mm(object, where.child("material"), scale_mm);
+      else  // only the multipole model has a thickness: not measured (it costs seconds on a large mesh)
+        warn(fmt::format("{}: thickness_from_mesh: only the multipole model uses a thickness (this material's model "
+                         "is {}); not measured", where.child("material").str(), to_string(object.material->model)));
+    }
     if (object.material && object.material->textured())
       if (const std::string problem = texture_coordinates_problem(object); !problem.empty())
         fail(where.child("material").child(map_key(*object.material->maps)), problem);

@@ -3,9 +3,12 @@
 // mesh's material ("material": "from_mesh"), the export -> import round trip (exact through extras.lucent, and
 // within the inversion's tolerance through the standard extensions alone), the one warning line of ignored fields,
 // and one error line at a key of the file for each bad one.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,6 +22,7 @@
 #include "lucent/scene_writer.h"
 #include "lucent/warning.h"
 #include "lucent/image.h"
+#include "bssrdf/multipole.h"
 #include "materials/artist_parameters.h"
 #include "materials/model_total_reflectance.h"
 #include "scene/gltf_material.h"
@@ -238,6 +242,59 @@ TEST(GltfMaterial, TexturedDiffuseTransmissionWithoutBaseColorFactor) {
   }
 }
 
+// A thin-walled material (KHR_materials_diffuse_transmission, no volume) is a multipole sheet: glTF's diffuse
+// reflectance (1 - f) B and transmittance f D are the sheet's totals (the model's own, multipole_beam_totals, at the
+// material's reduced albedo and optical thickness, within 0.01), and the surface, here one triangle, is thickened
+// into a closed solid: the triangle, its copy 0.5 mm behind (the default, with a warning) and three walls.
+TEST(GltfMaterial, ThinWalledDiffuseTransmissionIsAMultipoleSheet) {
+  const json material = json::parse(R"({"pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.5, 0.4, 1]},
+    "extensions": {"KHR_materials_ior": {"ior": 1.4},
+      "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.3, "diffuseTransmissionColorFactor": [0.8, 0.6, 0.4]}}})");
+  test::TempFile file(".gltf");
+  write_text(file.path(), triangle_gltf(material).dump());
+  std::vector<std::string> warnings;
+  const SceneObject o = from_mesh(file.path(), &warnings, 10.0f);  // the triangle's legs are 10 mm
+  ASSERT_TRUE(o.material);
+  const Material& m = *o.material;
+  EXPECT_EQ(m.model, BssrdfModel::Multipole);
+  EXPECT_FLOAT_EQ(m.thickness_mm, 0.5f);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("rendered as a sheet 0.5 mm thick; extras.lucent.thickness_mm sets it"), std::string::npos)
+      << warnings[0];
+  const glm::vec3 R{0.42f, 0.35f, 0.28f}, T{0.24f, 0.18f, 0.12f};  // (1 - 0.3) B and 0.3 D
+  for (int b = 0; b < 3; ++b) {
+    const float sigma_s_prime = m.sigma_s_prime()[b], sigma_t_prime = sigma_s_prime + m.sigma_a[b];
+    const shader::vec2 totals = shader::multipole_beam_totals(sigma_s_prime / sigma_t_prime, 1.4f, sigma_t_prime * 0.5f);
+    EXPECT_NEAR(totals.x, R[b], 0.01) << b;
+    EXPECT_NEAR(totals.y, T[b], 0.01) << b;
+  }
+  // The solid: 1 + 1 + 3 x 2 triangles; every edge met by two triangles in opposite directions (closed, consistently
+  // wound); the back face 0.05 scene units (0.5 mm at 10 mm per unit) behind the front along -z.
+  ASSERT_EQ(o.mesh.indices.size(), 3u * 8u);
+  std::map<std::pair<std::array<float, 3>, std::array<float, 3>>, int> edges;
+  for (std::size_t t = 0; t < o.mesh.indices.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 a = o.mesh.positions[o.mesh.indices[t + static_cast<std::size_t>(k)]];
+      const glm::vec3 b = o.mesh.positions[o.mesh.indices[t + static_cast<std::size_t>((k + 1) % 3)]];
+      ++edges[{{a.x, a.y, a.z}, {b.x, b.y, b.z}}];
+    }
+  for (const auto& [edge, count] : edges) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ((edges.count({edge.second, edge.first})), 1u) << "an edge without its opposite: the solid is open";
+  }
+  float z_min = 0.0f;
+  for (const glm::vec3& p : o.mesh.positions) z_min = std::min(z_min, p.z);
+  EXPECT_NEAR(z_min, -0.05f, 1e-6f);
+
+  // Given in extras.lucent.thickness_mm: no warning, that thickness.
+  json given = material;
+  given["extras"] = {{"lucent", {{"thickness_mm", 2.0}}}};
+  write_text(file.path(), triangle_gltf(given).dump());
+  const SceneObject thick = from_mesh(file.path(), &warnings, 10.0f);
+  EXPECT_TRUE(warnings.empty()) << warnings[0];
+  EXPECT_FLOAT_EQ(thick.material->thickness_mm, 2.0f);
+}
+
 Material artist_material(float g) {
   const json scene = {{"lights", kLight},
                       {"objects", json::array({json{{"shape", "box"},
@@ -304,12 +361,19 @@ TEST(GltfMaterial, BadFilesGiveOneLineAtAKeyOfTheFile) {
   EXPECT_EQ(with_material(p, volume),
             prefix + ": /materials/0/extensions/KHR_materials_volume: no attenuationDistance (glTF's default: "
                      "infinite, a clear medium); lucent's medium needs one, or extras.lucent.mfp_mm");
-  json thin = kArtistMaterial;
+  json thin = kArtistMaterial;  // thin-walled specular transmission: no sheet for it (diffuse: see below)
   thin["extensions"].erase("KHR_materials_volume");
+  thin["extensions"].erase("KHR_materials_diffuse_transmission");
+  thin["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 0.5}};
   EXPECT_EQ(with_material(p, thin),
-            prefix + ": /materials/0/extensions/KHR_materials_diffuse_transmission: thin-walled (no "
+            prefix + ": /materials/0/extensions/KHR_materials_transmission: thin-walled (no "
                      "KHR_materials_volume): lucent renders a medium and needs its attenuationDistance, or "
                      "extras.lucent.mfp_mm");
+  thin = kArtistMaterial;
+  thin["extensions"].erase("KHR_materials_volume");
+  thin["extras"]["lucent"]["thickness_mm"] = -1;
+  EXPECT_EQ(with_material(p, thin),
+            prefix + ": /materials/0/extras/lucent/thickness_mm: -1: the sheet's thickness in mm, a number in (0, 1e6]");
   // attenuationDistance: any positive distance, 0 and negative ones refused under the same stated range.
   for (const double d : {0.0, -1.0}) {
     volume = kArtistMaterial;

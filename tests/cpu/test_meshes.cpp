@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "lucent/error.h"
+#include "geometry/sheet_solid.h"
 #include "lucent/mesh.h"
 #include "../mesh_topology.h"
 
@@ -388,4 +389,19 @@ TEST_F(LoadMesh, ThreeDsCubeFromGlmark2) {
   TriangleMesh cube = lucent::load_mesh(path);
   EXPECT_EQ(triangle_count(cube), 12u);
   expect_unit_normals(cube);
+}
+
+// A closed surface made a sheet is a hollow shell: no walls, the inner surface the outer one moved inward by the
+// thickness along its normals, wound the other way (every edge met twice, in opposite directions).
+TEST(SheetSolid, AClosedSurfaceBecomesAHollowShell) {
+  const lucent::TriangleMesh sphere = lucent::make_sphere(1.0f, 12, 24);
+  const lucent::TriangleMesh shell = lucent::sheet_solid(sphere, 0.1f);
+  ASSERT_EQ(shell.indices.size(), 2 * sphere.indices.size());
+  for (std::size_t v = sphere.positions.size(); v < shell.positions.size(); ++v)
+    EXPECT_NEAR(glm::length(shell.positions[v]), 0.9f, 0.01f) << v;  // the vertex normals of a sphere are radial
+  const glm::vec3 a = shell.positions[shell.indices[sphere.indices.size()]];
+  const glm::vec3 b = shell.positions[shell.indices[sphere.indices.size() + 1]];
+  const glm::vec3 c = shell.positions[shell.indices[sphere.indices.size() + 2]];
+  EXPECT_LT(glm::dot(glm::cross(b - a, c - a), a), 0.0f);  // inner faces face the centre
+  EXPECT_THROW(lucent::sheet_solid(sphere, 0.0f), lucent::Error);
 }

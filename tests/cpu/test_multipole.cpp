@@ -330,7 +330,7 @@ TEST(ShapeDiameter, ThicknessFromMeshInAScene) {
       "material": {"preset": "Skin1", "model": "multipole", "thickness_from_mesh": true}}]})";
   EXPECT_NEAR(lucent::parse_scene(scaled, "slab.json", "/").objects[0].material->thickness_mm, 6.0, 0.12);
   const std::string both = R"({"objects": [{"shape": "box", "size": [2, 2, 0.2],
-      "material": {"preset": "Skin1", "thickness_mm": 2, "thickness_from_mesh": true}}]})";
+      "material": {"preset": "Skin1", "model": "multipole", "thickness_mm": 2, "thickness_from_mesh": true}}]})";
   try {
     lucent::parse_scene(both, "slab.json", "/");
     ADD_FAILURE() << "thickness_mm and thickness_from_mesh together were accepted";
