@@ -110,6 +110,17 @@ void remove_resident(ContextResident* resident) {
   std::erase(residents, resident);
 }
 
+void forget_resident(ContextResident* resident) {
+  const std::lock_guard<std::mutex> lock(module_context().mutex);
+  remove_resident(resident);
+}
+
+unsigned existing_context_generation() {
+  ModuleContext& state = module_context();
+  const std::lock_guard<std::mutex> lock(state.mutex);
+  return state.context ? state.generation : 0u;
+}
+
 CurrentContext::~CurrentContext() { context_->release_current(); }
 
 void bind_context(py::module_& m) {

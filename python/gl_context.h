@@ -38,5 +38,10 @@ class ContextResident {
 };
 void add_resident(ContextResident* resident);
 void remove_resident(ContextResident* resident);
+// The same without holding a CurrentContext (takes the module's mutex itself): for a resident whose context could
+// not be made current.
+void forget_resident(ContextResident* resident);
+// The generation of the module's context if one exists now, else 0; never creates one.
+unsigned existing_context_generation();
 
 }  // namespace lucent::python

@@ -1,8 +1,11 @@
 // renderer.cpp: lucent.Renderer: a live renderer, built once (scene upload, shaders, the method's precomputation)
 // and then rendered many times with new cameras and edits, as the viewer does: only what an edit touches is redone
 // (lucent::Renderer::scene_changed), and frames accumulate while nothing but the frame count changes.
+#include <algorithm>
 #include <cmath>
+#include <exception>
 #include <memory>
+#include <mutex>
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>
@@ -39,22 +42,60 @@ struct Built {
   ~Built() {
     if (!renderer && !target) return;
     try {
-      const CurrentContext current;
-      if (current.generation() == generation) {
-        target.reset();
-        renderer.reset();
-        return;
+      if (existing_context_generation() == generation) {
+        const py::gil_scoped_release unlocked;
+        const CurrentContext current;
+        if (current.generation() == generation) {
+          target.reset();
+          renderer.reset();
+          return;
+        }
       }
-    } catch (...) {  // no context can be made: nothing to delete the objects in
+    } catch (...) {  // the context cannot be made current: nothing to delete the objects in
     }
     (void)target.release();
     (void)renderer.release();
   }
 };
 
+// Where the renderer's progress callback reports: the call in flight (its LongCallControl) or none. Shared by the
+// PyRenderer and the callback lucent::Renderer keeps for its later rebuilds, so neither outlives what it points at.
+class ProgressSlot {
+ public:
+  void attach(LongCallControl* control) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    control_ = control;
+  }
+  // Reports a step's fraction to the call in flight; throws BuildInterrupted when that call was stopped.
+  void report(std::string_view step, double fraction) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!control_) return;
+    if (control_->stop) throw BuildInterrupted{};
+    control_->set_step(step);
+    control_->fraction = fraction;
+  }
+
+ private:
+  std::mutex mutex_;
+  LongCallControl* control_ = nullptr;
+};
+
+// Attaches a call's control to the slot for as long as the call's work runs.
+class AttachedControl {
+ public:
+  AttachedControl(ProgressSlot& slot, LongCallControl& control) : slot_(slot) { slot_.attach(&control); }
+  ~AttachedControl() { slot_.attach(nullptr); }
+  AttachedControl(const AttachedControl&) = delete;
+  AttachedControl& operator=(const AttachedControl&) = delete;
+
+ private:
+  ProgressSlot& slot_;
+};
+
 // Three finite numbers.
 glm::vec3 vector3(const py::handle& value, const std::string& what) {
-  if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::len(value) != 3)
+  if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
+      PyByteArray_Check(value.ptr()) || py::len(value) != 3)
     throw py::type_error(fmt::format("{}: expected three numbers", what));
   glm::dvec3 v{0.0};
   const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
@@ -65,6 +106,8 @@ glm::vec3 vector3(const py::handle& value, const std::string& what) {
       throw py::type_error(fmt::format("{}: expected three numbers", what));
     }
     if (!std::isfinite(v[i])) throw py::value_error(fmt::format("{}[{}]: {} is not finite", what, i, v[i]));
+    if (!(std::abs(v[i]) <= 1e9))  // the scene loader's range for positions
+      throw py::value_error(fmt::format("{}[{}]: {} is out of range; allowed range [-1e9, 1e9] scene units", what, i, v[i]));
   }
   return glm::vec3(v);
 }
@@ -81,29 +124,44 @@ Camera camera_from(const py::handle& value, const Scene& scene, Camera camera) {
     else if (name == "up") camera.up = vector3(item, "camera.up");
     else if (name == "fov_y_deg") {
       double fov = 0.0;
+      if (py::isinstance<py::bool_>(item)) throw py::type_error("camera.fov_y_deg: expected a number");
       try {
         fov = py::cast<double>(item);
       } catch (const py::cast_error&) {
         throw py::type_error("camera.fov_y_deg: expected a number");
       }
-      if (!(fov > 0.0 && fov < 180.0))
-        throw py::value_error(fmt::format("camera.fov_y_deg: {} is out of range; allowed range (0, 180) degrees", fov));
+      if (!(fov >= 1.0 && fov <= 179.0))  // the scene loader's range
+        throw py::value_error(fmt::format("camera.fov_y_deg: {} is out of range; allowed range [1, 179] degrees", fov));
       camera.fov_y_deg = static_cast<float>(fov);
     } else {
       throw py::value_error(fmt::format("camera: unknown key '{}'; known keys: eye, target, up, fov_y_deg", name));
     }
   }
   const glm::vec3 forward = camera.target - camera.eye;
-  if (!(glm::length(forward) > 0.0f)) throw py::value_error("camera: eye and target are the same point");
+  const float scale = std::max({1.0f, glm::length(camera.eye), glm::length(camera.target)});
+  if (!(glm::length(forward) > 1e-5f * scale))
+    throw py::value_error("camera: eye and target are the same point (or closer than float precision tells apart)");
   if (!(glm::length(glm::cross(forward, camera.up)) > 1e-6f * glm::length(forward) * glm::length(camera.up)))
     throw py::value_error("camera.up: zero, or parallel to the view direction (target - eye)");
   return camera;
 }
 
+// One call at a time per renderer: a second thread's call is refused rather than interleaved.
+class InUse {
+ public:
+  explicit InUse(std::mutex& mutex) : lock_(mutex, std::try_to_lock) {
+    if (!lock_.owns_lock())
+      throw Error("this lucent.Renderer is in use by another thread's call; a renderer takes one call at a time");
+  }
+
+ private:
+  std::unique_lock<std::mutex> lock_;
+};
+
 class PyRenderer final : public ContextResident {
  public:
   PyRenderer(const SceneHandle& scene, const RenderArguments& arguments, const py::handle& progress)
-      : handle_(scene) {
+      : handle_(scene), slot_(std::make_shared<ProgressSlot>()) {
     // The keyword arguments become the handle's own overrides, so that later edits (set) come after them.
     const std::vector<std::string> extra = render_overrides(arguments);
     handle_.overrides.insert(handle_.overrides.end(), extra.begin(), extra.end());
@@ -113,22 +171,18 @@ class PyRenderer final : public ContextResident {
 
     auto built = std::make_shared<Built>();
     run_staged_call(
-        [built, built_scene](LongCallControl& control) {
+        [built, built_scene, slot = slot_](LongCallControl& control) {
+          const AttachedControl attached(*slot, control);
           const CurrentContext current;
           built->generation = current.generation();
-          const RenderProgress report = [&control](std::string_view step, double fraction) {
-            if (control.stop) throw BuildInterrupted{};
-            control.set_step(step);
-            control.fraction = fraction;
-          };
+          // The renderer keeps its callback for later rebuilds: it reports through the slot, never to a call gone.
+          const RenderProgress report = [slot](std::string_view step, double fraction) { slot->report(step, fraction); };
           try {
-            control.set_step("renderer");
-            control.fraction = 0.0;
+            slot->report("renderer", 0.0);
             auto renderer = std::make_unique<Renderer>(built_scene, report);
             if (control.stop) return;
             auto target = std::make_unique<OffscreenFramebuffer>(built_scene.render.width, built_scene.render.height);
-            control.set_step("renderer");
-            control.fraction = 1.0;
+            slot->report("renderer", 1.0);
             built->renderer = std::move(renderer);  // kept only if the call still waits (see Built)
             built->target = std::move(target);
           } catch (const BuildInterrupted&) {
@@ -136,6 +190,7 @@ class PyRenderer final : public ContextResident {
         },
         progress);
     if (!built->renderer) throw Error("the renderer's build was interrupted");
+    device_ = built->renderer->device();
     const py::gil_scoped_release unlocked;
     const CurrentContext current;
     if (current.generation() != built->generation)
@@ -146,7 +201,12 @@ class PyRenderer final : public ContextResident {
     add_resident(this);
   }
 
-  ~PyRenderer() { close(); }
+  ~PyRenderer() {
+    try {
+      close();
+    } catch (...) {  // a destructor does not throw: the objects are left to their context
+    }
+  }
   PyRenderer(const PyRenderer&) = delete;
   PyRenderer& operator=(const PyRenderer&) = delete;
 
@@ -156,59 +216,67 @@ class PyRenderer final : public ContextResident {
   }
 
   void close() {
+    const InUse in_use(use_);
     if (!renderer_ && !target_) return;
     const py::gil_scoped_release unlocked;
     try {
       const CurrentContext current;
+      remove_resident(this);
       if (current.generation() == generation_) {
-        remove_resident(this);
         drop_gl_objects();
         return;
       }
-    } catch (...) {  // the objects went with their context
+    } catch (...) {  // the context cannot be made current: forget the objects with it
+      forget_resident(this);
     }
-    drop_gl_objects();
+    (void)target_.release();
+    (void)renderer_.release();
   }
   bool closed() const { return !renderer_; }
 
-  py::object render(int frames, const py::object& camera, bool timings, const py::handle& progress) {
+  py::object render(const py::object& frames_value, const py::object& camera, bool timings, const py::handle& progress) {
+    const InUse in_use(use_);
     require_open();
+    if (!py::isinstance<py::int_>(frames_value) || py::isinstance<py::bool_>(frames_value))
+      throw py::type_error("frames: expected an integer");
+    const long long frames = frames_value.cast<long long>();
     if (frames < 1 || frames > 1'000'000)
       throw py::value_error(fmt::format("frames: {} is out of range; allowed range [1, 1000000]", frames));
     if (!camera.is_none()) camera_ = camera_from(camera, handle_.scene, camera_);
+    const Camera view = camera_;
+    const int width = handle_.scene.render.width, height = handle_.scene.render.height;
     ImageRGBA32F radiance;
     std::vector<FrameTimings> reported;
-    std::string device;
     run_long_call(
         [&](LongCallControl& control) {
           const CurrentContext current;
           require_open();
-          const int width = handle_.scene.render.width, height = handle_.scene.render.height;
-          for (int f = 0; f < frames && !control.stop; ++f) {
-            renderer_->render(camera_, {target_->id(), width, height});
-            control.fraction = static_cast<double>(f + 1) / frames;
+          for (long long f = 0; f < frames && !control.stop; ++f) {
+            renderer_->render(view, {target_->id(), width, height});
+            control.fraction = static_cast<double>(f + 1) / static_cast<double>(frames);
           }
           if (control.stop) return;
           reported = renderer_->finished_frames(true);
           radiance = renderer_->read_radiance();
-          device = renderer_->device();
         },
         progress);
     py::array_t<float> image = to_array(radiance);
     if (!timings) return image;
-    return py::make_tuple(image, timings_dict(device, reported));
+    return py::make_tuple(image, timings_dict(device_, reported));
   }
 
   // Scene.set on the renderer's own scene, applied with the least work (live parameters and materials keep the
-  // method's shaders); an edit that does not build leaves the renderer as it was and raises.
+  // method's shaders); an edit that does not build (or is interrupted) puts the last good scene back and raises.
   PyRenderer& set(const std::string& key, const py::handle& value) {
+    const InUse in_use(use_);
     require_open();
     SceneHandle edited = handle_;
     set_value(edited, key, value);
     const Scene& now = edited.scene;
     const Camera previous_camera = handle_.scene.camera;
     run_long_call(
-        [&](LongCallControl&) {
+        [&](LongCallControl& control) {
+          const AttachedControl attached(*slot_, control);  // a rebuild's progress polls Ctrl-C
           const CurrentContext current;
           require_open();
           Scene good = renderer_->scene();
@@ -218,9 +286,20 @@ class PyRenderer final : public ContextResident {
             if (now.render.width != good.render.width || now.render.height != good.render.height)
               target_ = std::make_unique<OffscreenFramebuffer>(now.render.width, now.render.height);
           } catch (...) {
-            renderer_->scene() = std::move(good);
-            renderer_->scene_changed();
-            throw;
+            const std::exception_ptr failure = std::current_exception();
+            slot_->attach(nullptr);  // putting the last good scene back is not interrupted
+            try {
+              renderer_->scene() = std::move(good);
+              renderer_->scene_changed();  // nothing is built after a failure: this rebuilds the last good scene
+            } catch (...) {  // not even that builds: the renderer closes (its calls say so)
+              remove_resident(this);
+              drop_gl_objects();
+            }
+            try {
+              std::rethrow_exception(failure);
+            } catch (const BuildInterrupted&) {
+              throw Error("the edit was interrupted; the renderer has its scene from before the edit");
+            }
           }
         },
         py::none());
@@ -234,26 +313,30 @@ class PyRenderer final : public ContextResident {
   const SceneHandle& scene() const { return handle_; }
   py::dict camera() const { return camera_dict(camera_, handle_.scene.origin); }
   int accumulated_frames() {
+    const InUse in_use(use_);
+    require_open();
+    const py::gil_scoped_release unlocked;
+    const CurrentContext current;  // the context's mutex: a release on another thread waits
     require_open();
     return renderer_->accumulated_frames();
   }
-  std::string device() {
-    require_open();
-    return renderer_->device();
-  }
+  const std::string& device() const { return device_; }
 
  private:
   void require_open() const {
     if (!renderer_)
-      throw Error("this lucent.Renderer is closed (close(), lucent.release() or a new lucent.Context released its "
-                  "OpenGL objects); build a new one");
+      throw Error("this lucent.Renderer is closed (close(), lucent.release(), a new lucent.Context, or an edit after "
+                  "which not even its last good scene built); build a new one");
   }
 
   SceneHandle handle_;
   Camera camera_;
+  std::shared_ptr<ProgressSlot> slot_;
+  std::mutex use_;
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<OffscreenFramebuffer> target_;
   unsigned generation_ = 0;
+  std::string device_;
 };
 
 }  // namespace
@@ -278,7 +361,7 @@ void bind_renderer(py::module_& m) {
            "callable taking (step, fraction): \"renderer\" 0 first and 1 last, between them the steps of "
            "the methods that prepare meshes, a texture atlas or a precomputation. Ctrl-C raises KeyboardInterrupt within half a second; the build then stops at its "
            "next step, on its own thread.")
-      .def("render", &PyRenderer::render, py::kw_only(), py::arg("frames") = 1, py::arg("camera") = py::none(),
+      .def("render", &PyRenderer::render, py::kw_only(), py::arg("frames") = py::int_(1), py::arg("camera") = py::none(),
            py::arg("timings") = false, py::arg("progress") = py::none(),
            "Renders `frames` more frames and returns the linear radiance, float32 (height, width, 3), of all the "
            "frames accumulated since the camera or the scene last changed. camera: None (the last one) or a dict "

@@ -80,7 +80,9 @@ class Renderer {
   // something other than the camera changed since (see scene_changed()).
   void render(const Camera& camera, const RenderTarget& target);
 
-  // The scene, for changes: call scene_changed() after editing lights, materials, geometry or parameters.
+  // The scene, for changes: call scene_changed() after editing lights, materials, geometry or parameters. When it
+  // throws (a scene that does not build), nothing is built: render() throws until a scene_changed() succeeds (put
+  // the last good scene back and call it again: it rebuilds).
   Scene& scene();
   const Scene& scene() const;
   void scene_changed();

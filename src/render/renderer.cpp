@@ -212,6 +212,9 @@ struct Renderer::Impl {
           validate_diffusion_medium(*scene.objects[i].material,
                                     fmt::format("{}: /objects/{}/material (method '{}')", scene.source, i, scene.method));
     material_maps = has_material_maps(scene);  // a change of maps always rebuilds (classify_change)
+    // Until this rebuild succeeds nothing is built: a failure leaves no method, and the next scene_changed() (the
+    // caller putting the last good scene back) rebuilds whatever it is given.
+    built = Scene{};
     method.reset();
     atlas.reset();
     atlas_scene.reset();
@@ -256,6 +259,7 @@ struct Renderer::Impl {
       case SceneChange::Materials:
         if (!method->update_materials(method_scene())) {
           scene_gpu->update_materials(method_scene());
+          built = Scene{};  // as in rebuild(): a failure below leaves nothing built
           method.reset();
           make_method();  // a precomputation keyed on the materials runs again
         } else {
@@ -358,6 +362,9 @@ struct Renderer::Impl {
   }
 
   void render(const Camera& camera, const RenderTarget& target) {
+    if (!method)
+      throw Error(fmt::format("{}: nothing to render: the scene's last rebuild failed; apply a scene that builds "
+                              "(scene_changed())", scene.source));
     if (target.width <= 0 || target.height <= 0)
       throw Error(fmt::format("render target size {}x{} is empty", target.width, target.height));
     output.resize(target.width, target.height, material_maps);
@@ -398,7 +405,7 @@ void Renderer::set_time(double seconds) {
 }
 double Renderer::time() const { return impl_->time_seconds; }
 void Renderer::restart() { impl_->restart = true; }
-int Renderer::accumulated_frames() const { return impl_->method->accumulated_frames(); }
+int Renderer::accumulated_frames() const { return impl_->method ? impl_->method->accumulated_frames() : 0; }
 const FrameTimings& Renderer::timings() const { return impl_->latest; }
 std::vector<FrameTimings> Renderer::finished_frames(bool wait) {
   impl_->take_reported(wait);

@@ -5,6 +5,8 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -150,3 +152,56 @@ def test_sigint_stops_the_build_within_a_second(tmp_path):
     took = float(result.stdout.split()[1])
     assert took < 1.0, f"KeyboardInterrupt came {took:.2f} s after SIGINT"
     assert "renderer" in result.stdout and "local-global" in result.stdout  # progress named the steps
+
+
+def test_a_rebuild_that_fails_puts_the_last_good_scene_back():
+    # A rebuild that reports progress (layered-parallax's texture atlas) after the build's own call has returned,
+    # then one that fails in the middle (an atlas too small for the charts): the renderer keeps its last good scene.
+    small = {"atlas_size": 64, "texture_size": 16, "irradiance_map_size": 16, "light_map_size": 8}
+    renderer = lucent.Renderer(lucent.load_scene(), method="layered-parallax", params=small, width=32, height=20)
+    before = renderer.render(frames=2)
+    renderer.set("method.atlas_size", 128)  # rebuilds, reporting through the renderer's progress
+    assert renderer.render().max() > 0.01
+    with pytest.raises(lucent.Error, match="do not fit into a 32 x 32 atlas"):
+        renderer.set("method.atlas_size", 32)
+    assert not renderer.closed and renderer.scene.method_params["atlas_size"] == 128
+    assert renderer.render().max() > 0.01
+    # radiosity-maps: a map direction of zero length fails when the method is made, after the old one is gone.
+    renderer = lucent.Renderer(lucent.load_scene(), params=RADIOSITY_MAPS, **SIZE)
+    before = renderer.render(frames=2)
+    with pytest.raises(lucent.Error, match="must be a non-zero vector"):
+        renderer.set("method.map_directions", [[0, 0, 0]])
+    assert renderer.accumulated_frames == 0  # rebuilt: the last good scene from its first frame
+    # The same scene again (its random streams go on from the frame count: within the noise of two frames).
+    assert rmse(renderer.render(frames=2), before) < 0.01
+
+
+def test_a_second_threads_call_is_refused_and_bad_arguments_raise():
+    renderer = lucent.Renderer(lucent.load_scene(), method="per-pixel", params=PER_PIXEL, **SIZE)
+    refused = []
+
+    def second():
+        time.sleep(0.3)
+        try:
+            renderer.render()
+        except lucent.Error as e:
+            refused.append(str(e))
+
+    thread = threading.Thread(target=second)
+    thread.start()
+    renderer.render(frames=60)
+    thread.join()
+    assert refused and "in use by another thread's call" in refused[0]
+    camera = lucent.load_scene().camera
+    with pytest.raises(ValueError, match=r"frames: 1099511627776 is out of range"):
+        renderer.render(frames=2 ** 40)
+    with pytest.raises(TypeError, match="frames: expected an integer"):
+        renderer.render(frames=2.0)
+    with pytest.raises(ValueError, match=r"camera.fov_y_deg: 1e-50 is out of range; allowed range \[1, 179\]"):
+        renderer.render(camera=dict(camera, fov_y_deg=1e-50))
+    with pytest.raises(TypeError, match="camera.eye: expected three numbers"):
+        renderer.render(camera=dict(camera, eye=b"abc"))
+    with pytest.raises(ValueError, match=r"camera.eye\[0\]: 1e\+20 is out of range"):
+        renderer.render(camera=dict(camera, eye=[1e20, 0, 0]))
+    with pytest.raises(ValueError, match="eye and target are the same point"):
+        renderer.render(camera=dict(camera, eye=[camera["target"][0], camera["target"][1], camera["target"][2] + 1e-9]))
