@@ -18,8 +18,9 @@ fail() { echo "outside_project.sh: $*" >&2; exit 1; }
 
 prefix="$work/prefix"
 cmake --install "$build" --prefix "$prefix" > "$work/install.log" || { cat "$work/install.log"; fail "cmake --install failed"; }
-libdir=$(dirname "$(find "$prefix" -name 'liblucent.so' -print -quit)")
-[ -n "$libdir" ] || fail "no liblucent.so under $prefix"
+library=$(find "$prefix" -name 'liblucent.so' -print -quit)
+[ -n "$library" ] || fail "no liblucent.so under $prefix"
+libdir=$(dirname "$library")
 [ -f "$prefix/include/lucent/lucent.h" ] || fail "no include/lucent/lucent.h under $prefix"
 
 # The in-tree program: what the installed library must reproduce.
@@ -32,7 +33,8 @@ cmake -S "$source/examples" -B "$work/find_package" "${generator[@]}" -DCMAKE_BU
       -DCMAKE_PREFIX_PATH="$prefix" > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "configure against the install failed"; }
 cmake --build "$work/find_package" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "build against the install failed"; }
 (cd "$work" && ./find_package/embed_renderer - "$work/find_package.png" > /dev/null) || fail "the find_package build did not run"
-ldd "$work/find_package/embed_renderer" | grep -q "$libdir/liblucent.so" || fail "the find_package build does not load the installed liblucent.so"
+ldd "$work/find_package/embed_renderer" > "$work/ldd.txt"
+grep -q "$libdir/liblucent.so" "$work/ldd.txt" || fail "the find_package build does not load the installed liblucent.so"
 cmp -s "$work/in_tree.png" "$work/find_package.png" || fail "the find_package build's image differs from the in-tree build's"
 
 # pkg-config alone.
@@ -60,6 +62,14 @@ image = lucent.render(lucent.load_scene(), width=32, height=20, frames=1)
 assert image.shape == (20, 32, 3) and image.mean() > 0, image.mean()
 lucent.load_scene('$prefix/share/lucent/scenes/marble_textured.json')  # an installed scene with its maps
 ") || fail "the installed Python module does not import and render"
+  # Installed under /usr (the Debian package's prefix; DESTDIR keeps it in the temporary folder), the module goes to
+  # Debian's packaged modules, on its Python's own path.
+  DESTDIR="$work/destdir" cmake --install "$build" --prefix /usr/ > "$work/install-usr.log" \
+    || { cat "$work/install-usr.log"; fail "cmake --install --prefix /usr failed"; }
+  if [ "$python_dir" != "lib/python3/dist-packages" ] && /usr/bin/python3 -c "import sysconfig, sys; sys.exit(sysconfig.get_default_scheme() != 'posix_local')"; then
+    ls "$work/destdir/usr/lib/python3/dist-packages/"lucent*.so > /dev/null 2>&1 \
+      || fail "installed under /usr, the Python module is not in lib/python3/dist-packages"
+  fi
   # Installed under /usr/local, the same folder is on Debian's Python's own path: no PYTHONPATH needed.
   if [ "$python_dir" != "lib/python3/dist-packages" ]; then
     env -i PATH=/usr/bin:/bin /usr/bin/python3 -c "import sys; sys.exit(0 if '/usr/local/$python_dir' in sys.path else 1)" \
