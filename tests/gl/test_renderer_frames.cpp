@@ -178,4 +178,24 @@ TEST(RendererFrames, AModelEditRendersTheNewModel) {
   }
 }
 
+// A rebuild that fails after the old method is gone (a map direction of zero length is refused when the method is
+// made) leaves nothing built: render() says so instead of crashing, and putting the last good scene back rebuilds it.
+TEST(RendererFrames, AFailedRebuildRendersNothingUntilAGoodSceneIsBack) {
+  lucent::test::ensure_gl_context();
+  lucent::OffscreenFramebuffer target(kWidth, kHeight);
+  lucent::Scene scene = small_scene({"method.vpls=0"});
+  lucent::Renderer renderer(scene);
+  renderer.render(scene.camera, {target.id(), kWidth, kHeight});
+  const double before = mean_rgb(renderer.read_radiance());
+  const lucent::Scene good = renderer.scene();
+  renderer.scene().method_params.set("map_directions", lucent::ParamValue(std::vector<glm::vec3>{glm::vec3(0.0f)}));
+  EXPECT_THROW(renderer.scene_changed(), lucent::Error);
+  EXPECT_EQ(renderer.accumulated_frames(), 0);
+  EXPECT_THROW(renderer.render(scene.camera, {target.id(), kWidth, kHeight}), lucent::Error);
+  renderer.scene() = good;
+  renderer.scene_changed();
+  renderer.render(scene.camera, {target.id(), kWidth, kHeight});
+  EXPECT_NEAR(mean_rgb(renderer.read_radiance()), before, 0.02 * before);
+}
+
 }  // namespace
