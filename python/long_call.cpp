@@ -75,7 +75,10 @@ struct AbandonableState {
 
 }  // namespace
 
-void run_abandonable(std::function<void()> work) {
+namespace {
+
+// Runs `work` on a detached thread that owns it; its outcome lands in the returned state.
+std::shared_ptr<AbandonableState> start_abandonable(std::function<void()> work) {
   auto state = std::make_shared<AbandonableState>();
   std::thread([state, work = std::move(work)] {
     std::exception_ptr failure;
@@ -89,6 +92,13 @@ void run_abandonable(std::function<void()> work) {
     state->finished = true;
     state->finished_cv.notify_all();
   }).detach();
+  return state;
+}
+
+}  // namespace
+
+void run_abandonable(std::function<void()> work) {
+  const std::shared_ptr<AbandonableState> state = start_abandonable(std::move(work));
   for (bool finished = false; !finished;) {
     {
       const py::gil_scoped_release unlocked;
@@ -155,19 +165,8 @@ void run_staged_call(std::function<void(LongCallControl&)> work, const py::handl
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     throw py::type_error("progress: expected a callable taking (step, fraction), or None");
   auto control = std::make_shared<LongCallControl>();
-  auto state = std::make_shared<AbandonableState>();
-  std::thread([state, control, work = std::move(work)] {
-    std::exception_ptr failure;
-    try {
-      work(*control);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    const std::lock_guard<std::mutex> lock(state->mutex);
-    state->failure = failure;
-    state->finished = true;
-    state->finished_cv.notify_all();
-  }).detach();
+  const std::shared_ptr<AbandonableState> state =
+      start_abandonable([control, work = std::move(work)] { work(*control); });
 
   std::pair<std::string, double> reported{"", -1.0};
   const auto wait = [&](std::chrono::milliseconds interval) {
