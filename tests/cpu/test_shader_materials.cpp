@@ -364,7 +364,7 @@ TEST(PrincipledV2, RandomWalkUsesTheRadiusAsGiven) {
   // The main IOR only bends random_walk's entry: another IOR, the same medium.
   json other_ior = principled_v2_block("random_walk");
   other_ior["ior"] = 2.5;
-  const Material& m2 = *shader_test_scene({{"principled", other_ior}}, 1000.0).objects[0].material;
+  const Material m2 = *shader_test_scene({{"principled", other_ior}}, 1000.0).objects[0].material;
   EXPECT_EQ(m2.sigma_s, m.sigma_s);
   EXPECT_EQ(m2.sigma_a, m.sigma_a);
 }
