@@ -310,6 +310,26 @@ class PyRenderer final : public ContextResident {
     return *this;
   }
 
+  // Animation time [s]: deforming objects and blob surfaces take their shape at it from the next frame on (which
+  // restarts the accumulation); nothing changes in a static scene.
+  void set_time(double seconds) {
+    const InUse in_use(use_);
+    require_open();
+    if (!std::isfinite(seconds) || std::abs(seconds) > 1e9)
+      throw py::value_error(fmt::format("time: {} is out of range; allowed range [-1e9, 1e9] s", seconds));
+    const py::gil_scoped_release unlocked;
+    const CurrentContext current;
+    require_open();
+    renderer_->set_time(seconds);
+  }
+  double time() const { return renderer_ ? renderer_->time() : 0.0; }
+  // Drops the accumulated frames (and what the method cached from the scene): the next frame starts afresh.
+  void restart() {
+    const InUse in_use(use_);
+    require_open();
+    renderer_->restart();
+  }
+
   const SceneHandle& scene() const { return handle_; }
   py::dict camera() const { return camera_dict(camera_, handle_.scene.origin); }
   int accumulated_frames() {
@@ -373,6 +393,11 @@ void bind_renderer(py::module_& m) {
            "parameters and material edits keep the method's shaders where the method supports it, anything "
            "else rebuilds. A bad key or value, or an edit that does not build, raises and keeps the renderer as "
            "it was. Returns the renderer.")
+      .def("restart", &PyRenderer::restart,
+           "Drops the accumulated frames and what the method cached from the scene: the next frame starts afresh.")
+      .def_property("time", &PyRenderer::time, &PyRenderer::set_time,
+                    "animation time [s]: deforming objects and blob surfaces take their shape at it from the next "
+                    "frame on (restarting the accumulation); a static scene does not change")
       .def("close", &PyRenderer::close, "Releases the renderer's GPU objects; later calls raise lucent.Error.")
       .def_property_readonly("closed", &PyRenderer::closed)
       .def_property_readonly("scene", &PyRenderer::scene, py::return_value_policy::copy,

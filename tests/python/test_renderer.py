@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import lucent
+from conftest import SCENES
 
 SIZE = {"width": 64, "height": 40}
 RADIOSITY_MAPS = {"K": 8, "N": 16, "map_size": 64, "light_map_size": 128, "vpls": 0}
@@ -205,3 +206,19 @@ def test_a_second_threads_call_is_refused_and_bad_arguments_raise():
         renderer.render(camera=dict(camera, eye=[1e20, 0, 0]))
     with pytest.raises(ValueError, match="eye and target are the same point"):
         renderer.render(camera=dict(camera, eye=[camera["target"][0], camera["target"][1], camera["target"][2] + 1e-9]))
+
+
+def test_animation_time_and_restart():
+    scene = lucent.load_scene(str(SCENES / "deforming_organ.json"))
+    with lucent.Renderer(scene, method="per-pixel", params=PER_PIXEL, **SIZE) as renderer:
+        still = renderer.render(frames=2)
+        assert renderer.time == 0.0
+        renderer.time = 0.75  # a quarter of the bend's 3 s period: the organ is bent
+        bent = renderer.render(frames=2)
+        assert renderer.accumulated_frames == 2  # the new shape restarted the accumulation
+        assert rmse(bent, still) > 0.01
+        renderer.restart()
+        renderer.render()
+        assert renderer.accumulated_frames == 1
+        with pytest.raises(ValueError, match="time: nan is out of range"):
+            renderer.time = float("nan")
