@@ -329,6 +329,11 @@ TEST(ShapeDiameter, ThicknessFromMeshInAScene) {
   const std::string scaled = R"({"scale_mm": 10, "objects": [{"shape": "box", "size": [2, 2, 0.2], "scale": 3,
       "material": {"preset": "Skin1", "model": "multipole", "thickness_from_mesh": true}}]})";
   EXPECT_NEAR(lucent::parse_scene(scaled, "slab.json", "/").objects[0].material->thickness_mm, 6.0, 0.12);
+  // The same in a renderer's shader block (the outer block holds the model and the flag).
+  const std::string principled = R"({"scale_mm": 10, "objects": [{"shape": "box", "size": [2, 2, 0.2],
+      "material": {"principled": {"subsurface": 1, "subsurface_radius": [0.1, 0.05, 0.025]}, "model": "multipole",
+                   "thickness_from_mesh": true}}]})";
+  EXPECT_NEAR(lucent::parse_scene(principled, "slab.json", "/").objects[0].material->thickness_mm, 2.0, 0.04);
   const std::string both = R"({"objects": [{"shape": "box", "size": [2, 2, 0.2],
       "material": {"preset": "Skin1", "model": "multipole", "thickness_mm": 2, "thickness_from_mesh": true}}]})";
   try {
