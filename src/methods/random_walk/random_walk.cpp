@@ -516,11 +516,13 @@ class RandomWalk final : public Method {
       if (totals.groups.x == 0) break;
       // Bounded: nothing bounds a path's length (max_scatter 0), and a path that never leaves would keep the frame.
       const auto max_dispatches = static_cast<unsigned>(params_.integer("max_dispatches"));
-      if (totals.dispatches >= max_dispatches)
+      if (totals.dispatches >= max_dispatches)  // with the frame's counts, to tell a long path from a lost one
         throw Error(fmt::format("random-walk: paths still in flight after {} trace dispatches of up to {} steps "
-                                "each (method.max_dispatches); a medium without absorption whose paths do not leave? "
-                                "Set max_scatter, or give it some absorption",
-                                totals.dispatches, loop_budget_));
+                                "each (method.max_dispatches; the frame's region {} started {} paths and finished {}); "
+                                "a medium without absorption whose paths do not leave? Set max_scatter, or give it "
+                                "some absorption",
+                                totals.dispatches, loop_budget_, region_, totals.next_path[region_],
+                                totals.finished[region_]));
       round = std::max(round, 4u);  // not done: rounds of at least 4, few read-backs in the tail
     }
     // The next first round: as long as this batch needed, or 7/8 of the last round when that was longer (a frame of
