@@ -518,11 +518,11 @@ class RandomWalk final : public Method {
       const auto max_dispatches = static_cast<unsigned>(params_.integer("max_dispatches"));
       if (totals.dispatches >= max_dispatches)  // with the frame's counts, to tell a long path from a lost one
         throw Error(fmt::format("random-walk: paths still in flight after {} trace dispatches of up to {} steps "
-                                "each (method.max_dispatches; the frame's region {} started {} paths and finished {}); "
-                                "a medium without absorption whose paths do not leave? Set max_scatter, or give it "
-                                "some absorption",
+                                "each (method.max_dispatches; the frame's region {} started {} paths and finished {}, "
+                                "{} slots holding a path); a medium without absorption whose paths do not leave? Set "
+                                "max_scatter, or give it some absorption",
                                 totals.dispatches, loop_budget_, region_, totals.next_path[region_],
-                                totals.finished[region_]));
+                                totals.finished[region_], totals.last_busy));
       round = std::max(round, 4u);  // not done: rounds of at least 4, few read-backs in the tail
     }
     // The next first round: as long as this batch needed, or 7/8 of the last round when that was longer (a frame of

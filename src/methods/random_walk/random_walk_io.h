@@ -101,7 +101,8 @@ struct WalkCountersGPU {
   uint paths;              // paths finished
   uint dispatches;         // trace dispatches with work after the frame's first
   uint sparse_dispatches;  // of them, those with under a tenth of the slots busy
-  uint pad0, pad1;
+  uint last_busy;          // `busy` as the last control pass found it (diagnostics: a path in flight or none)
+  uint pad1;
   uvec4 groups;            // xyz: the next trace dispatch's work groups (read by glDispatchComputeIndirect); w: 0
   uvec4 resolve_groups;    // xyz: the resolve pass's work groups once the current frame's paths have all finished
   uvec2 steps;             // walk steps of the finished paths

@@ -16,6 +16,7 @@ void main() {
     uint started = walk_counters.next_path[r];
     left += started < method.pool.y ? method.pool.y - started : 0u;
   }
+  walk_counters.last_busy = busy;
   walk_counters.busy = 0u;
   bool work = walk_counters.finished[current] < method.pool.y;
   walk_counters.groups = uvec4(work ? (slots + LUCENT_WALK_POOL_GROUP - 1u) / LUCENT_WALK_POOL_GROUP : 0u, 1u, 1u, 0u);
