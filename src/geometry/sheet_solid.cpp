@@ -3,29 +3,15 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "geometry/position_bits.h"
 #include "lucent/error.h"
 
 namespace lucent {
-namespace {
-
-// Positions are welded by their exact bits, so vertices split along seams share one offset direction and one
-// border (-0 and +0 are one position).
-std::array<std::uint32_t, 3> position_bits(glm::vec3 p) {
-  std::array<std::uint32_t, 3> bits{};
-  for (int a = 0; a < 3; ++a) {
-    const float f = p[a] == 0.0f ? 0.0f : p[a];
-    std::memcpy(&bits[static_cast<std::size_t>(a)], &f, sizeof(f));
-  }
-  return bits;
-}
-
-}  // namespace
 
 TriangleMesh sheet_solid(const TriangleMesh& mesh, float thickness) {
   if (!(thickness > 0.0f) || !std::isfinite(thickness))
@@ -33,6 +19,7 @@ TriangleMesh sheet_solid(const TriangleMesh& mesh, float thickness) {
   const std::size_t vertices = mesh.positions.size();
   const bool has_uvs = mesh.uvs.size() == vertices;
 
+  // Positions welded by their exact bits: vertices split along seams share one offset direction and one border.
   std::map<std::array<std::uint32_t, 3>, std::uint32_t> index_of;
   std::vector<std::uint32_t> welded(vertices);
   for (std::size_t v = 0; v < vertices; ++v)

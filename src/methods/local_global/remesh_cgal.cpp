@@ -17,6 +17,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
 
+#include "geometry/position_bits.h"
 #include "lucent/error.h"
 
 namespace lucent::methods::local_global {
@@ -26,15 +27,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using SurfaceMesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
-
-std::array<std::uint32_t, 3> position_bits(glm::vec3 p) {
-  std::array<std::uint32_t, 3> bits{};
-  for (int a = 0; a < 3; ++a) {
-    const float f = p[a] == 0.0f ? 0.0f : p[a];  // -0 and +0 are one position
-    std::memcpy(&bits[static_cast<std::size_t>(a)], &f, sizeof(f));
-  }
-  return bits;
-}
 
 }  // namespace
 
