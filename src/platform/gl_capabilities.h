@@ -25,6 +25,11 @@ struct GLCapabilities {
 // from data states its bound in a `// loop bound: ...` comment, checked against this cap by a scan of the embedded
 // sources (tests/cpu/test_shader_loops.cpp); a bound that only parameters can keep under it is refused at run time
 // by check_loop_iterations.
+// Where the cap ends a loop, the invocation leaves it at the end of the body, an exit the shader compiler does not
+// know of: a value it computed once for the loop's exit test and the code after it is stale there (random-walk's
+// search for a slot's next path took a path index and then, testing the stale "none found", dropped it). Code after
+// a loop the cap may cut must not depend on how the loop ended, or must be checked after it (as random-walk's
+// replay of a cut event is).
 inline constexpr unsigned kLlvmpipeLoopIterations = 65535;
 // The iterations a shader's loops may be planned for: under half the cap, the worst measured (llvmpipe, Mesa
 // 22.3.6, 2 cores). The per-pixel invocation with two lights runs 2 x (1 + 3 x (1 + N)) loop iterations by its own

@@ -45,6 +45,8 @@ constexpr std::size_t kResultBytes = std::size_t{64} << 20;
 // every dispatch ran the whole pool of later frames' paths while the current frame's longest path advanced one
 // budget per dispatch. One frame ahead keeps that cost under one frame's work.
 constexpr std::size_t kRingFrames = 2;
+static_assert(kRingFrames <= 2 && kRingFrames <= LUCENT_WALK_MAX_REGIONS,
+              "the trace pass starts paths of the current frame and the next only");
 constexpr int kMaxSurfaceBounces = 64;  // as volpath
 constexpr int kRouletteAfter = 8;       // as volpath
 // Events of one path at most (a path spans dispatches, so llvmpipe's loop cap does not bound it): far beyond any
@@ -187,7 +189,7 @@ class RandomWalk final : public Method {
       while (levels_used_ < shader::kSphereJumpLevelCount &&
              shader::sphere_jump_level_radius(levels_used_) <= largest_distance * densest)
         ++levels_used_;
-      const std::size_t bytes = LUCENT_WALK_MAX_REGIONS * jump_banks_.size() * shader::kSphereJumpLevelCount *
+      const std::size_t bytes = kRingFrames * jump_banks_.size() * shader::kSphereJumpLevelCount *
                                 static_cast<std::size_t>(records_per_level_) * sizeof(shader::SphereWalkGPU);
       glCreateBuffers(1, &spheres_);
       glNamedBufferStorage(spheres_, static_cast<GLsizeiptr>(bytes), nullptr, 0);
@@ -211,6 +213,7 @@ class RandomWalk final : public Method {
     loop_cap_ = caps.is_llvmpipe ? platform::kLlvmpipeLoopIterations : 0u;
     // An invocation's own count undercounts the SIMD loop's (8 or 16 lanes): a sixteenth of the cap.
     loop_budget_ = caps.is_llvmpipe ? platform::kLlvmpipeLoopIterations / 16 : 1u << 16;
+    if (const int budget = params_.integer("loop_budget"); budget > 0) loop_budget_ = static_cast<unsigned>(budget);
   }
   ~RandomWalk() override {
     glDeleteBuffers(1, &block_buffer_);
@@ -513,6 +516,12 @@ class RandomWalk final : public Method {
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
       glGetNamedBufferSubData(counters_, 0, sizeof(totals), &totals);
       ++f.read_backs;
+      if (totals.lost != 0)
+        throw Error(fmt::format("random-walk: the frame lost {} of its {} paths (region {}: {} started, {} finished, "
+                                "no slot holding one); the trace pass took a path index and did not trace it, which "
+                                "the driver's loop cap can cause (docs/methods/random-walk.md, \"Paths in flight\")",
+                                totals.lost, totals.finished[region_] + totals.lost,
+                                region_, totals.next_path[region_], totals.finished[region_]));
       if (totals.groups.x == 0) break;
       // Bounded: nothing bounds a path's length (max_scatter 0), and a path that never leaves would keep the frame.
       const auto max_dispatches = static_cast<unsigned>(params_.integer("max_dispatches"));

@@ -674,11 +674,15 @@ void main() {
   // loop bound: checked; events end once loop_count reaches method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
   for (int event = 0; event < 1000000 && loop_count < method.dispatch.y; ++event) {
     ++loop_count;
-    if (path_index == LUCENT_WALK_NO_PATH) {  // the current frame's next path, else the next frames' in turn
-      uint index = region_paths, region = current;
-      for (uint k = 0u; k < LUCENT_WALK_MAX_REGIONS && k < regions && index >= region_paths; ++k) {
-        ++loop_count;
-        region = (current + k) % regions;
+    if (path_index == LUCENT_WALK_NO_PATH) {  // the current frame's next path, else the next frame's
+      // Without a loop: where llvmpipe's loop cap ends a loop, it leaves at the loop's end, an exit the compiler
+      // does not know of, so a condition the compiler computed once for the loop's exit and the code after it is
+      // stale there. A loop here took a path index from the counter and then, testing that stale condition,
+      // dropped it: the frame waited for a path no slot held (docs/methods/random-walk.md, "Paths in flight").
+      uint region = current, index = region_paths;
+      if (walk_counters.next_path[region] < region_paths) index = atomicAdd(walk_counters.next_path[region], 1u);
+      if (index >= region_paths && regions > 1u) {
+        region = (current + 1u) % regions;
         if (walk_counters.next_path[region] < region_paths) index = atomicAdd(walk_counters.next_path[region], 1u);
       }
       if (index >= region_paths) break;
