@@ -44,9 +44,9 @@ constexpr std::size_t kResultBytes = std::size_t{64} << 20;
 // about 2,500 and 4,000 with one frame), but at 320 x 240 three frames took over 300 s against 19 s per frame alone:
 // every dispatch ran the whole pool of later frames' paths while the current frame's longest path advanced one
 // budget per dispatch. One frame ahead keeps that cost under one frame's work.
-constexpr std::size_t kRingFrames = 2;
-static_assert(kRingFrames <= 2 && kRingFrames <= LUCENT_WALK_MAX_REGIONS,
-              "the trace pass starts paths of the current frame and the next only");
+constexpr std::size_t kRingFrames = 4;
+static_assert(kRingFrames <= 4 && kRingFrames <= LUCENT_WALK_MAX_REGIONS,
+              "the trace pass starts paths of the current frame and the next three at most");
 constexpr int kMaxSurfaceBounces = 64;  // as volpath
 constexpr int kRouletteAfter = 8;       // as volpath
 // Events of one path at most (a path spans dispatches, so llvmpipe's loop cap does not bound it): far beyond any
@@ -279,7 +279,7 @@ class RandomWalk final : public Method {
     const std::size_t ring =
         context.scene_gpu.animated() ? 1
                                      : std::clamp<std::size_t>(result_budget / (frame_paths * sizeof(glm::vec4)), 1,
-                                                               kRingFrames);
+                                                               static_cast<std::size_t>(params_.integer("frames_in_flight")));
     // A path's index in its region has LUCENT_WALK_REGION_SHIFT bits (67 million paths).
     const std::size_t most_paths = std::min(block_bytes / sizeof(glm::vec4), (std::size_t{1} << LUCENT_WALK_REGION_SHIFT) - 1);
     if (pixels > most_paths)

@@ -22,6 +22,9 @@ constexpr ParamDecl kParams[] = {
     {"max_dispatches", ParamType::Int, "65536", "dispatches", 1, 1 << 30, "",
      "a frame whose paths have not all left after this many trace dispatches is refused with an error (a path that "
      "never leaves a medium without absorption would otherwise keep the frame forever)"},
+    {"frames_in_flight", ParamType::Int, "2", "frames", 1, 4, "",
+     "frames whose paths the pool traces at once: slots the current frame's paths no longer need start the next "
+     "frames' (1: each frame alone)"},
     {"loop_budget", ParamType::Int, "0", "iterations", 0, 1 << 20, "",
      "loop iterations per invocation under which a trace dispatch starts another event (0: automatic, a quarter "
      "of llvmpipe's loop cap there, 65,536 elsewhere); past llvmpipe's cap an event is undone and replayed in the "

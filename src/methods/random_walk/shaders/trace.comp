@@ -662,6 +662,11 @@ void add_count(uint which, uint v) {
   else atomicAdd(walk_counters.next_event_traversals.y, 1u);
 }
 
+// A path index from region r's counter, or region_paths once its paths have all started.
+uint take_path(uint r, uint region_paths) {
+  return walk_counters.next_path[r] < region_paths ? atomicAdd(walk_counters.next_path[r], 1u) : region_paths;
+}
+
 // One slot of the pool: its path advances event by event while the invocation's loop iterations stay under the
 // budget; when it ends, its result goes to the batch's results and the slot takes the batch's next path.
 void main() {
@@ -674,17 +679,15 @@ void main() {
   // loop bound: checked; events end once loop_count reaches method.dispatch.y, which random_walk.cpp budgets well under kLlvmpipeLoopIterations
   for (int event = 0; event < 1000000 && loop_count < method.dispatch.y; ++event) {
     ++loop_count;
-    if (path_index == LUCENT_WALK_NO_PATH) {  // the current frame's next path, else the next frame's
+    if (path_index == LUCENT_WALK_NO_PATH) {  // the current frame's next path, else the next frames' in turn
       // Without a loop: where llvmpipe's loop cap ends a loop, it leaves at the loop's end, an exit the compiler
       // does not know of, so a condition the compiler computed once for the loop's exit and the code after it is
       // stale there. A loop here took a path index from the counter and then, testing that stale condition,
       // dropped it: the frame waited for a path no slot held (docs/methods/random-walk.md, "Paths in flight").
-      uint region = current, index = region_paths;
-      if (walk_counters.next_path[region] < region_paths) index = atomicAdd(walk_counters.next_path[region], 1u);
-      if (index >= region_paths && regions > 1u) {
-        region = (current + 1u) % regions;
-        if (walk_counters.next_path[region] < region_paths) index = atomicAdd(walk_counters.next_path[region], 1u);
-      }
+      uint region = current, index = take_path(current, region_paths);
+      if (index >= region_paths && regions > 1u) region = (current + 1u) % regions, index = take_path(region, region_paths);
+      if (index >= region_paths && regions > 2u) region = (current + 2u) % regions, index = take_path(region, region_paths);
+      if (index >= region_paths && regions > 3u) region = (current + 3u) % regions, index = take_path(region, region_paths);
       if (index >= region_paths) break;
       start_path(index, region);
     }
