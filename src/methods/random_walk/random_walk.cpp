@@ -39,11 +39,10 @@ namespace {
 constexpr std::size_t kPoolSlots = std::size_t{1} << 18;
 // The results of the frames in flight at most (16 bytes per path): 64 MiB, 4 frames of 1080p at one path per pixel.
 constexpr std::size_t kResultBytes = std::size_t{64} << 20;
-// Frames in flight: the current one and the next. Deeper rings (up to LUCENT_WALK_MAX_REGIONS) were measured on
-// llvmpipe with the marble bunny: at 64 x 48 and 160 x 120 they raised paths per second (6,000 and 13,000 against
-// about 2,500 and 4,000 with one frame), but at 320 x 240 three frames took over 300 s against 19 s per frame alone:
-// every dispatch ran the whole pool of later frames' paths while the current frame's longest path advanced one
-// budget per dispatch. One frame ahead keeps that cost under one frame's work.
+// Frames in flight at most (`frames_in_flight`, default 2: the current one and the next). Four against two on
+// llvmpipe with the marble bunny: 12-15% more paths per second at 64 x 48 and 160 x 120, 18% fewer at 320 x 240,
+// where every dispatch runs the pool of later frames' paths while the current frame's longest path advances one
+// budget per dispatch (docs/methods/random-walk.md).
 constexpr std::size_t kRingFrames = 4;
 static_assert(kRingFrames <= 4 && kRingFrames <= LUCENT_WALK_MAX_REGIONS,
               "the trace pass starts paths of the current frame and the next three at most");

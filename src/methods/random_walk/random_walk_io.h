@@ -27,7 +27,7 @@
 #define LUCENT_WALK_MAX_JUMP_BANKS 4
 #define LUCENT_WALK_NO_PATH 0xffffffffu  // WalkPathGPU.state.w of a free slot
 #define LUCENT_WALK_REGION_SHIFT 26u  // WalkPathGPU.state.w: the path's results region in the top 6 bits
-#define LUCENT_WALK_MAX_REGIONS 64    // results regions the layout holds (the ring uses 2 at most: random_walk.cpp)
+#define LUCENT_WALK_MAX_REGIONS 64    // results regions the layout holds (the ring uses 4 at most: random_walk.cpp)
 #define LUCENT_WALK_POOL_FIRST 1    // RandomWalkGPU.ring.y: the frame's first batch
 #define LUCENT_WALK_POOL_LAST 2     // its last
 #define LUCENT_WALK_POOL_GROUP 64        // invocations per work group of the trace pass (one slot each)
@@ -125,8 +125,8 @@ struct RandomWalkGPU {
                          // w: events per path
   uvec4 pool;            // x: slots in the pool of paths in flight; y: paths per region (samples x the image's
                          // pixels); z: the current frame's region; w: the image's pixels
-  uvec4 ring;            // x: regions in the ring (1: the frame alone; 2: the next frame's paths start in the other
-                         // region once the current one's are all under way); y: LUCENT_WALK_POOL_*
+  uvec4 ring;            // x: regions in the ring (1: the frame alone; k > 1: the next k - 1 frames' paths start in
+                         // the following regions once the current one's are all under way); y: LUCENT_WALK_POOL_*
                          // bits; z, w: the sphere-walk banks to generate: of w regions from region z on
   uvec4 region_first[LUCENT_WALK_MAX_REGIONS / 4];  // the first sample index of each region's paths
   uvec4 dispatch;        // x: 1 in the batch's first dispatch (every slot free); y: loop iterations under which an
