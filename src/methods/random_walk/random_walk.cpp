@@ -43,9 +43,7 @@ constexpr std::size_t kResultBytes = std::size_t{64} << 20;
 // llvmpipe with the marble bunny: 12-15% more paths per second at 64 x 48 and 160 x 120, 18% fewer at 320 x 240,
 // where every dispatch runs the pool of later frames' paths while the current frame's longest path advances one
 // budget per dispatch (docs/methods/random-walk.md).
-constexpr std::size_t kRingFrames = 4;
-static_assert(kRingFrames <= 4 && kRingFrames <= LUCENT_WALK_MAX_REGIONS,
-              "the trace pass starts paths of the current frame and the next three at most");
+constexpr std::size_t kRingFrames = LUCENT_WALK_MAX_FRAMES_IN_FLIGHT;
 constexpr int kMaxSurfaceBounces = 64;  // as volpath
 constexpr int kRouletteAfter = 8;       // as volpath
 // Events of one path at most (a path spans dispatches, so llvmpipe's loop cap does not bound it): far beyond any

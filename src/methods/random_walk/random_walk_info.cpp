@@ -1,5 +1,6 @@
 // random_walk_info.cpp: the random-walk method as data: parameters, passes, statistics (no GL).
 #include "methods/method_info.h"
+#include "methods/random_walk/random_walk_io.h"
 
 namespace lucent::methods {
 namespace {
@@ -22,7 +23,7 @@ constexpr ParamDecl kParams[] = {
     {"max_dispatches", ParamType::Int, "65536", "dispatches", 1, 1 << 30, "",
      "a frame whose paths have not all left after this many trace dispatches is refused with an error (a path that "
      "never leaves a medium without absorption would otherwise keep the frame forever)"},
-    {"frames_in_flight", ParamType::Int, "2", "frames", 1, 4, "",
+    {"frames_in_flight", ParamType::Int, "2", "frames", 1, LUCENT_WALK_MAX_FRAMES_IN_FLIGHT, "",
      "frames whose paths the pool traces at once: slots the current frame's paths no longer need start the next "
      "frames' (1: each frame alone)"},
     {"loop_budget", ParamType::Int, "0", "iterations", 0, 1 << 20, "",

@@ -27,7 +27,8 @@
 #define LUCENT_WALK_MAX_JUMP_BANKS 4
 #define LUCENT_WALK_NO_PATH 0xffffffffu  // WalkPathGPU.state.w of a free slot
 #define LUCENT_WALK_REGION_SHIFT 26u  // WalkPathGPU.state.w: the path's results region in the top 6 bits
-#define LUCENT_WALK_MAX_REGIONS 64    // results regions the layout holds (the ring uses 4 at most: random_walk.cpp)
+#define LUCENT_WALK_MAX_REGIONS 64    // results regions the layout holds
+#define LUCENT_WALK_MAX_FRAMES_IN_FLIGHT 4  // regions the ring uses at most: the trace pass tries each in turn
 #define LUCENT_WALK_POOL_FIRST 1    // RandomWalkGPU.ring.y: the frame's first batch
 #define LUCENT_WALK_POOL_LAST 2     // its last
 #define LUCENT_WALK_POOL_GROUP 64        // invocations per work group of the trace pass (one slot each)
@@ -155,6 +156,7 @@ static_assert(sizeof(lucent::shader::WalkObjectGPU) == 160);
 static_assert(sizeof(lucent::shader::RandomWalkGPU) == 512 + 4 * LUCENT_MAX_LIGHTS);
 static_assert(sizeof(lucent::shader::WalkPathGPU) == 128);
 static_assert(sizeof(lucent::shader::WalkCountersGPU) == 640);
+static_assert(LUCENT_WALK_MAX_FRAMES_IN_FLIGHT <= LUCENT_WALK_MAX_REGIONS);
 static_assert(offsetof(lucent::shader::WalkCountersGPU, groups) == 544);
 static_assert(offsetof(lucent::shader::WalkCountersGPU, busy) == 512);
 static_assert(LUCENT_BINDING_WALK_NODES >= LUCENT_METHOD_STORAGE_FIRST && LUCENT_BINDING_WALK_RESULTS <= LUCENT_METHOD_STORAGE_LAST);

@@ -688,6 +688,9 @@ void main() {
       if (index >= region_paths && regions > 1u) region = (current + 1u) % regions, index = take_path(region, region_paths);
       if (index >= region_paths && regions > 2u) region = (current + 2u) % regions, index = take_path(region, region_paths);
       if (index >= region_paths && regions > 3u) region = (current + 3u) % regions, index = take_path(region, region_paths);
+#if LUCENT_WALK_MAX_FRAMES_IN_FLIGHT > 4
+#error "the search above tries four frames"
+#endif
       if (index >= region_paths) break;
       start_path(index, region);
     }
