@@ -72,6 +72,18 @@ struct Deformation {
   float start_s = 0.0f;    // time in the cycle at render time 0 [seconds]
 };
 
+// The multipole model's thickness per surface point, measured on the mesh (a material's "thickness_from_mesh"):
+// values on the nodes of a grid over the object's world-space box, interpolated trilinearly over the nodes near
+// the surface (geometry/thickness_field.h). Empty: the material's one thickness_mm everywhere.
+struct ThicknessGrid {
+  glm::vec3 origin{0.0f};     // the first node [scene units]
+  float cell = 0.0f;          // node spacing [scene units]
+  glm::ivec3 nodes{0};        // node counts along x, y, z
+  std::vector<float> values;  // [scene units], x fastest; 0 where no surface is near
+  float fallback = 0.0f;      // where no node near a point has a value: the area-weighted median [scene units]
+  bool empty() const { return values.empty(); }
+};
+
 struct SceneObject {
   std::string name;
   Deformation deformation;            // per-frame vertex animation (none by default)
@@ -82,6 +94,7 @@ struct SceneObject {
   glm::mat4 world_from_object{1.0f};
   std::optional<Material> material;   // translucent when set
   glm::vec3 albedo{0.8f};             // diffuse reflectance of an opaque object
+  ThicknessGrid thickness;            // the multipole model's thickness per point (from the mesh), or empty
   bool translucent() const { return material.has_value(); }
   bool animated() const { return deformation.type != DeformationType::None || blob_resolution > 0; }
 };

@@ -11,6 +11,7 @@
 // of a branch under a lane mask, and the unused point-light side cost the directional integration 1.7x.
 #include "bssrdf/model.h"
 #include "media/material_map.h"
+#include "geometry/thickness_field.h"
 #include "shared/random.h"
 
 // Light l's sampling plane around x_o: directional, the light's view plane (uv_o: x_o's coordinates in it);
@@ -74,7 +75,7 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
   float eta = material.sigma_a.w;
   int model = int(material.sigma_s.w);
   BandMedium m = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta,
-                                    material.g.w);
+                                    surface_thickness(objects[object].info, material.g.w, x_o));
   LightPlane plane = light_plane(l, x_o);
   float sum = 0.0f;
   // loop bound: checked; N samples x 3 bands x the lights per invocation, refused on llvmpipe above the cap by per-pixel and radiosity-maps (platform::check_loop_iterations)

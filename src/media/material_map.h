@@ -46,8 +46,12 @@ LUCENT_INLINE MapTaps material_map_taps(vec2 uv, ivec2 size) {
 
 LUCENT_SHADER_END
 
-#if !defined(__cplusplus) && defined(LUCENT_MATERIAL_MAPS)
+#if !defined(__cplusplus) && (defined(LUCENT_MATERIAL_MAPS) || defined(LUCENT_THICKNESS_FIELDS))
+// Also holds the multipole model's thickness grids (geometry/thickness_field.h).
 layout(std430, binding = LUCENT_BINDING_MATERIAL_MAPS) readonly buffer MaterialMapBlock { vec4 material_map_texels[]; };
+#endif
+
+#if !defined(__cplusplus) && defined(LUCENT_MATERIAL_MAPS)
 
 // The value of the map `map` (MaterialGPU's alpha_map or mfp_map) at uv.
 vec3 material_map_value(ivec4 map, vec2 uv) {

@@ -130,7 +130,7 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
   for (int c = 0; c < 3; ++c) {
     media[c] = shader::make_band_medium(static_cast<float>(at_exit.sigma_a[c]), static_cast<float>(at_exit.sigma_s[c]),
                                         static_cast<float>(o.g[c]));
-    media[c].thickness = static_cast<float>(o.thickness);
+    media[c].thickness = static_cast<float>(o.thickness_at(x_o));
     probe.sigma_tr[c] = media[c].sigma_tr;
   }
   orthonormal_basis(n_o, probe.t1, probe.t2);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "geometry/closest_point.h"
+#include "geometry/thickness_grid.h"
 #include "geometry/triangle_adjacency.h"
 #include "lucent/error.h"
 #include "scene/mesh_enclosure.h"
@@ -64,6 +65,7 @@ ObjectData object_data(const SceneObject& object, float scale_mm) {
     d.eta = m.eta;
     d.model = static_cast<int>(m.model);
     d.thickness = static_cast<double>(m.thickness_mm) / static_cast<double>(scale_mm);
+    d.thickness_grid = object.thickness;
     d.field = m.field;
     d.scale_mm = scale_mm;
     d.lower = glm::vec3(std::numeric_limits<float>::max()), d.upper = -d.lower;
@@ -89,6 +91,10 @@ glm::dvec2 corner_uv(const ObjectData& d, unsigned triangle, double b1, double b
 }
 
 }  // namespace
+
+double ObjectData::thickness_at(const glm::dvec3& x) const {
+  return thickness_grid.empty() ? thickness : static_cast<double>(lucent::thickness_at(thickness_grid, glm::vec3(x)));
+}
 
 MediumCoefficients ObjectData::medium_at(glm::dvec2 uv) const {
   if (!maps) return {sigma_a, sigma_s};

@@ -44,6 +44,9 @@ struct ObjectData {
   double eta = 1.0;
   int model = 1;                                  // LUCENT_MODEL_*
   double thickness = 0.0;                         // the multipole model's slab thickness [scene units]
+  ThicknessGrid thickness_grid;                   // the same per surface point, when measured on the mesh
+  // The multipole model's thickness at x [scene units]: the grid's where there is one, else `thickness`.
+  double thickness_at(const glm::dvec3& x) const;
   // A textured material (lucent::MaterialMaps, coefficients in mm^-1) with each triangle's corner texture
   // coordinates; sigma_a and sigma_s above are then those of the maps' mean.
   std::shared_ptr<const MaterialMaps> maps;

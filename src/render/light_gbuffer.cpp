@@ -29,6 +29,11 @@ std::string light_sampling_defines(const Scene& scene) {
   // One model for the whole scene: the shaders compile that model alone (bssrdf/model.h).
   if (first && one_model) defines += fmt::format("#define LUCENT_SCENE_MODEL {}\n", static_cast<int>(*first));
   if (has_material_maps(scene)) defines += "#define LUCENT_MATERIAL_MAPS 1\n";  // media/material_map.h
+  for (const SceneObject& object : scene.objects)
+    if (object.translucent() && !object.thickness.empty()) {  // geometry/thickness_field.h
+      defines += "#define LUCENT_THICKNESS_FIELDS 1\n";
+      break;
+    }
   return defines;
 }
 

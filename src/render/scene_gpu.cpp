@@ -7,6 +7,7 @@
 #include "geometry/blob_field.h"
 #include "geometry/blob_isosurface.h"
 #include "geometry/isosurface_grid.h"
+#include "geometry/thickness_grid.h"
 #include "gpu/gl_debug.h"
 #include "gpu/frame_profiler.h"
 #include "gpu/vertex_layout.h"
@@ -73,6 +74,13 @@ GLuint make_buffer(const std::vector<T>& data, const char* label, GLbitfield fla
   return buffer;
 }
 
+// The object's ObjectGPU.info: its material's index (-1: opaque) and the first texel of its thickness grid in the
+// material map buffer (-1: none), appended to `texels` here.
+glm::ivec4 object_info(const SceneObject& object, int material, std::vector<glm::vec4>& texels) {
+  const bool grid = object.translucent() && !object.thickness.empty();
+  return glm::ivec4(material, grid ? append_thickness_grid(object.thickness, texels) : -1, 0, 0);
+}
+
 }  // namespace
 
 SceneGpu::SceneGpu(const Scene& scene, bool model_tables) : model_tables_(model_tables) {
@@ -120,10 +128,10 @@ SceneGpu::SceneGpu(const Scene& scene, bool model_tables) : model_tables_(model_
     }
     if (object.translucent()) {
       translucent_index_count_ = static_cast<GLsizei>(indices.size());
-      objects[i].info = glm::ivec4(static_cast<int>(materials.size()), 0, 0, 0);
+      objects[i].info = object_info(object, static_cast<int>(materials.size()), map_texels);
       materials.push_back(to_gpu(*object.material, scene.scale_mm, map_texels));
     } else {
-      objects[i].info = glm::ivec4(-1, 0, 0, 0);
+      objects[i].info = object_info(object, -1, map_texels);
     }
     objects[i].albedo = glm::vec4(object.albedo, 1.0f);
   }
@@ -229,7 +237,7 @@ void SceneGpu::update_materials(const Scene& scene) {
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       const SceneObject& object = scene.objects[i];
       if (object.translucent() != (pass == 0)) continue;
-      objects[i].info = glm::ivec4(object.translucent() ? static_cast<int>(materials.size()) : -1, 0, 0, 0);
+      objects[i].info = object_info(object, object.translucent() ? static_cast<int>(materials.size()) : -1, map_texels);
       objects[i].albedo = glm::vec4(object.albedo, 1.0f);
       if (object.translucent()) materials.push_back(to_gpu(*object.material, scene.scale_mm, map_texels));
     }

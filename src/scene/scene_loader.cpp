@@ -36,6 +36,7 @@
 #include "geometry/closest_point.h"
 #include "geometry/shape_diameter.h"
 #include "geometry/sheet_solid.h"
+#include "geometry/thickness_grid.h"
 #include "scene/mesh_enclosure.h"
 #include "methods/method_info.h"
 #include "params/param_json.h"
@@ -587,35 +588,46 @@ bool thickness_from_mesh(const json& material) {
   return material.is_object() && material.value("thickness_from_mesh", false);
 }
 
-// `"thickness_from_mesh": true`: the part's thickness from its mesh (after its transform, in mm), the shape diameter
-// read as a slab's thickness (geometry/shape_diameter.h).
-float measured_thickness_mm(const SceneObject& object, const JsonLocation& where, double scale_mm) {
+// `"thickness_from_mesh": true`: the part's thickness from its mesh (after its transform), the shape diameter of
+// each triangle read as a slab's thickness (geometry/shape_diameter.h): per surface point through the object's
+// thickness grid (geometry/thickness_field.h), and its area-weighted median as the material's thickness_mm [mm].
+void measure_thickness(SceneObject& object, const JsonLocation& where, double scale_mm) {
   if (object.material->thickness_mm > 0.0f)
     fail(where.child("thickness_from_mesh"), "not with thickness_mm: the thickness is given or measured, not both");
   if (object.blob_resolution > 0) fail(where.child("thickness_from_mesh"), "not for blobs (their surface is extracted per frame)");
-  // Cached with the precomputations (13 s for the 69k-triangle bunny on two cores): the median and the area share.
-  cache::Key key("shape-diameter", 1);
+  // Cached with the precomputations (13 s for the 69k-triangle bunny on two cores): the median, the area share and
+  // the value of every triangle.
+  cache::Key key("shape-diameter", 2);
   key.mesh(object.mesh);
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) key.number(object.world_from_object[c][r]);
   ShapeDiameter diameter;
-  std::array<double, 2> cached{};
-  if (std::optional<std::vector<std::byte>> bytes = cache::load(key); bytes && bytes->size() == sizeof(cached)) {
-    std::memcpy(cached.data(), bytes->data(), sizeof(cached));
+  const std::size_t triangles = object.mesh.indices.size() / 3;
+  if (std::optional<std::vector<std::byte>> bytes = cache::load(key);
+      bytes && bytes->size() == (2 + triangles) * sizeof(double)) {
+    std::vector<double> cached(2 + triangles);
+    std::memcpy(cached.data(), bytes->data(), bytes->size());
     diameter.median = cached[0], diameter.measured_area_fraction = cached[1];
+    diameter.per_triangle.assign(cached.begin() + 2, cached.end());
   } else {
     try {
       diameter = shape_diameter(object.mesh, object.world_from_object);
     } catch (const Error& e) {
       fail(where.child("thickness_from_mesh"), e.what());
     }
-    cached = {diameter.median, diameter.measured_area_fraction};
+    std::vector<double> cached{diameter.median, diameter.measured_area_fraction};
+    cached.insert(cached.end(), diameter.per_triangle.begin(), diameter.per_triangle.end());
     cache::store(key, std::as_bytes(std::span(cached)));
   }
   if (diameter.measured_area_fraction < 0.9)
     warn(fmt::format("{}: thickness_from_mesh: rays from {:.0f}% of the surface met nothing (an open mesh?); the "
-                     "thickness is the median of the rest", where.str(), 100.0 * (1.0 - diameter.measured_area_fraction)));
-  return static_cast<float>(diameter.median / kShapeDiameterOfUnitSlab * scale_mm);
+                     "thickness there is the median of the rest", where.str(),
+                     100.0 * (1.0 - diameter.measured_area_fraction)));
+  std::vector<double> thickness(diameter.per_triangle.size());
+  for (std::size_t t = 0; t < thickness.size(); ++t) thickness[t] = diameter.per_triangle[t] / kShapeDiameterOfUnitSlab;
+  object.thickness = thickness_grid(transformed(object.mesh, object.world_from_object), thickness,
+                                    diameter.median / kShapeDiameterOfUnitSlab);
+  object.material->thickness_mm = static_cast<float>(diameter.median / kShapeDiameterOfUnitSlab * scale_mm);
 }
 
 SceneObject read_object(const json& j, const JsonLocation& where, const std::string& base_dir, double scale_mm) {
@@ -655,7 +667,7 @@ SceneObject read_object(const json& j, const JsonLocation& where, const std::str
     if (object.material && object.blob_resolution == 0) orient_normals_outward(object.mesh, where.str());
     if (object.material && thickness_from_mesh(j.at("material"))) {
       if (object.material->model == BssrdfModel::Multipole)
-        object.material->thickness_mm = measured_thickness_mm(object, where.child("material"), scale_mm);
+        measure_thickness(object, where.child("material"), scale_mm);
       else  // only the multipole model has a thickness: not measured (it costs seconds on a large mesh)
         warn(fmt::format("{}: thickness_from_mesh: only the multipole model uses a thickness (this material's model "
                          "is {}); not measured", where.child("material").str(), to_string(object.material->model)));

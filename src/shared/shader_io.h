@@ -33,7 +33,8 @@ struct MaterialGPU {
 // One scene object (std430, 32 bytes).
 struct ObjectGPU {
   vec4 albedo;  // rgb: diffuse albedo of an opaque object; a: unused
-  ivec4 info;   // x: material index, -1 for an opaque object; yzw: unused
+  ivec4 info;   // x: material index, -1 for an opaque object; y: first texel of its thickness grid in the material
+                // map buffer, -1 for none (geometry/thickness_field.h); zw: unused
 };
 
 // One view of a light G-buffer layer or of a scattered-radiosity map (std140, 96 bytes). Orthographic views

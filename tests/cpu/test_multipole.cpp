@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <utility>
 
+#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include "bssrdf/multipole_table.h"
 #include "bssrdf/standard_dipole.h"
 #include "geometry/shape_diameter.h"
+#include "geometry/thickness_grid.h"
 #include "lucent/error.h"
 #include "lucent/mesh.h"
 #include "lucent/scene.h"
@@ -342,4 +344,71 @@ TEST(ShapeDiameter, ThicknessFromMeshInAScene) {
   } catch (const lucent::Error& e) {
     EXPECT_NE(std::string(e.what()).find("thickness_from_mesh: not with thickness_mm"), std::string::npos) << e.what();
   }
+}
+
+// The thickness grid's interpolation on its own (values given per triangle, no shape diameter): a sphere of radius 1
+// (64 x 128 facets) whose triangles carry 2 + x at their centroids reads 2 + x on its surface within 2% (the nodes
+// average the triangles within a cell, 2/48 wide, of the point), reads the fallback outside its grid and deep
+// inside, and a mesh without values reads the fallback everywhere.
+TEST(ThicknessGrid, InterpolatesTheTrianglesValuesOverTheSurface) {
+  const lucent::TriangleMesh sphere = lucent::make_sphere(1.0f, 64, 128);
+  std::vector<double> values(sphere.indices.size() / 3);
+  for (std::size_t t = 0; t < values.size(); ++t) {
+    const glm::vec3 c = (sphere.positions[sphere.indices[3 * t]] + sphere.positions[sphere.indices[3 * t + 1]] +
+                         sphere.positions[sphere.indices[3 * t + 2]]) / 3.0f;
+    values[t] = 2.0 + static_cast<double>(c.x);
+  }
+  const lucent::ThicknessGrid grid = lucent::thickness_grid(sphere, values, 7.0);
+  ASSERT_FALSE(grid.empty());
+  double worst = 0.0;
+  for (int k = 0; k < 200; ++k) {  // points on the sphere, a spiral from pole to pole
+    const float z = 1.0f - (2.0f * static_cast<float>(k) + 1.0f) / 200.0f, phi = 2.39996f * static_cast<float>(k);
+    const float r = std::sqrt(1.0f - z * z);
+    const glm::vec3 p(r * std::cos(phi), r * std::sin(phi), z);
+    const double got = lucent::thickness_at(grid, p), want = 2.0 + static_cast<double>(p.x);
+    worst = std::max(worst, std::abs(got / want - 1.0));
+    EXPECT_NEAR(got, want, 0.02 * want) << "at " << p.x << ", " << p.y << ", " << p.z;
+  }
+  std::printf("thickness grid: worst relative error on the sphere %.4f\n", worst);
+  EXPECT_FLOAT_EQ(lucent::thickness_at(grid, glm::vec3(3.0f, 0.0f, 0.0f)), 7.0f);  // outside the grid
+  EXPECT_FLOAT_EQ(lucent::thickness_at(grid, glm::vec3(std::nanf(""), 0.0f, 0.0f)), 7.0f);
+  // Deep inside, farther than a cell from the surface: no node there has a value.
+  EXPECT_FLOAT_EQ(lucent::thickness_at(grid, glm::vec3(0.0f)), 7.0f);
+  const lucent::ThicknessGrid none = lucent::thickness_grid(sphere, std::vector<double>(values.size(), -1.0), 7.0);
+  EXPECT_FLOAT_EQ(lucent::thickness_at(none, glm::vec3(0.0f, 1.0f, 0.0f)), 7.0f);
+  // One value per triangle, a positive fallback.
+  EXPECT_THROW(lucent::thickness_grid(sphere, std::vector<double>(3, 1.0), 7.0), lucent::Error);
+  EXPECT_THROW(lucent::thickness_grid(sphere, values, 0.0), lucent::Error);
+}
+
+// The grid of a part that thins: a lens-shaped disc (the leaderboard's fin: radius 1.5, 0.3 thick at its centre,
+// 0.2 at radius 0.8, 0 at the rim; its profile cut every 0.1, as the shape diameter is one value per triangle)
+// through "thickness_from_mesh". Its grid reads the disc's thickness at the centre and halfway to the rim within
+// 10%, and near the rim (radius 1.15, 0.1 thick) within 15% (a wedge's shape diameter reads its thickness over the
+// cone's width); the median over the surface is one value for all three. Measured: 0.279, 0.222, 0.094-0.097
+// against 0.294, 0.225, 0.100.
+TEST(ShapeDiameter, TheGridFollowsAPartThatThins) {
+  lucent::test::TempCacheDir cache;
+  auto thickness = [](float rho) { return rho <= 0.8f ? 0.3f - 0.125f * rho : 0.2f * (1.5f - rho) / 0.7f; };
+  auto height = [&](float rho) { return 0.5f * thickness(rho); };
+  std::string profile;
+  for (int k = 0; k <= 15; ++k) profile += fmt::format("[{}, {}], ", 0.1 * k, -height(0.1f * static_cast<float>(k)));
+  for (int k = 14; k >= 0; --k)
+    profile += fmt::format("[{}, {}]{}", 0.1 * k, height(0.1f * static_cast<float>(k)), k > 0 ? ", " : "");
+  const std::string fin = R"({"scale_mm": 10, "objects": [{"shape": "lathe", "segments": 96, "profile": [)" + profile +
+                          R"(], "material": {"preset": "Skin1", "model": "multipole", "thickness_from_mesh": true}}]})";
+  const lucent::Scene scene = lucent::parse_scene(fin, "fin.json", "/");
+  const lucent::ThicknessGrid& grid = scene.objects[0].thickness;
+  ASSERT_FALSE(grid.empty());
+  for (const auto& [rho, tolerance] : {std::pair{0.05f, 0.1f}, std::pair{0.6f, 0.1f}, std::pair{1.15f, 0.15f}}) {
+    for (float side : {1.0f, -1.0f}) {
+      const glm::vec3 p(rho * 0.6f, side * height(rho), rho * 0.8f);
+      const float got = lucent::thickness_at(grid, p);
+      std::printf("fin grid at radius %.2f (%s face): %.4f, the disc %.4f\n", rho, side > 0 ? "top" : "bottom", got,
+                  thickness(rho));
+      EXPECT_NEAR(got, thickness(rho), tolerance * thickness(rho)) << "radius " << rho;
+    }
+  }
+  // The material keeps the median, in mm, for what takes one value.
+  EXPECT_NEAR(scene.objects[0].material->thickness_mm, 10.0f * grid.fallback, 1e-4f);
 }

@@ -8,7 +8,8 @@
 // and each point looked up in the light's G-buffer (common/light_sampling.glsl), which shows only directly lit
 // surface of the object; a stratum's weight, the integral of 2 pi r R_d W_l over it, is scaled per point by the
 // ratio of the integrand there, pi S_d W_l F_t (in the plane's measure), to R_d W_l at the ring's radius, so a flat
-// surface lit at normal incidence gets exactly the tabulated pattern. The pattern is turned by a random angle per
+// surface lit at normal incidence gets exactly the tabulated pattern (with a thickness grid, S_d at x_o's thickness
+// over the R_d of the material's, which the pattern was built with). The pattern is turned by a random angle per
 // pixel and frame. L = F_t(eta, n . w_o) / pi (B_l + B_g), accumulated while nothing, camera included, changes.
 #include "common/frame.glsl"
 #include "common/lights.glsl"
@@ -35,10 +36,13 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
   int model = int(material.sigma_s.w);
   int base = objects[object_index].info.x * method.counts.w;
   float Rp = pattern[base].x, K = method.split.x;
-  BandMedium m[3];
-  for (int band = 0; band < 3; ++band)
-    m[band] = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta,
-                                 material.g.w);
+  float thickness = surface_thickness(objects[object_index].info, material.g.w, x);
+  BandMedium m[3], m_pattern[3];  // at x_o's thickness; at the material's, which the local pattern was built with
+  for (int band = 0; band < 3; ++band) {
+    m[band] = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta, thickness);
+    m_pattern[band] = m[band];
+    m_pattern[band].thickness = material.g.w;
+  }
   // Global: the texture-space samples of S_d W_g.
   vec3 B = vec3(0.0f);
   int N = min(method.counts.x, LUCENT_HYBRID_MAX_SAMPLES);
@@ -74,7 +78,7 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
         for (int band = 0; band < 3; ++band) sum[band] += f * bssrdf_Sd(model, m[band], eta, x_i, w_i, n_i, x, n);
       }
       for (int band = 0; band < 3; ++band) {
-        float profile = bssrdf_radial_Rd(model, m[band], eta, ring.w) * hybrid_local_weight(ring.w, Rp, K);
+        float profile = bssrdf_radial_Rd(model, m_pattern[band], eta, ring.w) * hybrid_local_weight(ring.w, Rp, K);
         if (profile > 0.0f) B_l[band] += ring[band] * kPi * sum[band] / (float(points) * profile);
       }
     }

@@ -9,6 +9,7 @@
 #include "common/lights.glsl"
 #include "bssrdf/model.h"
 #include "media/material_map.h"
+#include "geometry/thickness_field.h"
 #include "methods/texture_space_is/texture_space_is_io.h"
 #include "texture_space/transmitted_sd.glsl"
 #include "common/camera_pixel.glsl"
@@ -28,10 +29,10 @@ vec4 subsurface_radiance(ivec2 pixel, int object_index, vec3 x, vec3 n, vec3 w_o
 #endif
   float eta = material.sigma_a.w;
   int model = int(material.sigma_s.w);
+  float thickness = surface_thickness(objects[object_index].info, material.g.w, x);
   BandMedium m[3];
   for (int band = 0; band < 3; ++band)
-    m[band] = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta,
-                                 material.g.w);
+    m[band] = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta, thickness);
   vec3 B = vec3(0.0f);
   int N = min(method.counts.x, LUCENT_TSIS_MAX_SAMPLES);
   // loop bound: checked; texture_space_is.cpp counts N x (this loop, transmitted_Sd's light and band loops, photon
