@@ -45,7 +45,7 @@ constexpr ParamDecl kOpenPbr[] = {
 constexpr ParamDecl kOuter[] = {
     {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated|multipole", "diffusion model S_d"},
     {"thickness_mm", ParamType::Float, "0", "mm", 0, 1e30, "", "the thickness of the part, for the multipole model's reflectance; 0: a half-space"},
-    {"thickness_from_mesh", ParamType::Bool, "false", "", 0, 1, "", "thickness_mm measured on the object's mesh (the scene loader does it: its median shape diameter)"},
+    {"thickness_from_mesh", ParamType::Bool, "false", "", 0, 1, "", "the multipole model's thickness measured on the object's mesh per surface point (the scene loader does it: its shape diameter)"},
     {"name", ParamType::String, "\"\"", "", 0, 0, "", "name used in messages"},
 };
 

@@ -116,7 +116,7 @@ constexpr ParamDecl kMaterialParams[] = {
     {"eta", ParamType::Float, "", "", 1, 3, "", "relative refractive index n_material / n_outside (default: preset, or 1.3)"},
     {"model", ParamType::Enum, "\"standard\"", "", 0, 0, "standard|directional|photon-beam|better-dipole|tabulated|multipole", "diffusion model S_d (default: kDefaultBssrdfModel, the closest to volpath measured)"},
     {"thickness_mm", ParamType::Float, "0", "mm", 0, 1e30, "", "the thickness of the part, for the multipole model's reflectance (its transmittance takes the distance between the faces a light path joins); 0: reflect as a half-space"},
-    {"thickness_from_mesh", ParamType::Bool, "false", "", 0, 1, "", "thickness_mm measured on the object's mesh: the area-weighted median of its shape diameter, read as a slab's thickness"},
+    {"thickness_from_mesh", ParamType::Bool, "false", "", 0, 1, "", "the multipole model's thickness measured on the object's mesh per surface point (its shape diameter, read as a slab's thickness); thickness_mm becomes its median"},
     {"albedo", ParamType::Vec3, "", "", -1e30, 1e30, "", "surface albedo: the thick-slab total diffuse reflectance (with mfp_mm, instead of coefficients); a thinner object than the diffusion length shows less of it"},
     {"mfp_mm", ParamType::Vec3, "", "mm", -1e30, 1e30, "", "mean free path 1 / sigma_t, unreduced (with albedo, instead of coefficients)"},
     {"albedo_map", ParamType::String, "\"\"", "", 0, 0, "",

@@ -147,7 +147,13 @@ json object_json(const SceneObject& object, std::size_t index, const std::vector
     j["scale"] = t.scale;
     if (object.deformation.type != DeformationType::None) j["deform"] = deformation_json(object.deformation);
   }
-  if (object.material) j["material"] = material_json(*object.material);
+  if (object.material) {
+    j["material"] = material_json(*object.material);
+    if (!object.thickness.empty()) {  // measured per point: measured again when the file is read
+      j["material"].erase("thickness_mm");
+      j["material"]["thickness_from_mesh"] = true;
+    }
+  }
   else j["albedo"] = vec(object.albedo);
   if (takes_gltf_texture(object)) {  // the texture lives in the glTF: the object takes the file's material again
     j["mesh"] = std::filesystem::absolute(object.mesh_file).string();

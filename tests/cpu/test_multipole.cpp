@@ -20,6 +20,7 @@
 #include "lucent/error.h"
 #include "lucent/mesh.h"
 #include "lucent/scene.h"
+#include "lucent/scene_writer.h"
 #include "temp_cache_dir.h"
 #include "lucent/material.h"
 #include "transport/slab.h"
@@ -411,4 +412,8 @@ TEST(ShapeDiameter, TheGridFollowsAPartThatThins) {
   }
   // The material keeps the median, in mm, for what takes one value.
   EXPECT_NEAR(scene.objects[0].material->thickness_mm, 10.0f * grid.fallback, 1e-4f);
+  // A scene written from it measures again when read (not the median as a stated thickness).
+  const nlohmann::json written = lucent::scene_to_json(scene);
+  EXPECT_TRUE(written["objects"][0]["material"].value("thickness_from_mesh", false)) << written.dump();
+  EXPECT_FALSE(written["objects"][0]["material"].contains("thickness_mm")) << written.dump();
 }
