@@ -27,7 +27,7 @@ constexpr ParamDecl kParams[] = {
      "frames whose paths the pool traces at once: slots the current frame's paths no longer need start the next "
      "frames' (1: each frame alone)"},
     {"loop_budget", ParamType::Int, "0", "iterations", 0, 1 << 20, "",
-     "loop iterations per invocation under which a trace dispatch starts another event (0: automatic, a sixteenth "
+     "loop iterations per invocation under which a trace dispatch starts another event (0: automatic, a quarter "
      "of llvmpipe's loop cap there, 65,536 elsewhere); past llvmpipe's cap an event is undone and replayed in the "
      "next dispatch, so a larger budget means fewer dispatches and more replays"},
     {"time_dispatches", ParamType::Bool, "false", "", 0, 1, "",
