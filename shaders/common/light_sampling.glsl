@@ -75,7 +75,7 @@ float band_radiosity(int band, int l, int object, MaterialGPU material, vec3 x_o
   float eta = material.sigma_a.w;
   int model = int(material.sigma_s.w);
   BandMedium m = bssrdf_band_medium(model, material.sigma_a[band], material.sigma_s[band], material.g[band], eta,
-                                    surface_thickness(objects[object].info, material.g.w, x_o));
+                                    material.g.w);
   LightPlane plane = light_plane(l, x_o);
   float sum = 0.0f;
   // loop bound: checked; N samples x 3 bands x the lights per invocation, refused on llvmpipe above the cap by per-pixel and radiosity-maps (platform::check_loop_iterations)
@@ -104,6 +104,7 @@ vec3 scattered_radiosity(int object, vec3 x_o, vec3 n_o, vec2 uv_o, uint point_i
 #if defined(LUCENT_MATERIAL_MAPS)
   material = material_at(material, uv_o);
 #endif
+  material.g.w = surface_thickness(objects[object].info, material.g.w, x_o);  // the multipole model's, at x_o
   vec3 B = vec3(0.0f);
   // loop bound: checked; the lights x 3 bands x N samples inside, refused on llvmpipe above the cap (platform::check_loop_iterations)
   for (int l = 0; l < frame.light_counts.x; ++l) {

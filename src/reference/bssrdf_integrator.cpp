@@ -127,10 +127,11 @@ glm::dvec3 scattered_radiosity_over_pi(const ReferenceScene& s, int object, glm:
   const MediumCoefficients at_exit = o.medium_at(uv_o);
   shader::BandMedium media[3];
   Probe probe{x_o, n_o, {}, {}, {}, 0.0};
+  const auto thickness = static_cast<float>(o.thickness_at(x_o));
   for (int c = 0; c < 3; ++c) {
     media[c] = shader::make_band_medium(static_cast<float>(at_exit.sigma_a[c]), static_cast<float>(at_exit.sigma_s[c]),
                                         static_cast<float>(o.g[c]));
-    media[c].thickness = static_cast<float>(o.thickness_at(x_o));
+    media[c].thickness = thickness;
     probe.sigma_tr[c] = media[c].sigma_tr;
   }
   orthonormal_basis(n_o, probe.t1, probe.t2);
